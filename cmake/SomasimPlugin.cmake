@@ -1,0 +1,16 @@
+# somasim_add_plugin(NAME SOURCES ... [LIBS ...])
+# Builds a plugin shared library named somasim_<NAME> into the plugin directory
+# of the build tree (and installs it into the plugin directory of the package).
+function(somasim_add_plugin name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;LIBS" ${ARGN})
+  set(target somasim_plugin_${name})
+  add_library(${target} MODULE ${ARG_SOURCES})
+  target_link_libraries(${target} PRIVATE somasim::core ${ARG_LIBS})
+  set_target_properties(${target} PROPERTIES
+    PREFIX "lib"
+    OUTPUT_NAME somasim_${name}
+    LIBRARY_OUTPUT_DIRECTORY ${SOMASIM_PLUGIN_BUILD_DIR}
+    CXX_VISIBILITY_PRESET hidden
+    INSTALL_RPATH "$ORIGIN/../..")
+  install(TARGETS ${target} LIBRARY DESTINATION ${SOMASIM_PLUGIN_INSTALL_DIR})
+endfunction()
