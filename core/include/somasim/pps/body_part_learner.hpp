@@ -1,0 +1,101 @@
+#pragma once
+/// @file
+/// Event-driven PPS learning for all taxels of one body part.
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "somasim/pps/grid.hpp"
+#include "somasim/pps/receptive_field.hpp"
+#include "somasim/pps/stimulus.hpp"
+#include "somasim/pps/stimulus_buffer.hpp"
+#include "somasim/pps/taxel_map.hpp"
+
+namespace somasim::pps {
+
+/// Every learning parameter. Defaults: the paper text (centre anchors, sigma = 1 bin, TTC up to
+/// 3 s, 3 s buffer, cone RF, signed TTC); code() gives the released robot code's values.
+struct LearnerParams {
+  GridSpec grid = GridSpec::paper();
+  ParzenSpec parzen = ParzenSpec::paper();
+  ReceptiveField rf = ReceptiveField::paper();
+  TtcDefinition ttc = TtcDefinition::kSigned;
+  BufferSpec buffer = BufferSpec::paper();
+
+  static LearnerParams paper() { return LearnerParams{}; }
+  static LearnerParams code() {
+    return LearnerParams{GridSpec::code(), ParzenSpec::code(), ReceptiveField::code(),
+                         TtcDefinition::kSigned, BufferSpec::code()};
+  }
+};
+
+/// A taxel of a body part: id and pose in the link frame [m].
+struct TaxelInfo {
+  int id = 0;
+  TaxelPose pose_link;
+};
+
+/// What one contact event taught.
+struct LearningStats {
+  std::size_t buffered_samples = 0;  ///< samples in the buffer at the event
+  std::size_t touched_taxels = 0;    ///< taxels marked touched (known ids only)
+  std::size_t in_rf = 0;             ///< (sample, taxel) pairs inside the RF
+  std::size_t invalid_ttc = 0;       ///< ... of which TTC undefined (e.g. receding): ignored
+  std::size_t out_of_range = 0;      ///< ... of which (D, TTC) outside the grid: ignored
+  std::size_t positives = 0;         ///< counts added to pos
+  std::size_t negatives = 0;         ///< counts added to neg
+  std::size_t behind_skin = 0;       ///< counted samples with D < 0
+};
+
+class BodyPartLearner {
+ public:
+  BodyPartLearner(std::string body_part, std::vector<TaxelInfo> taxels,
+                  const LearnerParams& params);
+
+  const std::string& body_part() const { return body_part_; }
+  const LearnerParams& params() const { return params_; }
+  const std::vector<TaxelInfo>& taxels() const { return taxels_; }
+  const std::vector<TaxelMap>& maps() const { return maps_; }
+  std::vector<TaxelMap>& maps() { return maps_; }
+  /// Index of taxel `id`, or -1.
+  int index_of(int id) const;
+
+  StimulusBuffer& buffer() { return buffer_; }
+  const StimulusBuffer& buffer() const { return buffer_; }
+  /// Buffers a stimulus sample (root frame).
+  void push_stimulus(const StimulusSample& s) { buffer_.push(s); }
+
+  /// Contact event. `taxels_root[k]` is the pose of taxel k (same order as taxels()) in the root
+  /// frame at contact time; `touched_ids` the ids of the touched taxels (unknown ids are
+  /// ignored). Every buffered sample inside a taxel's RF with valid, in-range (D, TTC) adds 1 to
+  /// pos (touched) or neg (untouched). The buffer is then cleared. InputError if the pose count
+  /// differs from the taxel count. No allocation after the first event.
+  LearningStats on_contact(std::span<const TaxelPose> taxels_root,
+                           std::span<const int> touched_ids);
+  /// Same, with every taxel posed by the link's pose in the root frame (root <- link).
+  LearningStats on_contact(const Eigen::Isometry3d& root_from_link,
+                           std::span<const int> touched_ids);
+
+  /// Totals over all events so far.
+  const LearningStats& totals() const { return totals_; }
+
+  /// Activation of taxel index k for a stimulus in the root frame, with the taxel at
+  /// `taxel_root` (0 outside the RF or when TTC is undefined).
+  double activation(int k, const TaxelPose& taxel_root, const Stimulus& s) const;
+
+ private:
+  std::string body_part_;
+  LearnerParams params_;
+  std::vector<TaxelInfo> taxels_;
+  std::vector<TaxelMap> maps_;
+  StimulusBuffer buffer_;
+  PreparedRf rf_;
+  LearningStats totals_;
+  std::vector<TaxelPose> scratch_poses_;
+  std::vector<std::uint8_t> touched_;
+};
+
+}  // namespace somasim::pps

@@ -1,0 +1,69 @@
+#pragma once
+/// @file
+/// The (D, TTC) grid of a PPS taxel map and the Parzen smoothing variant.
+///
+/// D is the signed distance [m] of a stimulus from the taxel (negative behind the skin plane),
+/// TTC its time to contact [s]. Both ranges are closed intervals; the grid has `d_bins` x
+/// `ttc_bins` equal bins, stored D-major: index = d_bin * ttc_bins + ttc_bin.
+#include <cstddef>
+#include <string>
+
+namespace somasim::pps {
+
+/// Largest number of bins per axis supported (keeps queries allocation-free).
+inline constexpr int kMaxBinsPerAxis = 32;
+
+/// Grid over D [m] x TTC [s]. Defaults: the released robot code (TTC up to 1.2 s).
+struct GridSpec {
+  double d_min = -0.10;  ///< [m] lower edge of the first D bin.
+  double d_max = 0.20;   ///< [m] upper edge of the last D bin.
+  int d_bins = 8;        ///< number of D bins.
+  double ttc_min = 0.0;  ///< [s] lower edge of the first TTC bin.
+  double ttc_max = 1.2;  ///< [s] upper edge of the last TTC bin (paper text: 3 s).
+  int ttc_bins = 4;      ///< number of TTC bins.
+
+  double d_width() const { return (d_max - d_min) / d_bins; }          ///< [m]
+  double ttc_width() const { return (ttc_max - ttc_min) / ttc_bins; }  ///< [s]
+  std::size_t size() const { return static_cast<std::size_t>(d_bins) * ttc_bins; }
+  /// Index of bin (d_bin, ttc_bin) in the D-major layout.
+  int index(int d_bin, int ttc_bin) const { return d_bin * ttc_bins + ttc_bin; }
+
+  /// True when (d, ttc) lies in the closed ranges; then writes the bin indices (a value on the
+  /// upper edge goes to the last bin).
+  bool bin_of(double d, double ttc, int& d_bin, int& ttc_bin) const;
+
+  /// Empty string when valid, else a description of what is wrong.
+  std::string validate() const;
+
+  /// Paper text variant: TTC in [0, 3] s.
+  static GridSpec paper() { return GridSpec{-0.10, 0.20, 8, 0.0, 3.0, 4}; }
+  /// Released robot code variant: TTC in [0, 1.2] s.
+  static GridSpec code() { return GridSpec{}; }
+
+  bool operator==(const GridSpec&) const = default;
+};
+
+/// Where the Parzen kernels sit on each bin.
+enum class KernelAnchor {
+  kCentre,     ///< bin centres (paper; default).
+  kLowerEdge,  ///< bin lower edges (released code: shifts the surface by half a bin).
+};
+
+/// Parzen-window smoothing: sigma = sigma_scale x bin width, per axis.
+struct ParzenSpec {
+  double sigma_scale = 1.0;  ///< 1.0 (paper) or 0.75 (released code).
+  KernelAnchor anchor = KernelAnchor::kCentre;
+
+  static ParzenSpec paper() { return ParzenSpec{1.0, KernelAnchor::kCentre}; }
+  static ParzenSpec code() { return ParzenSpec{0.75, KernelAnchor::kLowerEdge}; }
+
+  std::string validate() const;  ///< Empty when valid.
+  bool operator==(const ParzenSpec&) const = default;
+};
+
+/// "centre" / "lower_edge".
+const char* to_string(KernelAnchor a);
+/// Parses "centre" / "lower_edge"; returns false on anything else.
+bool parse_kernel_anchor(const std::string& s, KernelAnchor& out);
+
+}  // namespace somasim::pps

@@ -1,0 +1,114 @@
+#include "somasim/pps/body_part_learner.hpp"
+
+#include <string>
+#include <utility>
+
+#include "somasim/error.hpp"
+
+namespace somasim::pps {
+
+BodyPartLearner::BodyPartLearner(std::string body_part, std::vector<TaxelInfo> taxels,
+                                 const LearnerParams& params)
+    : body_part_(std::move(body_part)),
+      params_(params),
+      taxels_(std::move(taxels)),
+      buffer_(params.buffer),
+      rf_(params.rf) {
+  if (const std::string e = params_.grid.validate(); !e.empty())
+    throw InputError("PPS learner '" + body_part_ + "': invalid grid: " + e);
+  if (const std::string e = params_.parzen.validate(); !e.empty())
+    throw InputError("PPS learner '" + body_part_ + "': invalid Parzen spec: " + e);
+  maps_.reserve(taxels_.size());
+  for (std::size_t k = 0; k < taxels_.size(); ++k) maps_.emplace_back(params_.grid, params_.parzen);
+  touched_.assign(taxels_.size(), 0);
+  scratch_poses_.resize(taxels_.size());
+}
+
+int BodyPartLearner::index_of(int id) const {
+  for (std::size_t k = 0; k < taxels_.size(); ++k)
+    if (taxels_[k].id == id) return static_cast<int>(k);
+  return -1;
+}
+
+LearningStats BodyPartLearner::on_contact(const Eigen::Isometry3d& root_from_link,
+                                          std::span<const int> touched_ids) {
+  const Eigen::Matrix3d r = root_from_link.linear();
+  const Eigen::Vector3d t = root_from_link.translation();
+  for (std::size_t k = 0; k < taxels_.size(); ++k) {
+    scratch_poses_[k].position = r * taxels_[k].pose_link.position + t;
+    scratch_poses_[k].normal = r * taxels_[k].pose_link.normal;
+  }
+  return on_contact(std::span<const TaxelPose>(scratch_poses_), touched_ids);
+}
+
+LearningStats BodyPartLearner::on_contact(std::span<const TaxelPose> taxels_root,
+                                          std::span<const int> touched_ids) {
+  if (taxels_root.size() != taxels_.size())
+    throw InputError("PPS learner '" + body_part_ + "': contact event gives " +
+                     std::to_string(taxels_root.size()) + " taxel poses, expected " +
+                     std::to_string(taxels_.size()) + " (one per taxel of the body part)");
+  LearningStats st;
+  st.buffered_samples = buffer_.size();
+  std::fill(touched_.begin(), touched_.end(), std::uint8_t{0});
+  for (const int id : touched_ids) {
+    const int k = index_of(id);
+    if (k >= 0 && !touched_[static_cast<std::size_t>(k)]) {
+      touched_[static_cast<std::size_t>(k)] = 1;
+      ++st.touched_taxels;
+    }
+  }
+  const auto& samples = buffer_.samples();
+  const GridSpec& grid = params_.grid;
+  const TtcDefinition ttc_def = params_.ttc;
+  if (!samples.empty()) {
+    for (std::size_t k = 0; k < taxels_.size(); ++k) {
+      const Eigen::Matrix3d rt = taxel_rotation(taxels_root[k].normal).transpose();
+      const Eigen::Vector3d origin = taxels_root[k].position;
+      const bool positive = touched_[k] != 0;
+      TaxelMap& map = maps_[k];
+      bool changed = false;
+      for (const StimulusSample& s : samples) {
+        Eigen::Vector3d p = rt * (s.stimulus.position - origin);
+        p.z() -= s.stimulus.radius;
+        if (!rf_.contains(p)) continue;
+        ++st.in_rf;
+        const Eigen::Vector3d v = rt * s.stimulus.velocity;
+        const DTtc dt = compute_d_ttc(p, v, ttc_def);
+        if (!dt.valid) {
+          ++st.invalid_ttc;
+          continue;
+        }
+        int i = 0, j = 0;
+        if (!grid.bin_of(dt.d, dt.ttc, i, j)) {
+          ++st.out_of_range;
+          continue;
+        }
+        map.add_to_bin(grid.index(i, j), positive);
+        changed = true;
+        ++(positive ? st.positives : st.negatives);
+        if (dt.d < 0.0) ++st.behind_skin;
+      }
+      if (changed) map.refresh();
+    }
+  }
+  buffer_.clear();
+  totals_.buffered_samples += st.buffered_samples;
+  totals_.touched_taxels += st.touched_taxels;
+  totals_.in_rf += st.in_rf;
+  totals_.invalid_ttc += st.invalid_ttc;
+  totals_.out_of_range += st.out_of_range;
+  totals_.positives += st.positives;
+  totals_.negatives += st.negatives;
+  totals_.behind_skin += st.behind_skin;
+  return st;
+}
+
+double BodyPartLearner::activation(int k, const TaxelPose& taxel_root, const Stimulus& s) const {
+  const TaxelFrameStimulus ts = to_taxel_frame(taxel_root, s);
+  if (!rf_.contains(ts.p)) return 0.0;
+  const DTtc dt = compute_d_ttc(ts.p, ts.v, params_.ttc);
+  if (!dt.valid) return 0.0;
+  return maps_.at(static_cast<std::size_t>(k)).activation(dt.d, dt.ttc);
+}
+
+}  // namespace somasim::pps

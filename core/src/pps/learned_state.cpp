@@ -1,0 +1,35 @@
+#include "somasim/pps/learned_state.hpp"
+
+#include <utility>
+
+namespace somasim::pps {
+
+LearnedState learned_state(const BodyPartLearner& learner) {
+  LearnedState s;
+  s.body_part = learner.body_part();
+  s.grid = learner.params().grid;
+  s.parzen = learner.params().parzen;
+  s.taxels.reserve(learner.taxels().size());
+  for (std::size_t k = 0; k < learner.taxels().size(); ++k)
+    s.taxels.push_back(LearnedTaxel{learner.taxels()[k].id, learner.taxels()[k].pose_link,
+                                    learner.maps()[k].pos(), learner.maps()[k].neg()});
+  return s;
+}
+
+TaxelMap make_map(const LearnedState& state, const LearnedTaxel& taxel) {
+  return TaxelMap(state.grid, state.parzen, taxel.pos, taxel.neg);
+}
+
+BodyPartLearner make_learner(const LearnedState& state, LearnerParams params) {
+  params.grid = state.grid;
+  params.parzen = state.parzen;
+  std::vector<TaxelInfo> infos;
+  infos.reserve(state.taxels.size());
+  for (const LearnedTaxel& t : state.taxels) infos.push_back(TaxelInfo{t.id, t.pose_link});
+  BodyPartLearner learner(state.body_part, std::move(infos), params);
+  for (std::size_t k = 0; k < state.taxels.size(); ++k)
+    learner.maps()[k] = make_map(state, state.taxels[k]);
+  return learner;
+}
+
+}  // namespace somasim::pps
