@@ -1,0 +1,136 @@
+#include "commands.hpp"
+
+#include <fmt/format.h>
+
+#include "somasim/diagnostics.hpp"
+#include "somasim/error.hpp"
+#include "somasim/experiment.hpp"
+#include "somasim/interrupt.hpp"
+#include "somasim/plugin.hpp"
+#include "somasim/plugin_registry.hpp"
+#include "somasim/runner.hpp"
+
+namespace somasim::app {
+namespace fs = std::filesystem;
+
+namespace {
+
+std::vector<Override> parse_sets(const std::vector<std::string>& sets) {
+  std::vector<Override> out;
+  for (const auto& s : sets) {
+    const auto eq = s.find('=');
+    if (eq == std::string::npos || eq == 0)
+      throw InputError("--set '" + s + "': expected path=value, e.g. nodes.pps.params.threshold=0.2");
+    out.push_back({s.substr(0, eq), s.substr(eq + 1)});
+  }
+  return out;
+}
+
+int bad_input(const std::exception& e) {
+  fmt::print(stderr, "error: {}\n", e.what());
+  return kExitBadInput;
+}
+
+}  // namespace
+
+int cmd_run(const CommonOptions& common, const RunArgs& args) {
+  PluginRegistry registry(PluginRegistry::default_search_path(common.plugin_path));
+  Experiment exp;
+  try {
+    LoadOptions options;
+    options.overrides = parse_sets(args.sets);
+    options.seed = args.seed;
+    exp = load_experiment_file(args.file, registry, options);
+  } catch (const InputError& e) {
+    return bad_input(e);
+  }
+  RunOptions run;
+  run.out_dir = args.out.empty() ? fs::path("runs") / exp.name : fs::path(args.out);
+  run.quiet = args.quiet;
+  install_interrupt_handler();
+  const RunReport report = run_experiment(exp, run);
+  const fs::path out = fs::absolute(run.out_dir).lexically_normal();
+  switch (report.status) {
+    case RunStatus::Completed:
+      fmt::print("results: {}\n", out.string());
+      return kExitOk;
+    case RunStatus::BadInput:
+      fmt::print(stderr, "error: {}\n(partial results: {})\n", report.error, out.string());
+      return kExitBadInput;
+    case RunStatus::Failed:
+      fmt::print(stderr, "run failed: {}\n(outputs flushed to {})\n", report.error, out.string());
+      return kExitRunFailed;
+    case RunStatus::Interrupted:
+      fmt::print(stderr, "interrupted: outputs flushed to {}\n", out.string());
+      return kExitInterrupted;
+  }
+  return kExitRunFailed;
+}
+
+int cmd_validate(const CommonOptions& common, const std::string& file,
+                 const std::vector<std::string>& sets) {
+  PluginRegistry registry(PluginRegistry::default_search_path(common.plugin_path));
+  try {
+    LoadOptions options;
+    options.overrides = parse_sets(sets);
+    const Experiment exp = load_experiment_file(file, registry, options);
+    fmt::print("{}: ok ({} nodes, {} s at {} Hz)\n", file, exp.nodes.size(), exp.duration_s,
+               exp.base_rate_hz);
+    return kExitOk;
+  } catch (const InputError& e) {
+    return bad_input(e);
+  }
+}
+
+int cmd_plugins(const CommonOptions& common) {
+  PluginRegistry registry(PluginRegistry::default_search_path(common.plugin_path));
+  const auto all = registry.all();
+  for (const PluginSpec* spec : all) {
+    const std::string first_line = spec->doc().substr(0, spec->doc().find('\n'));
+    fmt::print("{:<22} {}\n", spec->name(), first_line);
+  }
+  if (all.empty()) fmt::print(stderr, "no plugins found; {}\n", registry.search_report());
+  for (const auto& c : registry.candidates())
+    if (!c.loaded) fmt::print(stderr, "rejected {}: {}\n", c.path.string(), c.rejection);
+  return kExitOk;
+}
+
+int cmd_describe(const CommonOptions& common, const std::string& name) {
+  PluginRegistry registry(PluginRegistry::default_search_path(common.plugin_path));
+  const PluginSpec* spec = registry.find(name);
+  if (!spec) {
+    fmt::print(stderr, "error: unknown plugin '{}'{}; {}\n", name, did_you_mean(name, registry.names()),
+               registry.search_report());
+    return kExitBadInput;
+  }
+  fmt::print("{}\n  {}\n  library: {}\n\nparameters:\n", spec->name(), spec->doc(), spec->library_path);
+  for (const auto& p : spec->params()) {
+    std::string line = fmt::format("  {:<24} {}", p.name, param_type_name(p.type));
+    if (!p.unit.empty()) line += " [" + p.unit + "]";
+    line += p.default_value ? ", default " + param_value_str(*p.default_value) : ", required";
+    if (p.min || p.max)
+      line += fmt::format(", range [{}, {}]", p.min ? fmt::format("{}", *p.min) : "-inf",
+                          p.max ? fmt::format("{}", *p.max) : "inf");
+    if (!p.choices.empty()) line += ", one of: " + join_names(p.choices);
+    fmt::print("{}\n      {}\n", line, p.doc);
+  }
+  for (auto dir : {PortDirection::Input, PortDirection::Output}) {
+    fmt::print("\n{}:\n", dir == PortDirection::Input ? "inputs" : "outputs");
+    for (const auto& p : spec->ports())
+      if (p.direction == dir)
+        fmt::print("  {:<24} {}{}\n      {}\n", p.name, p.type->name, p.optional ? " (optional)" : "", p.doc);
+  }
+  return kExitOk;
+}
+
+int cmd_graph(const CommonOptions& common, const std::string& file) {
+  PluginRegistry registry(PluginRegistry::default_search_path(common.plugin_path));
+  try {
+    fmt::print("{}", load_experiment_file(file, registry).graphviz());
+    return kExitOk;
+  } catch (const InputError& e) {
+    return bad_input(e);
+  }
+}
+
+}  // namespace somasim::app

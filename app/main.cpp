@@ -1,0 +1,58 @@
+// somasim: run experiment graphs headless. See README.md.
+#include <CLI/CLI.hpp>
+
+#include "commands.hpp"
+
+using namespace somasim::app;
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "somasim — headless robot simulator for embodied-cognition experiments.\n"
+      "Exit codes: 0 success, 2 bad input (experiment file, parameters, plugins, usage),\n"
+      "3 run failed (outputs flushed, error in metrics.json), 130 interrupted (outputs flushed)."};
+  app.require_subcommand(1);
+  CommonOptions common;
+  app.add_option("--plugin-path", common.plugin_path,
+                 "Directory searched for plugin libraries before $SOMASIM_PLUGIN_PATH and the "
+                 "install dir (repeatable)");
+
+  RunArgs run;
+  auto* run_cmd = app.add_subcommand("run", "Run an experiment; results go to the run folder");
+  run_cmd->add_option("file", run.file, "Experiment YAML")->required();
+  run_cmd->add_option("--set", run.sets, "Override a value: path=value, e.g. nodes.pps.params.threshold=0.2 (repeatable)");
+  run_cmd->add_option("--seed", run.seed, "Replace the experiment's seed");
+  run_cmd->add_option("--out", run.out, "Run folder (default: runs/<experiment name>)");
+  run_cmd->add_flag("--quiet", run.quiet, "No progress line; only warnings and errors on stderr");
+
+  std::string validate_file;
+  std::vector<std::string> validate_sets;
+  auto* validate_cmd = app.add_subcommand("validate", "Check an experiment without running it");
+  validate_cmd->add_option("file", validate_file, "Experiment YAML")->required();
+  validate_cmd->add_option("--set", validate_sets, "Override a value: path=value (repeatable)");
+
+  auto* plugins_cmd = app.add_subcommand("plugins", "List the plugins found on the search path");
+  std::string describe_name;
+  auto* describe_cmd = plugins_cmd->add_subcommand("describe", "Parameters and ports of one plugin");
+  describe_cmd->add_option("name", describe_name, "Plugin name")->required();
+
+  std::string graph_file;
+  auto* graph_cmd = app.add_subcommand("graph", "Print an experiment's graph in Graphviz DOT");
+  graph_cmd->add_option("file", graph_file, "Experiment YAML")->required();
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return kExitBadInput;
+  }
+  if (*run_cmd) return cmd_run(common, run);
+  if (*validate_cmd) return cmd_validate(common, validate_file, validate_sets);
+  if (*describe_cmd) return cmd_describe(common, describe_name);
+  if (*plugins_cmd) return cmd_plugins(common);
+  if (*graph_cmd) return cmd_graph(common, graph_file);
+  return kExitBadInput;
+}

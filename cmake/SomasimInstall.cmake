@@ -1,0 +1,11 @@
+# Package config so that out-of-tree plugins can do find_package(somasim) and
+# somasim_add_plugin(...).
+include(CMakePackageConfigHelpers)
+set(SOMASIM_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/somasim)
+install(EXPORT somasimTargets NAMESPACE somasim:: DESTINATION ${SOMASIM_CMAKE_DIR})
+configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/somasimConfig.cmake.in
+  ${CMAKE_BINARY_DIR}/somasimConfig.cmake INSTALL_DESTINATION ${SOMASIM_CMAKE_DIR})
+write_basic_package_version_file(${CMAKE_BINARY_DIR}/somasimConfigVersion.cmake
+  COMPATIBILITY SameMinorVersion)
+install(FILES ${CMAKE_BINARY_DIR}/somasimConfig.cmake ${CMAKE_BINARY_DIR}/somasimConfigVersion.cmake
+  ${PROJECT_SOURCE_DIR}/cmake/SomasimPlugin.cmake DESTINATION ${SOMASIM_CMAKE_DIR})

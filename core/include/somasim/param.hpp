@@ -1,0 +1,80 @@
+#pragma once
+/// @file
+/// Plugin parameters: the schema a plugin declares (name, type, unit, default, range, doc)
+/// and the validated values a node receives.
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "somasim/error.hpp"
+
+namespace somasim {
+
+enum class ParamType { Bool, Int, Double, String, DoubleList };
+
+/// Human-readable type name used in messages and docs ("a number", "a list of numbers", ...).
+const char* param_type_name(ParamType type);
+
+/// A parameter value. Int is 64-bit; DoubleList is a YAML sequence of numbers.
+using ParamValue = std::variant<bool, std::int64_t, double, std::string, std::vector<double>>;
+
+/// Renders a value for messages, docs and the resolved experiment file.
+std::string param_value_str(const ParamValue& value);
+
+/// The declaration of one parameter. Built with chainable setters:
+/// `spec.add_double("speed_min").unit("m/s").defaults(0.05).range(0, 10).doc("...")`.
+struct ParamSpec {
+  std::string name;
+  ParamType type = ParamType::Double;
+  std::string unit;                        ///< SI unit, e.g. "m", "s", "rad", "m/s"; "" if none
+  std::optional<ParamValue> default_value;  ///< nullopt: the parameter is required
+  std::optional<double> min, max;           ///< inclusive range for numbers (each list element)
+  std::vector<std::string> choices;         ///< allowed values of a String parameter, if fixed
+  std::optional<std::size_t> list_size;     ///< required length of a DoubleList
+  std::string doc;
+
+  ParamSpec& unit_is(std::string u) { unit = std::move(u); return *this; }
+  ParamSpec& defaults(ParamValue v) { default_value = std::move(v); return *this; }
+  ParamSpec& range(double lo, double hi) { min = lo; max = hi; return *this; }
+  ParamSpec& at_least(double lo) { min = lo; return *this; }
+  ParamSpec& one_of(std::vector<std::string> c) { choices = std::move(c); return *this; }
+  ParamSpec& size(std::size_t n) { list_size = n; return *this; }
+  ParamSpec& describe(std::string d) { doc = std::move(d); return *this; }
+  bool required() const { return !default_value.has_value(); }
+};
+
+/// Validated parameter values of one node: every declared parameter has a value of its type.
+class Params {
+ public:
+  Params() = default;
+  explicit Params(std::map<std::string, ParamValue> values) : values_(std::move(values)) {}
+
+  /// Typed access. T is bool, std::int64_t, int, double, std::string or std::vector<double>.
+  /// Asking for an undeclared name or a wrong type is a bug in the plugin (aborts).
+  template <class T>
+  T get(const std::string& name) const;
+
+  bool has(const std::string& name) const { return values_.count(name) != 0; }
+  const std::map<std::string, ParamValue>& values() const { return values_; }
+
+ private:
+  const ParamValue& raw(const std::string& name) const;
+  std::map<std::string, ParamValue> values_;
+};
+
+template <class T>
+T Params::get(const std::string& name) const {
+  const ParamValue& v = raw(name);
+  if constexpr (std::is_same_v<T, int>) {
+    SOMASIM_CHECK(std::holds_alternative<std::int64_t>(v), "parameter is not an integer");
+    return static_cast<int>(std::get<std::int64_t>(v));
+  } else {
+    SOMASIM_CHECK(std::holds_alternative<T>(v), "parameter read with the wrong type");
+    return std::get<T>(v);
+  }
+}
+
+}  // namespace somasim

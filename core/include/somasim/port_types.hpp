@@ -1,0 +1,106 @@
+#pragma once
+/// @file
+/// Port value types shared by the built-in plugins. All positions and velocities are in the
+/// robot's root frame (waist: x backward, y to the robot's right, z up) unless a field says
+/// otherwise. Plugins may define their own types the same way (specialise PortTraits).
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "somasim/port_type.hpp"
+
+namespace somasim {
+
+/// A perceived stimulus (an approaching object or a fingertip) at one instant.
+struct Stimulus {
+  bool present = false;                              ///< false: nothing perceived now
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< centre [m], root frame
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  ///< [m/s], root frame
+  double radius = 0.0;                               ///< [m]
+};
+
+/// Skin taxels of one body part, posed in the root frame at the current instant.
+struct SkinPart {
+  std::string name;                        ///< body part, e.g. "left_forearm"
+  std::vector<int> taxel_ids;              ///< ids as in the skin layout
+  std::vector<Eigen::Vector3d> positions;  ///< taxel centres [m], root frame
+  std::vector<Eigen::Vector3d> normals;    ///< outward unit normals, root frame
+};
+
+/// All skin parts a skin (or stimulus) plugin exposes.
+struct SkinTaxels {
+  std::vector<SkinPart> parts;
+};
+
+/// A contact on the skin of one body part (pressure over threshold on enough taxels).
+struct ContactEvent {
+  std::uint64_t id = 0;            ///< strictly increasing per producer; consumers skip seen ids
+  double time_s = 0.0;             ///< sim time of the contact [s]
+  std::string body_part;           ///< the part that was touched
+  std::vector<int> touched_taxels;  ///< ids of the (virtual) taxels touched; may be empty
+};
+
+/// The recent contact events of a producer (it prunes old ones; consumers track `id`).
+struct ContactEvents {
+  std::vector<ContactEvent> recent;
+};
+
+/// One value per taxel, in the order of a SkinTaxels input, parts concatenated.
+struct TaxelValues {
+  std::vector<std::string> labels;  ///< "part/id", for CSV headers
+  std::vector<double> values;
+};
+
+template <>
+struct PortTraits<double> {
+  static constexpr const char* name = "scalar";
+  static std::vector<std::string> csv_columns(const double&) { return {"value"}; }
+  static void csv_write(const double& v, std::string& row) { csv_append(row, v); }
+};
+
+template <>
+struct PortTraits<Eigen::Vector3d> {
+  static constexpr const char* name = "vector3";
+  static std::vector<std::string> csv_columns(const Eigen::Vector3d&) { return {"x", "y", "z"}; }
+  static void csv_write(const Eigen::Vector3d& v, std::string& row) {
+    for (int i = 0; i < 3; ++i) csv_append(row, v[i]);
+  }
+};
+
+template <>
+struct PortTraits<Stimulus> {
+  static constexpr const char* name = "stimulus";
+  static std::vector<std::string> csv_columns(const Stimulus&) {
+    return {"present", "x [m]", "y [m]", "z [m]", "vx [m/s]", "vy [m/s]", "vz [m/s]",
+            "radius [m]"};
+  }
+  static void csv_write(const Stimulus& s, std::string& row) {
+    csv_append(row, s.present ? 1.0 : 0.0);
+    for (int i = 0; i < 3; ++i) csv_append(row, s.position[i]);
+    for (int i = 0; i < 3; ++i) csv_append(row, s.velocity[i]);
+    csv_append(row, s.radius);
+  }
+};
+
+template <>
+struct PortTraits<SkinTaxels> {
+  static constexpr const char* name = "skin_taxels";
+};
+
+template <>
+struct PortTraits<ContactEvents> {
+  static constexpr const char* name = "contact_events";
+};
+
+template <>
+struct PortTraits<TaxelValues> {
+  static constexpr const char* name = "taxel_values";
+  static std::vector<std::string> csv_columns(const TaxelValues& v) { return v.labels; }
+  static void csv_write(const TaxelValues& v, std::string& row) {
+    for (double x : v.values) csv_append(row, x);
+  }
+};
+
+}  // namespace somasim

@@ -1,0 +1,19 @@
+#pragma once
+/// @file
+/// Version strings of the somasim package and of its plugin interface.
+
+namespace somasim {
+
+/// Version of the somasim package (semantic versioning).
+inline constexpr const char* kVersion = "0.1.0";
+
+/// Version of the binary plugin interface. A plugin library records the string it was built
+/// with; the loader rejects a library whose string differs (DESIGN.md §3). Bump it whenever a
+/// public header that plugins include changes layout or virtual functions.
+#ifdef SOMASIM_PLUGIN_INTERFACE_VERSION_OVERRIDE  // only for the loader's own tests
+inline constexpr const char* kPluginInterfaceVersion = SOMASIM_PLUGIN_INTERFACE_VERSION_OVERRIDE;
+#else
+inline constexpr const char* kPluginInterfaceVersion = "somasim-plugin-api/1";
+#endif
+
+}  // namespace somasim

@@ -1,0 +1,69 @@
+#include "somasim/diagnostics.hpp"
+
+#include <algorithm>
+
+#include "somasim/error.hpp"
+
+namespace somasim {
+
+std::string Diagnostic::str() const {
+  std::string out = where.str() + ": ";
+  if (!node.empty()) out += "node '" + node + "'" + (key.empty() ? ": " : ", ");
+  if (!key.empty()) out += "key '" + key + "': ";
+  return out + message;
+}
+
+void Diagnostics::add(SourceLocation where, std::string node, std::string key,
+                      std::string message) {
+  items_.push_back({std::move(where), std::move(node), std::move(key), std::move(message)});
+}
+
+void Diagnostics::throw_if_any() const {
+  if (items_.empty()) return;
+  if (items_.size() == 1) throw InputError(items_.front().str());
+  std::string msg = std::to_string(items_.size()) + " errors:";
+  for (const auto& d : items_) msg += "\n  " + d.str();
+  throw InputError(msg);
+}
+
+namespace {
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> prev(b.size() + 1), cur(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) prev[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    cur[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t subst = prev[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1);
+      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, subst});
+    }
+    std::swap(prev, cur);
+  }
+  return prev[b.size()];
+}
+}  // namespace
+
+std::string nearest_name(const std::string& name, const std::vector<std::string>& candidates) {
+  std::string best;
+  std::size_t best_distance = std::max<std::size_t>(2, name.size() / 3) + 1;
+  for (const auto& c : candidates) {
+    const std::size_t d = edit_distance(name, c);
+    if (d < best_distance) {
+      best_distance = d;
+      best = c;
+    }
+  }
+  return best;
+}
+
+std::string did_you_mean(const std::string& name, const std::vector<std::string>& candidates) {
+  const std::string best = nearest_name(name, candidates);
+  return best.empty() ? "" : " (did you mean '" + best + "'?)";
+}
+
+std::string join_names(const std::vector<std::string>& names) {
+  std::string out;
+  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
+
+}  // namespace somasim

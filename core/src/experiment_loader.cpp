@@ -1,0 +1,426 @@
+// Loading an experiment file: YAML → overrides → schema validation → wiring checks.
+#include <algorithm>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <yaml-cpp/yaml.h>
+
+#include "graph_check.hpp"
+#include "somasim/diagnostics.hpp"
+#include "somasim/error.hpp"
+#include "somasim/experiment.hpp"
+#include "somasim/plugin_registry.hpp"
+#include "yaml_values.hpp"
+
+namespace somasim {
+namespace fs = std::filesystem;
+using detail::describe_yaml;
+using detail::LocationMap;
+
+namespace {
+
+const std::vector<std::string> kTopKeys = {"experiment", "description", "seed",
+                                           "duration_s", "base_rate_hz", "base_dir",
+                                           "plugin_libraries", "nodes", "record"};
+const std::vector<std::string> kNodeKeys = {"plugin", "rate_hz", "params", "inputs",
+                                            "description"};
+const std::vector<std::string> kWireKeys = {"from", "delayed"};
+
+std::vector<std::string> split(const std::string& s, char sep) {
+  std::vector<std::string> parts;
+  std::stringstream ss(s);
+  std::string item;
+  while (std::getline(ss, item, sep)) parts.push_back(item);
+  return parts;
+}
+
+class Loader {
+ public:
+  Loader(std::string display_name, fs::path base_dir, PluginRegistry& registry,
+         const LoadOptions& options)
+      : locs_(display_name), registry_(registry), options_(options) {
+    exp_.file = display_name;
+    exp_.base_dir = std::move(base_dir);
+  }
+
+  Experiment load(const std::string& text) {
+    YAML::Node root;
+    try {
+      root = YAML::Load(text);
+    } catch (const YAML::ParserException& e) {
+      throw InputError(fmt::format("{}:{}:{}: YAML syntax error: {}", locs_.file(),
+                                   e.mark.line + 1, e.mark.column + 1, e.msg));
+    }
+    if (!root.IsMap()) {
+      throw InputError(locs_.of(root).str() +
+                       ": expected a map with the keys 'experiment', 'duration_s' and 'nodes', got " +
+                       describe_yaml(root));
+    }
+    apply_overrides(root);
+    read_top(root);
+    diags_.throw_if_any();  // unknown plugins etc. make wiring checks meaningless
+    detail::check_graph(exp_, diags_, options_.allow_harness_inputs);
+    diags_.throw_if_any();
+    return std::move(exp_);
+  }
+
+ private:
+  void error(const YAML::Node& at, const std::string& node, const std::string& key,
+             const std::string& msg) {
+    diags_.add(locs_.of(at), node, key, msg);
+  }
+
+  // --- overrides -------------------------------------------------------------------------
+  void apply_overrides(YAML::Node& root) {
+    for (const auto& ov : options_.overrides) {
+      const std::string shown = ov.path + "=" + ov.value;
+      const auto fail = [&](const std::string& msg) {
+        throw InputError("--set '" + shown + "': " + msg);
+      };
+      const std::vector<std::string> parts = split(ov.path, '.');
+      if (parts.empty() || std::any_of(parts.begin(), parts.end(),
+                                       [](const std::string& p) { return p.empty(); }))
+        fail("expected a dotted path such as nodes.NODE.params.NAME");
+      YAML::Node value;
+      try {
+        value = YAML::Load(ov.value);
+      } catch (const YAML::ParserException& e) {
+        fail("the value is not valid YAML: " + e.msg);
+      }
+      // Walk to the parent map, checking that each step exists.
+      YAML::Node parent = root;
+      std::string walked;
+      for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
+        YAML::Node next = parent[parts[i]];
+        if (!next.IsDefined() || !next.IsMap()) {
+          std::vector<std::string> keys;
+          if (parent.IsMap())
+            for (const auto& kv : parent) keys.push_back(kv.first.as<std::string>());
+          fail("no map '" + (walked.empty() ? "" : walked + ".") + parts[i] + "' in " +
+               locs_.file() + did_you_mean(parts[i], keys));
+        }
+        walked += (walked.empty() ? "" : ".") + parts[i];
+        parent.reset(next);
+      }
+      const std::string& key = parts.back();
+      if (!parent[key].IsDefined()) {
+        const std::vector<std::string> allowed = allowed_new_keys(root, parts);
+        if (std::find(allowed.begin(), allowed.end(), key) == allowed.end())
+          fail("'" + ov.path + "' does not exist in " + locs_.file() + " and is not a key that can be set there" +
+               did_you_mean(key, allowed));
+      }
+      parent[key] = value;
+      locs_.add_override(parent[key], shown);
+    }
+  }
+
+  // Keys that may be added by --set although absent from the file.
+  std::vector<std::string> allowed_new_keys(const YAML::Node& root,
+                                            const std::vector<std::string>& parts) {
+    if (parts.size() == 1) return kTopKeys;
+    if (parts.size() == 3 && parts[0] == "nodes") return kNodeKeys;
+    if (parts.size() == 4 && parts[0] == "nodes" && parts[2] == "params") {
+      const YAML::Node plugin = root["nodes"][parts[1]]["plugin"];
+      if (plugin.IsScalar())
+        if (const PluginSpec* spec = registry_.find(plugin.Scalar())) return spec->param_names();
+    }
+    return {};
+  }
+
+  // --- top level -------------------------------------------------------------------------
+  void read_top(const YAML::Node& root) {
+    for (const auto& kv : root) {
+      const std::string key = kv.first.as<std::string>();
+      if (std::find(kTopKeys.begin(), kTopKeys.end(), key) == kTopKeys.end())
+        error(kv.first, "", key,
+              "unknown key" + did_you_mean(key, kTopKeys) + "; expected one of: " +
+                  join_names(kTopKeys));
+    }
+    exp_.name = read_string(root, "experiment", options_.defaults_for_tests ? "test" : "");
+    if (const YAML::Node d = root["description"]; d) exp_.description = read_string(root, "description", "");
+    exp_.seed = static_cast<std::uint64_t>(read_number(root, "seed", 0.0, 0.0, true));
+    if (options_.seed) exp_.seed = *options_.seed;
+    exp_.duration_s = read_number(root, "duration_s", options_.defaults_for_tests ? 1e9 : -1.0,
+                                  1e-9, false);
+    exp_.base_rate_hz = read_number(root, "base_rate_hz", 1000.0, 1e-9, false);
+    if (const YAML::Node b = root["base_dir"]; b) exp_.base_dir = read_string(root, "base_dir", "");
+    read_libraries(root);
+    read_nodes(root);
+    read_records(root);
+  }
+
+  std::string read_string(const YAML::Node& map, const std::string& key,
+                          const std::string& fallback) {
+    const YAML::Node n = map[key];
+    if (!n) {
+      if (fallback.empty()) error(map, "", key, "missing required key (expected a string)");
+      return fallback;
+    }
+    if (!n.IsScalar() || n.Scalar().empty()) {
+      error(n, "", key, "expected a string, got " + describe_yaml(n));
+      return fallback;
+    }
+    return n.Scalar();
+  }
+
+  // Reads a finite number >= min; fallback < 0 means required. integer: must be integral.
+  double read_number(const YAML::Node& map, const std::string& key, double fallback,
+                     double min, bool integer) {
+    const YAML::Node n = map[key];
+    const char* what = integer ? "an integer" : "a number";
+    if (!n) {
+      if (fallback < 0) error(map, "", key, std::string("missing required key (expected ") + what + ")");
+      return std::max(fallback, 0.0);
+    }
+    const auto v = n.IsScalar() ? (integer ? [&]() -> std::optional<double> {
+      auto i = detail::parse_int(n.Scalar());
+      return i ? std::optional<double>(static_cast<double>(*i)) : std::nullopt;
+    }() : detail::parse_double(n.Scalar())) : std::nullopt;
+    if (!v) {
+      error(n, "", key, std::string("expected ") + what + ", got " + describe_yaml(n));
+    } else if (!std::isfinite(*v)) {
+      error(n, "", key, "expected a finite number, got " + describe_yaml(n));
+    } else if (*v < min || (min > 0 && *v <= 0)) {
+      error(n, "", key, fmt::format("expected {} {} 0, got {}", what, min > 0 ? ">" : ">=", n.Scalar()));
+    } else {
+      return *v;
+    }
+    return std::max(fallback, 0.0);
+  }
+
+  void read_libraries(const YAML::Node& root) {
+    const YAML::Node libs = root["plugin_libraries"];
+    if (!libs) return;
+    if (!libs.IsSequence()) {
+      error(libs, "", "plugin_libraries", "expected a list of paths, got " + describe_yaml(libs));
+      return;
+    }
+    for (const auto& item : libs) {
+      if (!item.IsScalar()) {
+        error(item, "", "plugin_libraries", "expected a path, got " + describe_yaml(item));
+        continue;
+      }
+      fs::path p = item.Scalar();
+      if (p.is_relative()) p = exp_.base_dir / p;
+      p = p.lexically_normal();
+      try {
+        registry_.load_library(p);
+        exp_.plugin_libraries.push_back(p.string());
+      } catch (const InputError& e) {
+        error(item, "", "plugin_libraries", e.what());
+      }
+    }
+  }
+
+  // --- nodes -----------------------------------------------------------------------------
+  void read_nodes(const YAML::Node& root) {
+    const YAML::Node nodes = root["nodes"];
+    if (!nodes) {
+      error(root, "", "nodes", "missing required key (expected a map of node names to nodes)");
+      return;
+    }
+    if (!nodes.IsMap()) {
+      error(nodes, "", "nodes", "expected a map of node names to nodes, got " + describe_yaml(nodes));
+      return;
+    }
+    std::map<std::string, SourceLocation> seen;
+    for (const auto& kv : nodes) {
+      const std::string name = kv.first.as<std::string>();
+      if (auto it = seen.find(name); it != seen.end()) {
+        error(kv.first, name, "", "duplicate node name (first defined at " + it->second.str() + ")");
+        continue;
+      }
+      seen[name] = locs_.of(kv.first);
+      if (name == "harness" || name.find('.') != std::string::npos) {
+        error(kv.first, name, "", "invalid node name (no dots; 'harness' is reserved)");
+        continue;
+      }
+      read_node(name, kv.first, kv.second);
+    }
+  }
+
+  void read_node(const std::string& name, const YAML::Node& key_node, const YAML::Node& node) {
+    NodeSpec ns;
+    ns.name = name;
+    ns.where = locs_.of(key_node);
+    if (!node.IsMap()) {
+      error(node, name, "", "expected a map with 'plugin', 'params', 'inputs', got " + describe_yaml(node));
+      return;
+    }
+    for (const auto& kv : node) {
+      const std::string key = kv.first.as<std::string>();
+      if (std::find(kNodeKeys.begin(), kNodeKeys.end(), key) == kNodeKeys.end())
+        error(kv.first, name, key,
+              "unknown key" + did_you_mean(key, kNodeKeys) + "; expected one of: " +
+                  join_names(kNodeKeys));
+    }
+    const YAML::Node plugin = node["plugin"];
+    if (!plugin) {
+      error(key_node, name, "plugin", "missing required key (expected a plugin name)");
+    } else if (!plugin.IsScalar()) {
+      error(plugin, name, "plugin", "expected a plugin name, got " + describe_yaml(plugin));
+    } else {
+      ns.plugin = plugin.Scalar();
+      ns.spec = registry_.find(ns.plugin);
+      if (!ns.spec)
+        error(plugin, name, "plugin",
+              "unknown plugin '" + ns.plugin + "'" + did_you_mean(ns.plugin, registry_.names()) +
+                  "; " + registry_.search_report());
+    }
+    ns.rate_hz = exp_.base_rate_hz;
+    if (const YAML::Node r = node["rate_hz"]; r) {
+      const auto v = r.IsScalar() ? detail::parse_double(r.Scalar()) : std::nullopt;
+      if (!v || !std::isfinite(*v) || *v <= 0)
+        error(r, name, "rate_hz", "expected a finite number > 0 [Hz], got " + describe_yaml(r));
+      else
+        ns.rate_hz = *v;
+    }
+    const double ratio = exp_.base_rate_hz / ns.rate_hz;
+    ns.period_ticks = static_cast<int>(std::lround(ratio));
+    if (ns.period_ticks < 1 || std::abs(ratio - ns.period_ticks) > 1e-9 * ratio)
+      error(node["rate_hz"], name, "rate_hz",
+            fmt::format("rate {} Hz does not divide the base rate {} Hz (base_rate_hz / rate_hz "
+                        "must be a whole number >= 1)",
+                        ns.rate_hz, exp_.base_rate_hz));
+    if (ns.spec) read_params(ns, node);
+    read_inputs(ns, node);
+    exp_.nodes.push_back(std::move(ns));
+  }
+
+  void read_params(NodeSpec& ns, const YAML::Node& node) {
+    const PluginSpec& spec = *ns.spec;
+    const YAML::Node params = node["params"];
+    std::map<std::string, ParamValue> values;
+    if (params && !params.IsMap() && !params.IsNull()) {
+      error(params, ns.name, "params", "expected a map of parameter names to values, got " + describe_yaml(params));
+    } else if (params && params.IsMap()) {
+      for (const auto& kv : params) {
+        const std::string key = kv.first.as<std::string>();
+        const ParamSpec* ps = spec.find_param(key);
+        if (!ps) {
+          const auto names = spec.param_names();
+          error(kv.first, ns.name, "params." + key,
+                "unknown parameter of plugin '" + spec.name() + "'" + did_you_mean(key, names) +
+                    "; expected one of: " + join_names(names));
+          continue;
+        }
+        std::string problem;
+        if (auto v = detail::to_param_value(kv.second, *ps, problem)) {
+          values[key] = *v;
+          ns.param_locations[key] = locs_.of(kv.second);
+        } else {
+          error(kv.second, ns.name, "params." + key, problem);
+        }
+      }
+    }
+    for (const auto& ps : spec.params()) {
+      if (values.count(ps.name)) continue;
+      if (ps.default_value)
+        values[ps.name] = *ps.default_value;
+      else if (!params || !params.IsMap() || !params[ps.name])
+        error(params && params.IsMap() ? params : node, ns.name, "params." + ps.name,
+              "missing required parameter of plugin '" + spec.name() + "' (expected " +
+                  detail::expectation(ps) + (ps.doc.empty() ? "" : ": " + ps.doc) + ")");
+    }
+    ns.params = Params(std::move(values));
+  }
+
+  void read_inputs(NodeSpec& ns, const YAML::Node& node) {
+    const YAML::Node inputs = node["inputs"];
+    if (!inputs || inputs.IsNull()) return;
+    if (!inputs.IsMap()) {
+      error(inputs, ns.name, "inputs", "expected a map of input ports to 'node.port', got " + describe_yaml(inputs));
+      return;
+    }
+    for (const auto& kv : inputs) {
+      InputWire w;
+      w.port = kv.first.as<std::string>();
+      w.where = locs_.of(kv.second);
+      const std::string key = "inputs." + w.port;
+      YAML::Node from = kv.second;
+      if (kv.second.IsMap()) {
+        for (const auto& wk : kv.second) {
+          const std::string k = wk.first.as<std::string>();
+          if (std::find(kWireKeys.begin(), kWireKeys.end(), k) == kWireKeys.end())
+            error(wk.first, ns.name, key + "." + k,
+                  "unknown key" + did_you_mean(k, kWireKeys) + "; expected one of: from, delayed");
+        }
+        from = kv.second["from"];
+        if (const YAML::Node d = kv.second["delayed"]; d) {
+          const auto b = d.IsScalar() ? detail::parse_bool(d.Scalar()) : std::nullopt;
+          if (!b)
+            error(d, ns.name, key + ".delayed", "expected a boolean (true/false), got " + describe_yaml(d));
+          else
+            w.delayed = *b;
+        }
+        if (!from) {
+          error(kv.second, ns.name, key, "missing 'from: node.port'");
+          continue;
+        }
+      }
+      const std::string text = from.IsScalar() ? from.Scalar() : "";
+      const auto dot = text.find('.');
+      if (dot == std::string::npos || dot == 0 || dot + 1 == text.size()) {
+        error(from, ns.name, key, "expected 'node.port' or {from: node.port, delayed: true}, got " + describe_yaml(from));
+        continue;
+      }
+      w.from_node = text.substr(0, dot);
+      w.from_port = text.substr(dot + 1);
+      ns.inputs.push_back(std::move(w));
+    }
+  }
+
+  void read_records(const YAML::Node& root) {
+    const YAML::Node rec = root["record"];
+    if (!rec || rec.IsNull()) return;
+    if (!rec.IsSequence()) {
+      error(rec, "", "record", "expected a list of 'node.port', got " + describe_yaml(rec));
+      return;
+    }
+    for (const auto& item : rec) {
+      const std::string text = item.IsScalar() ? item.Scalar() : "";
+      const auto dot = text.find('.');
+      if (dot == std::string::npos || dot == 0 || dot + 1 == text.size()) {
+        error(item, "", "record", "expected 'node.port', got " + describe_yaml(item));
+        continue;
+      }
+      exp_.records.push_back({text.substr(0, dot), text.substr(dot + 1), locs_.of(item)});
+    }
+  }
+
+  LocationMap locs_;
+  PluginRegistry& registry_;
+  const LoadOptions& options_;
+  Diagnostics diags_;
+  Experiment exp_;
+};
+
+}  // namespace
+
+Experiment load_experiment_text(const std::string& yaml, const std::string& display_name,
+                                const fs::path& base_dir, PluginRegistry& registry,
+                                const LoadOptions& options) {
+  return Loader(display_name, base_dir, registry, options).load(yaml);
+}
+
+Experiment load_experiment_file(const fs::path& file, PluginRegistry& registry,
+                                const LoadOptions& options) {
+  std::error_code ec;
+  if (!fs::exists(file, ec)) throw InputError("experiment file '" + file.string() + "' does not exist");
+  std::ifstream in(file);
+  if (!in) throw InputError("experiment file '" + file.string() + "' cannot be read");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  const fs::path dir = fs::absolute(file).parent_path().lexically_normal();
+  return load_experiment_text(buffer.str(), file.string(), dir, registry, options);
+}
+
+const NodeSpec* Experiment::find_node(const std::string& name) const {
+  for (const auto& n : nodes)
+    if (n.name == name) return &n;
+  return nullptr;
+}
+
+}  // namespace somasim

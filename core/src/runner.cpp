@@ -1,0 +1,147 @@
+#include "somasim/runner.hpp"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <fstream>
+
+#include <fmt/format.h>
+#include <spdlog/sinks/basic_file_sink.h>
+#include <spdlog/sinks/stdout_color_sinks.h>
+
+#include "somasim/error.hpp"
+#include "somasim/interrupt.hpp"
+#include "somasim/simulation.hpp"
+#include "somasim/version.hpp"
+
+namespace somasim {
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+const char* run_status_name(RunStatus status) {
+  switch (status) {
+    case RunStatus::Completed: return "completed";
+    case RunStatus::BadInput: return "bad_input";
+    case RunStatus::Failed: return "failed";
+    case RunStatus::Interrupted: return "interrupted";
+  }
+  return "?";
+}
+
+namespace {
+
+std::shared_ptr<spdlog::logger> make_logger(const fs::path& dir, bool quiet) {
+  auto file = std::make_shared<spdlog::sinks::basic_file_sink_mt>((dir / "log.txt").string(), true);
+  file->set_level(spdlog::level::debug);
+  auto err = std::make_shared<spdlog::sinks::stderr_color_sink_mt>();
+  err->set_level(quiet ? spdlog::level::warn : spdlog::level::info);
+  err->set_pattern("[%n] %^%l%$: %v");
+  auto logger = std::make_shared<spdlog::logger>("somasim", spdlog::sinks_init_list{file, err});
+  logger->set_level(spdlog::level::debug);
+  logger->flush_on(spdlog::level::warn);
+  return logger;
+}
+
+class ProgressLine {
+ public:
+  explicit ProgressLine(bool enabled) : enabled_(enabled && isatty(STDERR_FILENO)) {}
+  void update(double sim_t, double duration, double wall) {
+    if (!enabled_ || wall - last_ < 0.5) return;
+    last_ = wall;
+    const double rtf = wall > 0 ? sim_t / wall : 0.0;
+    const double eta = rtf > 0 ? (duration - sim_t) / rtf : 0.0;
+    fmt::print(stderr, "\r  sim {:.1f}/{:.1f} s   {:.1f}x real time   ETA {:.0f} s   ", sim_t,
+               duration, rtf, eta);
+    shown_ = true;
+  }
+  ~ProgressLine() {
+    if (shown_) fmt::print(stderr, "\n");
+  }
+
+ private:
+  bool enabled_;
+  bool shown_ = false;
+  double last_ = 0.0;
+};
+
+void write_metrics(const fs::path& file, const nlohmann::ordered_json& metrics) {
+  std::ofstream out(file);
+  out << metrics.dump(2) << "\n";
+}
+
+}  // namespace
+
+RunReport run_experiment(const Experiment& exp, const RunOptions& options) {
+  fs::create_directories(options.out_dir);
+  {
+    std::ofstream resolved(options.out_dir / "experiment.resolved.yaml");
+    resolved << exp.resolved_yaml();
+  }
+  auto logger = make_logger(options.out_dir, options.quiet);
+  logger->info("experiment '{}' from {}, seed {}, {} s at {} Hz, output in {}", exp.name,
+               exp.file.string(), exp.seed, exp.duration_s, exp.base_rate_hz,
+               options.out_dir.string());
+  RunReport report;
+  const auto wall_start = Clock::now();
+  auto wall = [&] { return std::chrono::duration<double>(Clock::now() - wall_start).count(); };
+  Simulation sim(exp, options.out_dir, logger);
+  bool started = false;
+  try {
+    sim.configure();
+    sim.start();
+    started = true;
+    ProgressLine progress(options.progress && !options.quiet);
+    while (sim.step()) progress.update(sim.time_s(), exp.duration_s, wall());
+    if (sim.stop_reason() == "interrupted") report.status = RunStatus::Interrupted;
+  } catch (const InputError& e) {
+    report.status = RunStatus::BadInput;
+    report.error = e.what();
+  } catch (const std::exception& e) {
+    report.status = RunStatus::Failed;
+    report.error = fmt::format("node '{}' at t = {} s: {}", sim.current_node(), sim.time_s(), e.what());
+  }
+  report.stop_reason = report.status == RunStatus::Completed || report.status == RunStatus::Interrupted
+                           ? sim.stop_reason()
+                           : report.error;
+  if (started || report.status != RunStatus::BadInput) {
+    const std::string finish_error = sim.finish();
+    if (!finish_error.empty() && report.status == RunStatus::Completed) {
+      report.status = RunStatus::Failed;
+      report.error = finish_error;
+    }
+  }
+  const double wall_s = wall();
+  auto& m = report.metrics;
+  m["experiment"] = exp.name;
+  m["status"] = run_status_name(report.status);
+  m["error"] = report.error;
+  m["stop_reason"] = report.stop_reason;
+  m["seed"] = exp.seed;
+  m["sim_time_s"] = sim.time_s();
+  m["wall_time_s"] = wall_s;
+  m["real_time_factor"] = wall_s > 0 ? sim.time_s() / wall_s : 0.0;
+  m["versions"] = {{"somasim", kVersion},
+                   {"plugin_interface", kPluginInterfaceVersion},
+                   {"compiler", __VERSION__}};
+  // Plugin metrics at the top level by their own names; a name reported by two nodes (or
+  // clashing with the run's own keys) is qualified as "node.metric".
+  std::map<std::string, int> count;
+  for (const auto& [node, values] : sim.node_metrics().items())
+    for (const auto& [k, v] : values.items()) ++count[k];
+  for (const auto& [node, values] : sim.node_metrics().items())
+    for (const auto& [k, v] : values.items()) {
+      const bool clash = count[k] > 1 || m.contains(k);
+      m[clash ? node + "." + k : k] = v;
+    }
+  m["nodes"] = sim.node_metrics();
+  write_metrics(options.out_dir / "metrics.json", m);
+  if (report.status == RunStatus::Completed)
+    logger->info("completed ({}) in {:.2f} s wall time", report.stop_reason, wall_s);
+  else
+    logger->error("run {}: {}", run_status_name(report.status),
+                  report.error.empty() ? report.stop_reason : report.error);
+  logger->flush();
+  return report;
+}
+
+}  // namespace somasim

@@ -1,0 +1,223 @@
+#include "somasim/simulation.hpp"
+
+#include <cmath>
+
+#include "node_runtime.hpp"
+#include "somasim/interrupt.hpp"
+#include "somasim/rng.hpp"
+
+namespace somasim {
+namespace fs = std::filesystem;
+
+NodeRuntime::NodeRuntime(Simulation& s, const NodeSpec& ns, std::shared_ptr<spdlog::logger> l)
+    : sim(s), spec(ns), context(*this), rng(node_stream_seed(s.experiment().seed, ns.name)),
+      log(std::move(l)) {}
+
+Simulation::Simulation(const Experiment& experiment, fs::path out_dir,
+                       std::shared_ptr<spdlog::logger> logger)
+    : exp_(experiment), out_dir_(std::move(out_dir)), logger_(std::move(logger)) {
+  total_ticks_ = static_cast<std::int64_t>(std::floor(exp_.duration_s * exp_.base_rate_hz + 1e-9));
+}
+
+Simulation::~Simulation() {
+  for (auto& r : recorders_) r->flush();
+}
+
+double Simulation::time_s() const { return static_cast<double>(tick_) / exp_.base_rate_hz; }
+
+void Simulation::configure() {
+  SOMASIM_CHECK(!configured_, "configure() called twice");
+  configured_ = true;
+  for (const auto& ns : exp_.nodes) {
+    auto node_log = std::make_shared<spdlog::logger>(ns.name, logger_->sinks().begin(),
+                                                     logger_->sinks().end());
+    node_log->set_level(logger_->level());
+    auto rt = std::make_unique<NodeRuntime>(*this, ns, node_log);
+    rt->plugin = ns.spec->factory();
+    for (const auto& p : ns.spec->ports())
+      if (p.direction == PortDirection::Output) rt->outputs[p.name] = p.type->create();
+    nodes_.push_back(std::move(rt));
+  }
+  auto runtime_of = [&](const std::string& name) -> NodeRuntime& {
+    for (auto& n : nodes_)
+      if (n->spec.name == name) return *n;
+    SOMASIM_CHECK(false, "wired node vanished after validation");
+  };
+  for (auto& n : nodes_) {
+    for (const auto& w : n->spec.inputs) {
+      const PortSpec* in = n->spec.spec->find_port(w.port, PortDirection::Input);
+      void* storage = nullptr;
+      if (w.from_node == "harness") {
+        storage = harness_port(w.from_port, in->type->name);
+        if (!storage) {
+          harness_ports_.push_back({w.from_port, in->type, in->type->create()});
+          storage = harness_ports_.back().storage.get();
+        }
+      } else {
+        void* producer = runtime_of(w.from_node).outputs.at(w.from_port).get();
+        storage = producer;
+        if (w.delayed) {
+          delayed_.push_back({in->type, producer, in->type->create()});
+          storage = delayed_.back().buffer.get();
+        }
+      }
+      n->inputs[w.port] = storage;
+    }
+  }
+  for (int i : exp_.order) {
+    current_node_ = nodes_[i]->spec.name;
+    nodes_[i]->plugin->configure(nodes_[i]->context);
+  }
+  current_node_.clear();
+}
+
+void Simulation::start() {
+  for (const auto& r : exp_.records) {
+    for (auto& n : nodes_) {
+      if (n->spec.name != r.node) continue;
+      const PortSpec* out = n->spec.spec->find_port(r.port, PortDirection::Output);
+      auto rec = std::make_unique<CsvRecorder>(out_dir_ / (r.node + "." + r.port + ".csv"),
+                                               *out->type, n->outputs.at(r.port).get());
+      rec->set_node(r.node);
+      recorders_.push_back(std::move(rec));
+    }
+  }
+  for (int i : exp_.order) {
+    current_node_ = nodes_[i]->spec.name;
+    nodes_[i]->plugin->start(nodes_[i]->context);
+  }
+  current_node_.clear();
+}
+
+bool Simulation::step() {
+  if (!stop_reason_.empty()) return false;
+  if (tick_ >= total_ticks_) {
+    stop_reason_ = "duration reached";
+    return false;
+  }
+  if (interrupt_requested()) {
+    stop_reason_ = "interrupted";
+    return false;
+  }
+  const double t = time_s();
+  for (int i : exp_.order) {
+    NodeRuntime& n = *nodes_[i];
+    if (tick_ % n.spec.period_ticks != 0) continue;
+    current_node_ = n.spec.name;
+    n.plugin->step(n.context);
+    for (auto& r : recorders_)
+      if (r->node_name() == n.spec.name) r->write(t);
+  }
+  current_node_.clear();
+  copy_delayed();
+  ++tick_;
+  return true;
+}
+
+void Simulation::copy_delayed() {
+  for (auto& d : delayed_) d.type->copy(d.buffer.get(), d.producer);
+}
+
+std::string Simulation::finish() {
+  std::string first_error;
+  for (int i : exp_.order) {
+    NodeRuntime& n = *nodes_[i];
+    try {
+      n.plugin->finish(n.context);
+    } catch (const std::exception& e) {
+      if (first_error.empty()) first_error = "node '" + n.spec.name + "' finish: " + e.what();
+      logger_->error("node '{}' failed in finish(): {}", n.spec.name, e.what());
+    }
+    nlohmann::ordered_json m = nlohmann::ordered_json::object();
+    for (const auto& [k, v] : n.metrics) m[k] = v;
+    if (!m.empty()) metrics_[n.spec.name] = m;
+  }
+  for (auto& r : recorders_) r->flush();
+  return first_error;
+}
+
+void* Simulation::harness_port(const std::string& name, const std::string& type_name) {
+  for (auto& h : harness_ports_)
+    if (h.name == name) {
+      if (h.type->name != type_name)
+        throw InputError("harness input '" + name + "' is '" + h.type->name + "', not '" + type_name + "'");
+      return h.storage.get();
+    }
+  return nullptr;
+}
+
+void* Simulation::output_port(const std::string& node, const std::string& port,
+                              const std::string& type_name) {
+  for (auto& n : nodes_) {
+    if (n->spec.name != node) continue;
+    auto it = n->outputs.find(port);
+    if (it == n->outputs.end()) throw InputError("node '" + node + "' has no output '" + port + "'");
+    const PortSpec* ps = n->spec.spec->find_port(port, PortDirection::Output);
+    if (ps->type->name != type_name)
+      throw InputError("output '" + node + "." + port + "' is '" + ps->type->name + "', not '" + type_name + "'");
+    return it->second.get();
+  }
+  throw InputError("no node '" + node + "'");
+}
+
+// --- NodeContext ---------------------------------------------------------------------------
+
+const std::string& NodeContext::node_name() const { return rt_.spec.name; }
+const Params& NodeContext::params() const { return rt_.spec.params; }
+bool NodeContext::is_wired(const std::string& port) const { return rt_.inputs.count(port) != 0; }
+double NodeContext::time_s() const { return rt_.sim.time_s(); }
+std::int64_t NodeContext::tick() const { return rt_.sim.tick(); }
+double NodeContext::rate_hz() const { return rt_.spec.rate_hz; }
+double NodeContext::duration_s() const { return rt_.sim.experiment().duration_s; }
+std::uint64_t NodeContext::seed() const { return rt_.sim.experiment().seed; }
+std::mt19937_64& NodeContext::rng() { return rt_.rng; }
+spdlog::logger& NodeContext::log() { return *rt_.log; }
+
+void NodeContext::request_stop(const std::string& reason) {
+  if (rt_.sim.stop_reason_.empty()) rt_.sim.stop_reason_ = "node '" + rt_.spec.name + "': " + reason;
+}
+
+void NodeContext::report_metric(const std::string& name, nlohmann::json value) {
+  for (auto& [k, v] : rt_.metrics)
+    if (k == name) {
+      v = std::move(value);
+      return;
+    }
+  rt_.metrics.emplace_back(name, std::move(value));
+}
+
+fs::path NodeContext::figure_path(const std::string& file_name) {
+  const fs::path dir = rt_.sim.out_dir_ / "figures";
+  fs::create_directories(dir);
+  return dir / file_name;
+}
+
+fs::path NodeContext::output_path(const std::string& file_name) {
+  fs::create_directories(rt_.sim.out_dir_);
+  return rt_.sim.out_dir_ / file_name;
+}
+
+fs::path NodeContext::resolve_input_path(const std::string& path) const {
+  const fs::path p = path;
+  return p.is_absolute() ? p : (rt_.sim.experiment().base_dir / p).lexically_normal();
+}
+
+void NodeContext::param_error(const std::string& param, const std::string& message) const {
+  auto it = rt_.spec.param_locations.find(param);
+  const SourceLocation where = it != rt_.spec.param_locations.end() ? it->second : rt_.spec.where;
+  throw InputError(where.str() + ": node '" + rt_.spec.name + "', key 'params." + param + "': " + message);
+}
+
+void* NodeContext::port_storage(const std::string& port, PortDirection direction,
+                                const PortTypeInfo& type) const {
+  const PortSpec* ps = rt_.spec.spec->find_port(port, direction);
+  SOMASIM_CHECK(ps != nullptr, "plugin used a port it did not declare in its spec");
+  SOMASIM_CHECK(ps->type->name == type.name, "plugin used a port with another type than declared");
+  if (direction == PortDirection::Output) return rt_.outputs.at(port).get();
+  auto it = rt_.inputs.find(port);
+  if (it == rt_.inputs.end())
+    throw InputError("node '" + rt_.spec.name + "': optional input '" + port + "' is not wired");
+  return it->second;
+}
+
+}  // namespace somasim

@@ -1,0 +1,149 @@
+#include "yaml_values.hpp"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+
+#include <fmt/format.h>
+
+namespace somasim::detail {
+
+SourceLocation LocationMap::of(const YAML::Node& node) const {
+  for (const auto& [n, text] : overrides_)
+    if (n.is(node)) return {"--set " + text, 0, 0};
+  const YAML::Mark mark = node.Mark();
+  if (mark.is_null()) return {file_, 0, 0};
+  return {file_, mark.line + 1, mark.column + 1};
+}
+
+std::string describe_yaml(const YAML::Node& node) {
+  switch (node.Type()) {
+    case YAML::NodeType::Scalar: return "'" + node.Scalar() + "'";
+    case YAML::NodeType::Sequence: return "a list";
+    case YAML::NodeType::Map: return "a map";
+    case YAML::NodeType::Null: return "nothing";
+    default: return "an undefined value";
+  }
+}
+
+std::optional<double> parse_double(const std::string& text) {
+  if (text == ".nan" || text == ".NaN" || text == ".NAN" || text == "nan" || text == "NaN")
+    return std::nan("");
+  if (text == ".inf" || text == ".Inf" || text == "+.inf" || text == "inf")
+    return HUGE_VAL;
+  if (text == "-.inf" || text == "-.Inf" || text == "-inf") return -HUGE_VAL;
+  if (text.empty()) return std::nullopt;
+  char* end = nullptr;
+  errno = 0;
+  const double v = std::strtod(text.c_str(), &end);
+  if (end != text.c_str() + text.size()) return std::nullopt;
+  return v;
+}
+
+std::optional<std::int64_t> parse_int(const std::string& text) {
+  if (text.empty()) return std::nullopt;
+  char* end = nullptr;
+  errno = 0;
+  const long long v = std::strtoll(text.c_str(), &end, 10);
+  if (end != text.c_str() + text.size() || errno == ERANGE) return std::nullopt;
+  return static_cast<std::int64_t>(v);
+}
+
+std::optional<bool> parse_bool(const std::string& text) {
+  if (text == "true" || text == "True" || text == "TRUE") return true;
+  if (text == "false" || text == "False" || text == "FALSE") return false;
+  return std::nullopt;
+}
+
+std::string expectation(const ParamSpec& spec) {
+  std::string e = param_type_name(spec.type);
+  if (spec.type == ParamType::DoubleList && spec.list_size)
+    e = fmt::format("a list of {} numbers", *spec.list_size);
+  if (!spec.unit.empty()) e += " [" + spec.unit + "]";
+  if (spec.min && spec.max)
+    e += fmt::format(" in [{}, {}]", *spec.min, *spec.max);
+  else if (spec.min)
+    e += fmt::format(" >= {}", *spec.min);
+  else if (spec.max)
+    e += fmt::format(" <= {}", *spec.max);
+  if (!spec.choices.empty()) {
+    e += ": one of ";
+    for (std::size_t i = 0; i < spec.choices.size(); ++i)
+      e += (i ? ", " : "") + spec.choices[i];
+  }
+  return e;
+}
+
+namespace {
+bool check_number(double v, const ParamSpec& spec, const std::string& raw, std::string& problem) {
+  if (!std::isfinite(v)) {
+    problem = "expected a finite number, got '" + raw + "'";
+    return false;
+  }
+  if ((spec.min && v < *spec.min) || (spec.max && v > *spec.max)) {
+    problem = "value " + raw + " is out of range; expected " + expectation(spec);
+    return false;
+  }
+  return true;
+}
+}  // namespace
+
+std::optional<ParamValue> to_param_value(const YAML::Node& node, const ParamSpec& spec,
+                                         std::string& problem) {
+  const std::string got = describe_yaml(node);
+  if (spec.type == ParamType::DoubleList) {
+    if (!node.IsSequence()) {
+      problem = "expected " + expectation(spec) + ", got " + got;
+      return std::nullopt;
+    }
+    std::vector<double> list;
+    for (const auto& item : node) {
+      const auto v = item.IsScalar() ? parse_double(item.Scalar()) : std::nullopt;
+      if (!v) {
+        problem = "expected " + expectation(spec) + ", got an element " + describe_yaml(item);
+        return std::nullopt;
+      }
+      if (!check_number(*v, spec, item.Scalar(), problem)) return std::nullopt;
+      list.push_back(*v);
+    }
+    if (spec.list_size && list.size() != *spec.list_size) {
+      problem = fmt::format("expected {}, got {} numbers", expectation(spec), list.size());
+      return std::nullopt;
+    }
+    return list;
+  }
+  if (!node.IsScalar()) {
+    problem = "expected " + expectation(spec) + ", got " + got;
+    return std::nullopt;
+  }
+  const std::string& text = node.Scalar();
+  switch (spec.type) {
+    case ParamType::Bool:
+      if (auto b = parse_bool(text)) return *b;
+      break;
+    case ParamType::Int:
+      if (auto i = parse_int(text)) {
+        if (!check_number(static_cast<double>(*i), spec, text, problem)) return std::nullopt;
+        return *i;
+      }
+      break;
+    case ParamType::Double:
+      if (auto d = parse_double(text)) {
+        if (!check_number(*d, spec, text, problem)) return std::nullopt;
+        return *d;
+      }
+      break;
+    case ParamType::String:
+      if (!spec.choices.empty() &&
+          std::find(spec.choices.begin(), spec.choices.end(), text) == spec.choices.end()) {
+        problem = "expected " + expectation(spec) + ", got " + got;
+        return std::nullopt;
+      }
+      return text;
+    case ParamType::DoubleList: break;
+  }
+  problem = "expected " + expectation(spec) + ", got " + got;
+  return std::nullopt;
+}
+
+}  // namespace somasim::detail
