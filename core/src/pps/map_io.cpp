@@ -157,6 +157,10 @@ LearnedState from_json(const json& j, const std::string& source, const LoadExpec
            "'taxels[" + std::to_string(k) + "]' is " + type_name(t) + ", expected an object");
     LearnedTaxel lt;
     lt.id = get_int(t, "id", where, source);
+    for (std::size_t q = 0; q < s.taxels.size(); ++q)
+      if (s.taxels[q].id == lt.id)
+        fail(source, "'" + where + "id' is " + std::to_string(lt.id) + ", which taxels[" +
+                         std::to_string(q) + "] already uses; expected unique ids");
     lt.pose_link.position = get_vec3(t, "position", where, source);
     lt.pose_link.normal = get_vec3(t, "normal", where, source);
     if (!(lt.pose_link.normal.norm() > 0.0))
