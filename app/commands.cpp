@@ -20,7 +20,8 @@ std::vector<Override> parse_sets(const std::vector<std::string>& sets) {
   for (const auto& s : sets) {
     const auto eq = s.find('=');
     if (eq == std::string::npos || eq == 0)
-      throw InputError("--set '" + s + "': expected path=value, e.g. nodes.pps.params.threshold=0.2");
+      throw InputError("--set '" + s +
+                       "': expected path=value, e.g. nodes.pps.params.threshold=0.2");
     out.push_back({s.substr(0, eq), s.substr(eq + 1)});
   }
   return out;
@@ -99,11 +100,12 @@ int cmd_describe(const CommonOptions& common, const std::string& name) {
   PluginRegistry registry(PluginRegistry::default_search_path(common.plugin_path));
   const PluginSpec* spec = registry.find(name);
   if (!spec) {
-    fmt::print(stderr, "error: unknown plugin '{}'{}; {}\n", name, did_you_mean(name, registry.names()),
-               registry.search_report());
+    fmt::print(stderr, "error: unknown plugin '{}'{}; {}\n", name,
+               did_you_mean(name, registry.names()), registry.search_report());
     return kExitBadInput;
   }
-  fmt::print("{}\n  {}\n  library: {}\n\nparameters:\n", spec->name(), spec->doc(), spec->library_path);
+  fmt::print("{}\n  {}\n  library: {}\n\nparameters:\n", spec->name(), spec->doc(),
+             spec->library_path);
   for (const auto& p : spec->params()) {
     std::string line = fmt::format("  {:<24} {}", p.name, param_type_name(p.type));
     if (!p.unit.empty()) line += " [" + p.unit + "]";
@@ -118,7 +120,8 @@ int cmd_describe(const CommonOptions& common, const std::string& name) {
     fmt::print("\n{}:\n", dir == PortDirection::Input ? "inputs" : "outputs");
     for (const auto& p : spec->ports())
       if (p.direction == dir)
-        fmt::print("  {:<24} {}{}\n      {}\n", p.name, p.type->name, p.optional ? " (optional)" : "", p.doc);
+        fmt::print("  {:<24} {}{}\n      {}\n", p.name, p.type->name,
+                   p.optional ? " (optional)" : "", p.doc);
   }
   return kExitOk;
 }

@@ -10,8 +10,8 @@ namespace somasim::app {
 
 /// Exit codes (documented in README.md and `somasim --help`).
 inline constexpr int kExitOk = 0;
-inline constexpr int kExitBadInput = 2;    ///< bad experiment, parameters, plugin libraries, usage
-inline constexpr int kExitRunFailed = 3;   ///< the run started but a node failed
+inline constexpr int kExitBadInput = 2;   ///< bad experiment, parameters, plugin libraries, usage
+inline constexpr int kExitRunFailed = 3;  ///< the run started but a node failed
 inline constexpr int kExitInterrupted = 130;  ///< SIGINT/SIGTERM; outputs were flushed
 
 struct CommonOptions {
@@ -27,7 +27,8 @@ struct RunArgs {
 };
 
 int cmd_run(const CommonOptions& common, const RunArgs& args);
-int cmd_validate(const CommonOptions& common, const std::string& file, const std::vector<std::string>& sets);
+int cmd_validate(const CommonOptions& common, const std::string& file,
+                 const std::vector<std::string>& sets);
 int cmd_plugins(const CommonOptions& common);
 int cmd_describe(const CommonOptions& common, const std::string& name);
 int cmd_graph(const CommonOptions& common, const std::string& file);

@@ -19,7 +19,9 @@ int main(int argc, char** argv) {
   RunArgs run;
   auto* run_cmd = app.add_subcommand("run", "Run an experiment; results go to the run folder");
   run_cmd->add_option("file", run.file, "Experiment YAML")->required();
-  run_cmd->add_option("--set", run.sets, "Override a value: path=value, e.g. nodes.pps.params.threshold=0.2 (repeatable)");
+  run_cmd->add_option(
+      "--set", run.sets,
+      "Override a value: path=value, e.g. nodes.pps.params.threshold=0.2 (repeatable)");
   run_cmd->add_option("--seed", run.seed, "Replace the experiment's seed");
   run_cmd->add_option("--out", run.out, "Run folder (default: runs/<experiment name>)");
   run_cmd->add_flag("--quiet", run.quiet, "No progress line; only warnings and errors on stderr");
@@ -32,7 +34,8 @@ int main(int argc, char** argv) {
 
   auto* plugins_cmd = app.add_subcommand("plugins", "List the plugins found on the search path");
   std::string describe_name;
-  auto* describe_cmd = plugins_cmd->add_subcommand("describe", "Parameters and ports of one plugin");
+  auto* describe_cmd =
+      plugins_cmd->add_subcommand("describe", "Parameters and ports of one plugin");
   describe_cmd->add_option("name", describe_name, "Plugin name")->required();
 
   std::string graph_file;

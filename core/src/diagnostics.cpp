@@ -1,6 +1,7 @@
 #include "somasim/diagnostics.hpp"
 
 #include <algorithm>
+#include <tuple>
 
 #include "somasim/error.hpp"
 
@@ -21,8 +22,13 @@ void Diagnostics::add(SourceLocation where, std::string node, std::string key,
 void Diagnostics::throw_if_any() const {
   if (items_.empty()) return;
   if (items_.size() == 1) throw InputError(items_.front().str());
+  // In file order: easier to read and to fix from top to bottom.
+  std::vector<Diagnostic> sorted = items_;
+  std::stable_sort(sorted.begin(), sorted.end(), [](const Diagnostic& a, const Diagnostic& b) {
+    return std::tie(a.where.line, a.where.column) < std::tie(b.where.line, b.where.column);
+  });
   std::string msg = std::to_string(items_.size()) + " errors:";
-  for (const auto& d : items_) msg += "\n  " + d.str();
+  for (const auto& d : sorted) msg += "\n  " + d.str();
   throw InputError(msg);
 }
 

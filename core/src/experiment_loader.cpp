@@ -21,11 +21,10 @@ using detail::LocationMap;
 
 namespace {
 
-const std::vector<std::string> kTopKeys = {"experiment", "description", "seed",
-                                           "duration_s", "base_rate_hz", "base_dir",
-                                           "plugin_libraries", "nodes", "record"};
-const std::vector<std::string> kNodeKeys = {"plugin", "rate_hz", "params", "inputs",
-                                            "description"};
+const std::vector<std::string> kTopKeys = {"experiment",       "description",  "seed",
+                                           "duration_s",       "base_rate_hz", "base_dir",
+                                           "plugin_libraries", "nodes",        "record"};
+const std::vector<std::string> kNodeKeys = {"plugin", "rate_hz", "params", "inputs", "description"};
 const std::vector<std::string> kWireKeys = {"from", "delayed"};
 
 std::vector<std::string> split(const std::string& s, char sep) {
@@ -50,17 +49,17 @@ class Loader {
     try {
       root = YAML::Load(text);
     } catch (const YAML::ParserException& e) {
-      throw InputError(fmt::format("{}:{}:{}: YAML syntax error: {}", locs_.file(),
-                                   e.mark.line + 1, e.mark.column + 1, e.msg));
+      throw InputError(fmt::format("{}:{}:{}: YAML syntax error: {}", locs_.file(), e.mark.line + 1,
+                                   e.mark.column + 1, e.msg));
     }
     if (!root.IsMap()) {
-      throw InputError(locs_.of(root).str() +
-                       ": expected a map with the keys 'experiment', 'duration_s' and 'nodes', got " +
-                       describe_yaml(root));
+      throw InputError(
+          locs_.of(root).str() +
+          ": expected a map with the keys 'experiment', 'duration_s' and 'nodes', got " +
+          describe_yaml(root));
     }
     apply_overrides(root);
     read_top(root);
-    diags_.throw_if_any();  // unknown plugins etc. make wiring checks meaningless
     detail::check_graph(exp_, diags_, options_.allow_harness_inputs);
     diags_.throw_if_any();
     return std::move(exp_);
@@ -80,8 +79,8 @@ class Loader {
         throw InputError("--set '" + shown + "': " + msg);
       };
       const std::vector<std::string> parts = split(ov.path, '.');
-      if (parts.empty() || std::any_of(parts.begin(), parts.end(),
-                                       [](const std::string& p) { return p.empty(); }))
+      if (parts.empty() ||
+          std::any_of(parts.begin(), parts.end(), [](const std::string& p) { return p.empty(); }))
         fail("expected a dotted path such as nodes.NODE.params.NAME");
       YAML::Node value;
       try {
@@ -108,8 +107,8 @@ class Loader {
       if (!parent[key].IsDefined()) {
         const std::vector<std::string> allowed = allowed_new_keys(root, parts);
         if (std::find(allowed.begin(), allowed.end(), key) == allowed.end())
-          fail("'" + ov.path + "' does not exist in " + locs_.file() + " and is not a key that can be set there" +
-               did_you_mean(key, allowed));
+          fail("'" + ov.path + "' does not exist in " + locs_.file() +
+               " and is not a key that can be set there" + did_you_mean(key, allowed));
       }
       parent[key] = value;
       locs_.add_override(parent[key], shown);
@@ -135,15 +134,16 @@ class Loader {
       const std::string key = kv.first.as<std::string>();
       if (std::find(kTopKeys.begin(), kTopKeys.end(), key) == kTopKeys.end())
         error(kv.first, "", key,
-              "unknown key" + did_you_mean(key, kTopKeys) + "; expected one of: " +
-                  join_names(kTopKeys));
+              "unknown key" + did_you_mean(key, kTopKeys) +
+                  "; expected one of: " + join_names(kTopKeys));
     }
     exp_.name = read_string(root, "experiment", options_.defaults_for_tests ? "test" : "");
-    if (const YAML::Node d = root["description"]; d) exp_.description = read_string(root, "description", "");
+    if (const YAML::Node d = root["description"]; d)
+      exp_.description = read_string(root, "description", "");
     exp_.seed = static_cast<std::uint64_t>(read_number(root, "seed", 0.0, 0.0, true));
     if (options_.seed) exp_.seed = *options_.seed;
-    exp_.duration_s = read_number(root, "duration_s", options_.defaults_for_tests ? 1e9 : -1.0,
-                                  1e-9, false);
+    exp_.duration_s =
+        read_number(root, "duration_s", options_.defaults_for_tests ? 1e9 : -1.0, 1e-9, false);
     exp_.base_rate_hz = read_number(root, "base_rate_hz", 1000.0, 1e-9, false);
     if (const YAML::Node b = root["base_dir"]; b) exp_.base_dir = read_string(root, "base_dir", "");
     read_libraries(root);
@@ -166,12 +166,13 @@ class Loader {
   }
 
   // Reads a finite number >= min; fallback < 0 means required. integer: must be integral.
-  double read_number(const YAML::Node& map, const std::string& key, double fallback,
-                     double min, bool integer) {
+  double read_number(const YAML::Node& map, const std::string& key, double fallback, double min,
+                     bool integer) {
     const YAML::Node n = map[key];
     const char* what = integer ? "an integer" : "a number";
     if (!n) {
-      if (fallback < 0) error(map, "", key, std::string("missing required key (expected ") + what + ")");
+      if (fallback < 0)
+        error(map, "", key, std::string("missing required key (expected ") + what + ")");
       return std::max(fallback, 0.0);
     }
     const auto v = n.IsScalar() ? (integer ? [&]() -> std::optional<double> {
@@ -183,7 +184,8 @@ class Loader {
     } else if (!std::isfinite(*v)) {
       error(n, "", key, "expected a finite number, got " + describe_yaml(n));
     } else if (*v < min || (min > 0 && *v <= 0)) {
-      error(n, "", key, fmt::format("expected {} {} 0, got {}", what, min > 0 ? ">" : ">=", n.Scalar()));
+      error(n, "", key,
+            fmt::format("expected {} {} 0, got {}", what, min > 0 ? ">" : ">=", n.Scalar()));
     } else {
       return *v;
     }
@@ -222,14 +224,16 @@ class Loader {
       return;
     }
     if (!nodes.IsMap()) {
-      error(nodes, "", "nodes", "expected a map of node names to nodes, got " + describe_yaml(nodes));
+      error(nodes, "", "nodes",
+            "expected a map of node names to nodes, got " + describe_yaml(nodes));
       return;
     }
     std::map<std::string, SourceLocation> seen;
     for (const auto& kv : nodes) {
       const std::string name = kv.first.as<std::string>();
       if (auto it = seen.find(name); it != seen.end()) {
-        error(kv.first, name, "", "duplicate node name (first defined at " + it->second.str() + ")");
+        error(kv.first, name, "",
+              "duplicate node name (first defined at " + it->second.str() + ")");
         continue;
       }
       seen[name] = locs_.of(kv.first);
@@ -246,15 +250,17 @@ class Loader {
     ns.name = name;
     ns.where = locs_.of(key_node);
     if (!node.IsMap()) {
-      error(node, name, "", "expected a map with 'plugin', 'params', 'inputs', got " + describe_yaml(node));
+      error(node, name, "",
+            "expected a map with 'plugin', 'params', 'inputs', got " + describe_yaml(node));
+      exp_.nodes.push_back(std::move(ns));  // kept (without a spec) so wires to it say no more
       return;
     }
     for (const auto& kv : node) {
       const std::string key = kv.first.as<std::string>();
       if (std::find(kNodeKeys.begin(), kNodeKeys.end(), key) == kNodeKeys.end())
         error(kv.first, name, key,
-              "unknown key" + did_you_mean(key, kNodeKeys) + "; expected one of: " +
-                  join_names(kNodeKeys));
+              "unknown key" + did_you_mean(key, kNodeKeys) +
+                  "; expected one of: " + join_names(kNodeKeys));
     }
     const YAML::Node plugin = node["plugin"];
     if (!plugin) {
@@ -294,7 +300,8 @@ class Loader {
     const YAML::Node params = node["params"];
     std::map<std::string, ParamValue> values;
     if (params && !params.IsMap() && !params.IsNull()) {
-      error(params, ns.name, "params", "expected a map of parameter names to values, got " + describe_yaml(params));
+      error(params, ns.name, "params",
+            "expected a map of parameter names to values, got " + describe_yaml(params));
     } else if (params && params.IsMap()) {
       for (const auto& kv : params) {
         const std::string key = kv.first.as<std::string>();
@@ -331,7 +338,8 @@ class Loader {
     const YAML::Node inputs = node["inputs"];
     if (!inputs || inputs.IsNull()) return;
     if (!inputs.IsMap()) {
-      error(inputs, ns.name, "inputs", "expected a map of input ports to 'node.port', got " + describe_yaml(inputs));
+      error(inputs, ns.name, "inputs",
+            "expected a map of input ports to 'node.port', got " + describe_yaml(inputs));
       return;
     }
     for (const auto& kv : inputs) {
@@ -347,11 +355,12 @@ class Loader {
             error(wk.first, ns.name, key + "." + k,
                   "unknown key" + did_you_mean(k, kWireKeys) + "; expected one of: from, delayed");
         }
-        from = kv.second["from"];
+        from.reset(kv.second["from"]);
         if (const YAML::Node d = kv.second["delayed"]; d) {
           const auto b = d.IsScalar() ? detail::parse_bool(d.Scalar()) : std::nullopt;
           if (!b)
-            error(d, ns.name, key + ".delayed", "expected a boolean (true/false), got " + describe_yaml(d));
+            error(d, ns.name, key + ".delayed",
+                  "expected a boolean (true/false), got " + describe_yaml(d));
           else
             w.delayed = *b;
         }
@@ -363,7 +372,9 @@ class Loader {
       const std::string text = from.IsScalar() ? from.Scalar() : "";
       const auto dot = text.find('.');
       if (dot == std::string::npos || dot == 0 || dot + 1 == text.size()) {
-        error(from, ns.name, key, "expected 'node.port' or {from: node.port, delayed: true}, got " + describe_yaml(from));
+        error(
+            from, ns.name, key,
+            "expected 'node.port' or {from: node.port, delayed: true}, got " + describe_yaml(from));
         continue;
       }
       w.from_node = text.substr(0, dot);
@@ -408,7 +419,8 @@ Experiment load_experiment_text(const std::string& yaml, const std::string& disp
 Experiment load_experiment_file(const fs::path& file, PluginRegistry& registry,
                                 const LoadOptions& options) {
   std::error_code ec;
-  if (!fs::exists(file, ec)) throw InputError("experiment file '" + file.string() + "' does not exist");
+  if (!fs::exists(file, ec))
+    throw InputError("experiment file '" + file.string() + "' does not exist");
   std::ifstream in(file);
   if (!in) throw InputError("experiment file '" + file.string() + "' cannot be read");
   std::stringstream buffer;

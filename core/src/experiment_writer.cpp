@@ -73,7 +73,8 @@ std::string Experiment::resolved_yaml() const {
 std::string Experiment::graphviz() const {
   std::string dot = "digraph \"" + name + "\" {\n  rankdir=LR;\n  node [shape=record];\n";
   for (const auto& n : nodes)
-    dot += fmt::format("  \"{}\" [label=\"{{{}|{}|{} Hz}}\"];\n", n.name, n.name, n.plugin, n.rate_hz);
+    dot +=
+        fmt::format("  \"{}\" [label=\"{{{}|{}|{} Hz}}\"];\n", n.name, n.name, n.plugin, n.rate_hz);
   for (const auto& n : nodes)
     for (const auto& w : n.inputs)
       dot += fmt::format("  \"{}\" -> \"{}\" [label=\"{} → {}\"{}];\n", w.from_node, n.name,

@@ -24,19 +24,21 @@ const PortSpec* resolve_output(const Experiment& exp, const std::string& node,
                   "; nodes: " + join_names(node_names(exp)));
     return nullptr;
   }
+  if (!producer->spec) return nullptr;  // its own error was reported already
   const PortSpec* out = producer->spec->find_port(port, PortDirection::Output);
   if (!out) {
     const auto outs = producer->spec->port_names(PortDirection::Output);
     diags.add(where, consumer, key,
               "node '" + node + "' (plugin '" + producer->plugin + "') has no output '" + port +
-                  "'" + did_you_mean(port, outs) + "; outputs: " +
-                  (outs.empty() ? "(none)" : join_names(outs)));
+                  "'" + did_you_mean(port, outs) +
+                  "; outputs: " + (outs.empty() ? "(none)" : join_names(outs)));
   }
   return out;
 }
 
 void check_inputs(const Experiment& exp, Diagnostics& diags, bool allow_harness) {
   for (const auto& n : exp.nodes) {
+    if (!n.spec) continue;
     for (const auto& w : n.inputs) {
       const std::string key = "inputs." + w.port;
       const PortSpec* in = n.spec->find_port(w.port, PortDirection::Input);
@@ -44,11 +46,13 @@ void check_inputs(const Experiment& exp, Diagnostics& diags, bool allow_harness)
         const auto ins = n.spec->port_names(PortDirection::Input);
         diags.add(w.where, n.name, key,
                   "plugin '" + n.plugin + "' has no input '" + w.port + "'" +
-                      did_you_mean(w.port, ins) + "; inputs: " + (ins.empty() ? "(none)" : join_names(ins)));
+                      did_you_mean(w.port, ins) +
+                      "; inputs: " + (ins.empty() ? "(none)" : join_names(ins)));
         continue;
       }
       if (allow_harness && w.from_node == "harness") continue;
-      const PortSpec* out = resolve_output(exp, w.from_node, w.from_port, w.where, n.name, key, diags);
+      const PortSpec* out =
+          resolve_output(exp, w.from_node, w.from_port, w.where, n.name, key, diags);
       if (out && out->type->name != in->type->name)
         diags.add(w.where, n.name, key,
                   "type mismatch: input '" + w.port + "' takes '" + in->type->name + "' but '" +
@@ -123,7 +127,8 @@ void order_nodes(Experiment& exp, Diagnostics& diags) {
     }
   }
   std::string cycle;
-  for (std::size_t k = pos[cur]; k < path.size(); ++k) cycle = exp.nodes[path[k]].name + " -> " + cycle;
+  for (std::size_t k = pos[cur]; k < path.size(); ++k)
+    cycle = exp.nodes[path[k]].name + " -> " + cycle;
   cycle = exp.nodes[cur].name + " -> " + cycle;
   cycle.resize(cycle.size() - 4);
   diags.add(exp.nodes[cur].where, exp.nodes[cur].name, "inputs",

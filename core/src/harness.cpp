@@ -11,8 +11,9 @@ namespace fs = std::filesystem;
 namespace {
 fs::path fresh_dir() {
   static std::atomic<int> counter{0};
-  const fs::path dir = fs::temp_directory_path() /
-                       ("somasim-harness-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+  const fs::path dir =
+      fs::temp_directory_path() /
+      ("somasim-harness-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
@@ -31,7 +32,8 @@ Harness::Harness(const std::string& yaml, const std::vector<fs::path>& plugin_pa
       experiment_(load_experiment_text(yaml, "<inline>", fs::current_path(), registry_,
                                        harness_options(options))),
       out_dir_(fresh_dir()) {
-  auto logger = std::make_shared<spdlog::logger>("harness", std::make_shared<spdlog::sinks::null_sink_mt>());
+  auto logger =
+      std::make_shared<spdlog::logger>("harness", std::make_shared<spdlog::sinks::null_sink_mt>());
   sim_ = std::make_unique<Simulation>(experiment_, out_dir_, logger);
   sim_->configure();
 }

@@ -19,8 +19,14 @@ void install_interrupt_handler() {
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
 }
-void request_interrupt() { g_interrupted = 1; }
-bool interrupt_requested() { return g_interrupted != 0; }
-void clear_interrupt() { g_interrupted = 0; }
+void request_interrupt() {
+  g_interrupted = 1;
+}
+bool interrupt_requested() {
+  return g_interrupted != 0;
+}
+void clear_interrupt() {
+  g_interrupted = 0;
+}
 
 }  // namespace somasim

@@ -7,11 +7,16 @@ namespace somasim {
 
 const char* param_type_name(ParamType type) {
   switch (type) {
-    case ParamType::Bool: return "a boolean (true/false)";
-    case ParamType::Int: return "an integer";
-    case ParamType::Double: return "a number";
-    case ParamType::String: return "a string";
-    case ParamType::DoubleList: return "a list of numbers";
+    case ParamType::Bool:
+      return "a boolean (true/false)";
+    case ParamType::Int:
+      return "an integer";
+    case ParamType::Double:
+      return "a number";
+    case ParamType::String:
+      return "a string";
+    case ParamType::DoubleList:
+      return "a list of numbers";
   }
   return "?";
 }

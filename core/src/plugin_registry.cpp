@@ -29,7 +29,8 @@ std::vector<fs::path> PluginRegistry::default_search_path(const std::vector<fs::
   }
   std::error_code ec;
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) path.push_back((exe.parent_path() / ".." / "lib" / "somasim" / "plugins").lexically_normal());
+  if (!ec)
+    path.push_back((exe.parent_path() / ".." / "lib" / "somasim" / "plugins").lexically_normal());
   return path;
 }
 
@@ -47,8 +48,8 @@ LibraryCandidate PluginRegistry::open(const fs::path& file) {
   using EntryFn = const PluginLibraryEntry* (*)();
   auto entry_fn = reinterpret_cast<EntryFn>(dlsym(handle, SOMASIM_PLUGIN_ENTRY_SYMBOL));
   if (!entry_fn) {
-    c.rejection = "no entry point '" SOMASIM_PLUGIN_ENTRY_SYMBOL
-                  "' (is SOMASIM_PLUGIN_LIBRARY missing?)";
+    c.rejection =
+        "no entry point '" SOMASIM_PLUGIN_ENTRY_SYMBOL "' (is SOMASIM_PLUGIN_LIBRARY missing?)";
     dlclose(handle);
     return c;
   }
@@ -76,8 +77,7 @@ LibraryCandidate PluginRegistry::open(const fs::path& file) {
 void PluginRegistry::load_library(const fs::path& file) {
   for (const auto& c : candidates_)
     if (c.path == file && c.loaded) return;
-  if (!fs::exists(file))
-    throw InputError("plugin library '" + file.string() + "' does not exist");
+  if (!fs::exists(file)) throw InputError("plugin library '" + file.string() + "' does not exist");
   LibraryCandidate c = open(file);
   const bool ok = c.loaded;
   const std::string why = c.rejection;
@@ -148,7 +148,8 @@ std::string PluginRegistry::search_report() {
     const bool in_path = std::any_of(search_path_.begin(), search_path_.end(),
                                      [&](const fs::path& d) { return c.path.parent_path() == d; });
     if (!in_path)
-      out += " " + c.path.string() + (c.loaded ? " (loaded explicitly);" : " [rejected: " + c.rejection + "];");
+      out += " " + c.path.string() +
+             (c.loaded ? " (loaded explicitly);" : " [rejected: " + c.rejection + "];");
   }
   if (!out.empty() && out.back() == ';') out.pop_back();
   return out;

@@ -20,10 +20,14 @@ using Clock = std::chrono::steady_clock;
 
 const char* run_status_name(RunStatus status) {
   switch (status) {
-    case RunStatus::Completed: return "completed";
-    case RunStatus::BadInput: return "bad_input";
-    case RunStatus::Failed: return "failed";
-    case RunStatus::Interrupted: return "interrupted";
+    case RunStatus::Completed:
+      return "completed";
+    case RunStatus::BadInput:
+      return "bad_input";
+    case RunStatus::Failed:
+      return "failed";
+    case RunStatus::Interrupted:
+      return "interrupted";
   }
   return "?";
 }
@@ -98,11 +102,13 @@ RunReport run_experiment(const Experiment& exp, const RunOptions& options) {
     report.error = e.what();
   } catch (const std::exception& e) {
     report.status = RunStatus::Failed;
-    report.error = fmt::format("node '{}' at t = {} s: {}", sim.current_node(), sim.time_s(), e.what());
+    report.error =
+        fmt::format("node '{}' at t = {} s: {}", sim.current_node(), sim.time_s(), e.what());
   }
-  report.stop_reason = report.status == RunStatus::Completed || report.status == RunStatus::Interrupted
-                           ? sim.stop_reason()
-                           : report.error;
+  report.stop_reason =
+      report.status == RunStatus::Completed || report.status == RunStatus::Interrupted
+          ? sim.stop_reason()
+          : report.error;
   if (started || report.status != RunStatus::BadInput) {
     const std::string finish_error = sim.finish();
     if (!finish_error.empty() && report.status == RunStatus::Completed) {

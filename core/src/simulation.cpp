@@ -10,7 +10,10 @@ namespace somasim {
 namespace fs = std::filesystem;
 
 NodeRuntime::NodeRuntime(Simulation& s, const NodeSpec& ns, std::shared_ptr<spdlog::logger> l)
-    : sim(s), spec(ns), context(*this), rng(node_stream_seed(s.experiment().seed, ns.name)),
+    : sim(s),
+      spec(ns),
+      context(*this),
+      rng(node_stream_seed(s.experiment().seed, ns.name)),
       log(std::move(l)) {}
 
 Simulation::Simulation(const Experiment& experiment, fs::path out_dir,
@@ -23,14 +26,16 @@ Simulation::~Simulation() {
   for (auto& r : recorders_) r->flush();
 }
 
-double Simulation::time_s() const { return static_cast<double>(tick_) / exp_.base_rate_hz; }
+double Simulation::time_s() const {
+  return static_cast<double>(tick_) / exp_.base_rate_hz;
+}
 
 void Simulation::configure() {
   SOMASIM_CHECK(!configured_, "configure() called twice");
   configured_ = true;
   for (const auto& ns : exp_.nodes) {
-    auto node_log = std::make_shared<spdlog::logger>(ns.name, logger_->sinks().begin(),
-                                                     logger_->sinks().end());
+    auto node_log =
+        std::make_shared<spdlog::logger>(ns.name, logger_->sinks().begin(), logger_->sinks().end());
     node_log->set_level(logger_->level());
     auto rt = std::make_unique<NodeRuntime>(*this, ns, node_log);
     rt->plugin = ns.spec->factory();
@@ -140,7 +145,8 @@ void* Simulation::harness_port(const std::string& name, const std::string& type_
   for (auto& h : harness_ports_)
     if (h.name == name) {
       if (h.type->name != type_name)
-        throw InputError("harness input '" + name + "' is '" + h.type->name + "', not '" + type_name + "'");
+        throw InputError("harness input '" + name + "' is '" + h.type->name + "', not '" +
+                         type_name + "'");
       return h.storage.get();
     }
   return nullptr;
@@ -151,10 +157,12 @@ void* Simulation::output_port(const std::string& node, const std::string& port,
   for (auto& n : nodes_) {
     if (n->spec.name != node) continue;
     auto it = n->outputs.find(port);
-    if (it == n->outputs.end()) throw InputError("node '" + node + "' has no output '" + port + "'");
+    if (it == n->outputs.end())
+      throw InputError("node '" + node + "' has no output '" + port + "'");
     const PortSpec* ps = n->spec.spec->find_port(port, PortDirection::Output);
     if (ps->type->name != type_name)
-      throw InputError("output '" + node + "." + port + "' is '" + ps->type->name + "', not '" + type_name + "'");
+      throw InputError("output '" + node + "." + port + "' is '" + ps->type->name + "', not '" +
+                       type_name + "'");
     return it->second.get();
   }
   throw InputError("no node '" + node + "'");
@@ -162,19 +170,40 @@ void* Simulation::output_port(const std::string& node, const std::string& port,
 
 // --- NodeContext ---------------------------------------------------------------------------
 
-const std::string& NodeContext::node_name() const { return rt_.spec.name; }
-const Params& NodeContext::params() const { return rt_.spec.params; }
-bool NodeContext::is_wired(const std::string& port) const { return rt_.inputs.count(port) != 0; }
-double NodeContext::time_s() const { return rt_.sim.time_s(); }
-std::int64_t NodeContext::tick() const { return rt_.sim.tick(); }
-double NodeContext::rate_hz() const { return rt_.spec.rate_hz; }
-double NodeContext::duration_s() const { return rt_.sim.experiment().duration_s; }
-std::uint64_t NodeContext::seed() const { return rt_.sim.experiment().seed; }
-std::mt19937_64& NodeContext::rng() { return rt_.rng; }
-spdlog::logger& NodeContext::log() { return *rt_.log; }
+const std::string& NodeContext::node_name() const {
+  return rt_.spec.name;
+}
+const Params& NodeContext::params() const {
+  return rt_.spec.params;
+}
+bool NodeContext::is_wired(const std::string& port) const {
+  return rt_.inputs.count(port) != 0;
+}
+double NodeContext::time_s() const {
+  return rt_.sim.time_s();
+}
+std::int64_t NodeContext::tick() const {
+  return rt_.sim.tick();
+}
+double NodeContext::rate_hz() const {
+  return rt_.spec.rate_hz;
+}
+double NodeContext::duration_s() const {
+  return rt_.sim.experiment().duration_s;
+}
+std::uint64_t NodeContext::seed() const {
+  return rt_.sim.experiment().seed;
+}
+std::mt19937_64& NodeContext::rng() {
+  return rt_.rng;
+}
+spdlog::logger& NodeContext::log() {
+  return *rt_.log;
+}
 
 void NodeContext::request_stop(const std::string& reason) {
-  if (rt_.sim.stop_reason_.empty()) rt_.sim.stop_reason_ = "node '" + rt_.spec.name + "': " + reason;
+  if (rt_.sim.stop_reason_.empty())
+    rt_.sim.stop_reason_ = "node '" + rt_.spec.name + "': " + reason;
 }
 
 void NodeContext::report_metric(const std::string& name, nlohmann::json value) {
@@ -205,7 +234,8 @@ fs::path NodeContext::resolve_input_path(const std::string& path) const {
 void NodeContext::param_error(const std::string& param, const std::string& message) const {
   auto it = rt_.spec.param_locations.find(param);
   const SourceLocation where = it != rt_.spec.param_locations.end() ? it->second : rt_.spec.where;
-  throw InputError(where.str() + ": node '" + rt_.spec.name + "', key 'params." + param + "': " + message);
+  throw InputError(where.str() + ": node '" + rt_.spec.name + "', key 'params." + param +
+                   "': " + message);
 }
 
 void* NodeContext::port_storage(const std::string& port, PortDirection direction,

@@ -18,19 +18,23 @@ SourceLocation LocationMap::of(const YAML::Node& node) const {
 
 std::string describe_yaml(const YAML::Node& node) {
   switch (node.Type()) {
-    case YAML::NodeType::Scalar: return "'" + node.Scalar() + "'";
-    case YAML::NodeType::Sequence: return "a list";
-    case YAML::NodeType::Map: return "a map";
-    case YAML::NodeType::Null: return "nothing";
-    default: return "an undefined value";
+    case YAML::NodeType::Scalar:
+      return "'" + node.Scalar() + "'";
+    case YAML::NodeType::Sequence:
+      return "a list";
+    case YAML::NodeType::Map:
+      return "a map";
+    case YAML::NodeType::Null:
+      return "nothing";
+    default:
+      return "an undefined value";
   }
 }
 
 std::optional<double> parse_double(const std::string& text) {
   if (text == ".nan" || text == ".NaN" || text == ".NAN" || text == "nan" || text == "NaN")
     return std::nan("");
-  if (text == ".inf" || text == ".Inf" || text == "+.inf" || text == "inf")
-    return HUGE_VAL;
+  if (text == ".inf" || text == ".Inf" || text == "+.inf" || text == "inf") return HUGE_VAL;
   if (text == "-.inf" || text == "-.Inf" || text == "-inf") return -HUGE_VAL;
   if (text.empty()) return std::nullopt;
   char* end = nullptr;
@@ -68,8 +72,7 @@ std::string expectation(const ParamSpec& spec) {
     e += fmt::format(" <= {}", *spec.max);
   if (!spec.choices.empty()) {
     e += ": one of ";
-    for (std::size_t i = 0; i < spec.choices.size(); ++i)
-      e += (i ? ", " : "") + spec.choices[i];
+    for (std::size_t i = 0; i < spec.choices.size(); ++i) e += (i ? ", " : "") + spec.choices[i];
   }
   return e;
 }
@@ -140,7 +143,8 @@ std::optional<ParamValue> to_param_value(const YAML::Node& node, const ParamSpec
         return std::nullopt;
       }
       return text;
-    case ParamType::DoubleList: break;
+    case ParamType::DoubleList:
+      break;
   }
   problem = "expected " + expectation(spec) + ", got " + got;
   return std::nullopt;

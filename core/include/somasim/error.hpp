@@ -28,8 +28,8 @@ class RunError : public std::runtime_error {
 
 [[noreturn]] inline void check_failed(const char* expr, const char* file, int line,
                                       const char* msg) {
-  std::fprintf(stderr, "somasim internal error at %s:%d: check '%s' failed%s%s\n", file, line,
-               expr, msg[0] ? ": " : "", msg);
+  std::fprintf(stderr, "somasim internal error at %s:%d: check '%s' failed%s%s\n", file, line, expr,
+               msg[0] ? ": " : "", msg);
   std::abort();
 }
 

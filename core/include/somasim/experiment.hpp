@@ -40,7 +40,7 @@ struct InputWire {
   std::string port;       ///< the consumer's input port
   std::string from_node;  ///< producer node ("harness" for harness-fed inputs in tests)
   std::string from_port;
-  bool delayed = false;   ///< reads the producer's value of the previous base tick
+  bool delayed = false;  ///< reads the producer's value of the previous base tick
   SourceLocation where;
 };
 

@@ -29,20 +29,42 @@ std::string param_value_str(const ParamValue& value);
 struct ParamSpec {
   std::string name;
   ParamType type = ParamType::Double;
-  std::string unit;                        ///< SI unit, e.g. "m", "s", "rad", "m/s"; "" if none
+  std::string unit;                         ///< SI unit, e.g. "m", "s", "rad", "m/s"; "" if none
   std::optional<ParamValue> default_value;  ///< nullopt: the parameter is required
   std::optional<double> min, max;           ///< inclusive range for numbers (each list element)
   std::vector<std::string> choices;         ///< allowed values of a String parameter, if fixed
   std::optional<std::size_t> list_size;     ///< required length of a DoubleList
   std::string doc;
 
-  ParamSpec& unit_is(std::string u) { unit = std::move(u); return *this; }
-  ParamSpec& defaults(ParamValue v) { default_value = std::move(v); return *this; }
-  ParamSpec& range(double lo, double hi) { min = lo; max = hi; return *this; }
-  ParamSpec& at_least(double lo) { min = lo; return *this; }
-  ParamSpec& one_of(std::vector<std::string> c) { choices = std::move(c); return *this; }
-  ParamSpec& size(std::size_t n) { list_size = n; return *this; }
-  ParamSpec& describe(std::string d) { doc = std::move(d); return *this; }
+  ParamSpec& unit_is(std::string u) {
+    unit = std::move(u);
+    return *this;
+  }
+  ParamSpec& defaults(ParamValue v) {
+    default_value = std::move(v);
+    return *this;
+  }
+  ParamSpec& range(double lo, double hi) {
+    min = lo;
+    max = hi;
+    return *this;
+  }
+  ParamSpec& at_least(double lo) {
+    min = lo;
+    return *this;
+  }
+  ParamSpec& one_of(std::vector<std::string> c) {
+    choices = std::move(c);
+    return *this;
+  }
+  ParamSpec& size(std::size_t n) {
+    list_size = n;
+    return *this;
+  }
+  ParamSpec& describe(std::string d) {
+    doc = std::move(d);
+    return *this;
+  }
   bool required() const { return !default_value.has_value(); }
 };
 

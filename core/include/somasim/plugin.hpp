@@ -13,8 +13,8 @@
 #include <random>
 #include <string>
 
-#include <nlohmann/json.hpp>
 #include <spdlog/logger.h>
+#include <nlohmann/json.hpp>
 
 #include "somasim/error.hpp"
 #include "somasim/plugin_spec.hpp"
@@ -33,11 +33,15 @@ class NodeContext {
   const std::string& node_name() const;
   const Params& params() const;
   template <class T>
-  T param(const std::string& name) const { return params().get<T>(name); }
+  T param(const std::string& name) const {
+    return params().get<T>(name);
+  }
 
   /// The storage of an output port declared in the spec; write it in step().
   template <class T>
-  T& output(const std::string& port) { return *static_cast<T*>(port_storage(port, PortDirection::Output, port_type<T>())); }
+  T& output(const std::string& port) {
+    return *static_cast<T*>(port_storage(port, PortDirection::Output, port_type<T>()));
+  }
   /// The value wired to an input port (read-only). Throws InputError if an optional input is
   /// unwired: check is_wired() first for optional inputs.
   template <class T>
@@ -46,12 +50,12 @@ class NodeContext {
   }
   bool is_wired(const std::string& input_port) const;
 
-  double time_s() const;        ///< current simulated time [s]
-  std::int64_t tick() const;    ///< current base tick (0-based)
-  double rate_hz() const;       ///< this node's rate [Hz]
+  double time_s() const;      ///< current simulated time [s]
+  std::int64_t tick() const;  ///< current base tick (0-based)
+  double rate_hz() const;     ///< this node's rate [Hz]
   double period_s() const { return 1.0 / rate_hz(); }
-  double duration_s() const;    ///< the experiment's planned duration [s]
-  std::uint64_t seed() const;   ///< the experiment seed
+  double duration_s() const;   ///< the experiment's planned duration [s]
+  std::uint64_t seed() const;  ///< the experiment seed
   /// This node's random stream, derived from (experiment seed, node name) only.
   std::mt19937_64& rng();
   spdlog::logger& log();
@@ -119,12 +123,12 @@ struct PluginLibraryEntry {
 #define SOMASIM_PLUGIN_ENTRY_SYMBOL "somasim_plugin_entry"
 
 /// Defines the library's entry point; the body registers plugins with `registrar.add<P>()`.
-#define SOMASIM_PLUGIN_LIBRARY(registrar)                                                    \
-  static void somasim_register_plugins_(::somasim::PluginRegistrar& registrar);             \
-  extern "C" __attribute__((visibility("default"))) const ::somasim::PluginLibraryEntry*    \
-  somasim_plugin_entry() {                                                                   \
-    static const ::somasim::PluginLibraryEntry entry{::somasim::kPluginInterfaceVersion,     \
-                                                     &somasim_register_plugins_};            \
-    return &entry;                                                                           \
-  }                                                                                          \
+#define SOMASIM_PLUGIN_LIBRARY(registrar)                                                \
+  static void somasim_register_plugins_(::somasim::PluginRegistrar& registrar);          \
+  extern "C" __attribute__((visibility("default"))) const ::somasim::PluginLibraryEntry* \
+  somasim_plugin_entry() {                                                               \
+    static const ::somasim::PluginLibraryEntry entry{::somasim::kPluginInterfaceVersion, \
+                                                     &somasim_register_plugins_};        \
+    return &entry;                                                                       \
+  }                                                                                      \
   static void somasim_register_plugins_(::somasim::PluginRegistrar& registrar)

@@ -15,7 +15,7 @@ namespace somasim {
 struct LibraryCandidate {
   std::filesystem::path path;
   bool loaded = false;
-  std::string rejection;              ///< why it was rejected (empty when loaded)
+  std::string rejection;             ///< why it was rejected (empty when loaded)
   std::vector<std::string> plugins;  ///< names it provides (when loaded)
 };
 
@@ -46,7 +46,10 @@ class PluginRegistry {
   std::string search_report();
 
   const std::vector<std::filesystem::path>& search_path() const { return search_path_; }
-  const std::vector<LibraryCandidate>& candidates() { scan(); return candidates_; }
+  const std::vector<LibraryCandidate>& candidates() {
+    scan();
+    return candidates_;
+  }
 
  private:
   void scan();

@@ -37,8 +37,8 @@ class PluginSpec {
 
   template <class T>
   PluginSpec& input(std::string name, std::string doc, bool optional = false) {
-    ports_.push_back({std::move(name), PortDirection::Input, &port_type<T>(), std::move(doc),
-                      optional});
+    ports_.push_back(
+        {std::move(name), PortDirection::Input, &port_type<T>(), std::move(doc), optional});
     return *this;
   }
   template <class T>

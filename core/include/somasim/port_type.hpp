@@ -24,7 +24,7 @@ struct PortTraits;  // specialise for each port type (see port_types.hpp)
 struct PortTypeInfo {
   std::string name;
   std::size_t size_of = 0;
-  std::shared_ptr<void> (*create)() = nullptr;          ///< a default-constructed value
+  std::shared_ptr<void> (*create)() = nullptr;         ///< a default-constructed value
   void (*copy)(void* dst, const void* src) = nullptr;  ///< dst = src (for delayed edges)
   std::vector<std::string> (*csv_columns)(const void* value) = nullptr;  ///< null: not recordable
   void (*csv_write)(const void* value, std::string& row) = nullptr;
@@ -63,6 +63,8 @@ const PortTypeInfo& port_type() {
 }
 
 /// Appends ",value" with the shortest representation that reads back exactly.
-inline void csv_append(std::string& row, double value) { fmt::format_to(std::back_inserter(row), ",{}", value); }
+inline void csv_append(std::string& row, double value) {
+  fmt::format_to(std::back_inserter(row), ",{}", value);
+}
 
 }  // namespace somasim

@@ -15,10 +15,10 @@ namespace somasim {
 
 /// A perceived stimulus (an approaching object or a fingertip) at one instant.
 struct Stimulus {
-  bool present = false;                              ///< false: nothing perceived now
+  bool present = false;                                ///< false: nothing perceived now
   Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< centre [m], root frame
   Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  ///< [m/s], root frame
-  double radius = 0.0;                               ///< [m]
+  double radius = 0.0;                                 ///< [m]
 };
 
 /// Skin taxels of one body part, posed in the root frame at the current instant.
@@ -36,9 +36,9 @@ struct SkinTaxels {
 
 /// A contact on the skin of one body part (pressure over threshold on enough taxels).
 struct ContactEvent {
-  std::uint64_t id = 0;            ///< strictly increasing per producer; consumers skip seen ids
-  double time_s = 0.0;             ///< sim time of the contact [s]
-  std::string body_part;           ///< the part that was touched
+  std::uint64_t id = 0;             ///< strictly increasing per producer; consumers skip seen ids
+  double time_s = 0.0;              ///< sim time of the contact [s]
+  std::string body_part;            ///< the part that was touched
   std::vector<int> touched_taxels;  ///< ids of the (virtual) taxels touched; may be empty
 };
 
@@ -73,8 +73,7 @@ template <>
 struct PortTraits<Stimulus> {
   static constexpr const char* name = "stimulus";
   static std::vector<std::string> csv_columns(const Stimulus&) {
-    return {"present", "x [m]", "y [m]", "z [m]", "vx [m/s]", "vy [m/s]", "vz [m/s]",
-            "radius [m]"};
+    return {"present", "x [m]", "y [m]", "z [m]", "vx [m/s]", "vy [m/s]", "vz [m/s]", "radius [m]"};
   }
   static void csv_write(const Stimulus& s, std::string& row) {
     csv_append(row, s.present ? 1.0 : 0.0);

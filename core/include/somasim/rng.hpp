@@ -27,7 +27,8 @@ constexpr std::uint64_t splitmix64(std::uint64_t x) {
 }
 
 /// The seed of the stream of node `node_name` in an experiment with seed `experiment_seed`.
-constexpr std::uint64_t node_stream_seed(std::uint64_t experiment_seed, std::string_view node_name) {
+constexpr std::uint64_t node_stream_seed(std::uint64_t experiment_seed,
+                                         std::string_view node_name) {
   return splitmix64(splitmix64(experiment_seed) ^ fnv1a64(node_name));
 }
 

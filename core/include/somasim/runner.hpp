@@ -25,9 +25,9 @@ struct RunOptions {
 
 struct RunReport {
   RunStatus status = RunStatus::Completed;
-  std::string error;                  ///< why the run failed (empty when completed)
-  std::string stop_reason;            ///< why it ended ("duration reached", a node's reason, ...)
-  nlohmann::ordered_json metrics;     ///< the content written to metrics.json
+  std::string error;               ///< why the run failed (empty when completed)
+  std::string stop_reason;         ///< why it ended ("duration reached", a node's reason, ...)
+  nlohmann::ordered_json metrics;  ///< the content written to metrics.json
 };
 
 /// Runs `experiment` to completion (or failure or SIGINT) and writes the run folder.

@@ -30,7 +30,8 @@ namespace somasim::testing {
 class Harness {
  public:
   /// Parses, validates and configures the graph (throws InputError like `somasim validate`).
-  explicit Harness(const std::string& yaml, const std::vector<std::filesystem::path>& plugin_path = {},
+  explicit Harness(const std::string& yaml,
+                   const std::vector<std::filesystem::path>& plugin_path = {},
                    const LoadOptions& options = {});
   ~Harness();
 
@@ -45,8 +46,8 @@ class Harness {
   template <class T>
   const T& output(const std::string& node_dot_port) {
     const auto dot = node_dot_port.find('.');
-    return *static_cast<const T*>(sim_->output_port(node_dot_port.substr(0, dot),
-                                                    node_dot_port.substr(dot + 1), port_type<T>().name));
+    return *static_cast<const T*>(sim_->output_port(
+        node_dot_port.substr(0, dot), node_dot_port.substr(dot + 1), port_type<T>().name));
   }
   /// Runs `ticks` base ticks (start() happens on the first call). Returns false if the run
   /// ended (duration reached or a node requested a stop) before all ticks ran.
