@@ -5,6 +5,7 @@
 #include <fstream>
 #include <optional>
 #include <sstream>
+#include <utility>
 
 #include "somasim/error.hpp"
 
@@ -170,7 +171,10 @@ std::vector<LearnedState> import_taxels2d_ini(const std::string& path, const Par
     if (l.empty() || l[0] == '#' || l[0] == ';') continue;
     if (l[0] == '[') {
       if (l.back() != ']' || l.size() < 3) fail(path, line, "malformed section header '" + l + "'");
-      sections.push_back(Section{l.substr(1, l.size() - 2), line});
+      Section sec;
+      sec.name = l.substr(1, l.size() - 2);
+      sec.line = line;
+      sections.push_back(std::move(sec));
       continue;
     }
     if (sections.empty()) fail(path, line, "'" + l + "' before the first [section]");

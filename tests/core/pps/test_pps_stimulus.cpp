@@ -8,8 +8,8 @@
 using namespace somasim::pps;
 
 TEST(PpsStimulus, RotationIsOrthonormalWithZAlongNormal) {
-  for (const Eigen::Vector3d n : {Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(1, 0, 0),
-                                  Eigen::Vector3d(0.3, -0.4, 2.0), Eigen::Vector3d(0, -1, 0)}) {
+  for (const Eigen::Vector3d& n : {Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(1, 0, 0),
+                                   Eigen::Vector3d(0.3, -0.4, 2.0), Eigen::Vector3d(0, -1, 0)}) {
     const Eigen::Matrix3d r = taxel_rotation(n);
     EXPECT_TRUE((r.transpose() * r).isApprox(Eigen::Matrix3d::Identity(), 1e-12));
     EXPECT_NEAR(r.determinant(), 1.0, 1e-12);
