@@ -6,6 +6,8 @@ function(somasim_add_plugin name)
   set(target somasim_plugin_${name})
   add_library(${target} MODULE ${ARG_SOURCES})
   target_link_libraries(${target} PRIVATE somasim::core ${ARG_LIBS})
+  # Unresolved symbols are link errors, not load-time surprises.
+  target_link_options(${target} PRIVATE -Wl,--no-undefined)
   set_target_properties(${target} PROPERTIES
     PREFIX "lib"
     OUTPUT_NAME somasim_${name}
