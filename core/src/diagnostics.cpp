@@ -58,6 +58,9 @@ std::string nearest_name(const std::string& name, const std::vector<std::string>
       best = c;
     }
   }
+  if (best.empty() && name.size() >= 3)  // a truncated name: "rate" for "rate_hz"
+    for (const auto& c : candidates)
+      if (c.size() > name.size() && c.compare(0, name.size(), name) == 0) return c;
   return best;
 }
 

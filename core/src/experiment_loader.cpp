@@ -58,6 +58,7 @@ class Loader {
           ": expected a map with the keys 'experiment', 'duration_s' and 'nodes', got " +
           describe_yaml(root));
     }
+    check_duplicate_keys(root, {});
     apply_overrides(root);
     read_top(root);
     detail::check_graph(exp_, diags_, options_.allow_harness_inputs);
@@ -69,6 +70,34 @@ class Loader {
   void error(const YAML::Node& at, const std::string& node, const std::string& key,
              const std::string& msg) {
     diags_.add(locs_.of(at), node, key, msg);
+  }
+
+  // yaml-cpp keeps every duplicate key in map iteration, but lookups return the first one: a
+  // repeated key would silently lose its value. Node names have their own message (read_nodes).
+  void check_duplicate_keys(const YAML::Node& n, const std::vector<std::string>& path) {
+    if (n.IsSequence())
+      for (const auto& item : n) check_duplicate_keys(item, path);
+    if (!n.IsMap()) return;
+    const bool node_names = path.size() == 1 && path[0] == "nodes";
+    std::map<std::string, SourceLocation> seen;
+    for (const auto& kv : n) {
+      const std::string key = kv.first.IsScalar() ? kv.first.Scalar() : "";
+      std::vector<std::string> sub = path;
+      sub.push_back(key);
+      if (!node_names) {
+        if (auto it = seen.find(key); it != seen.end()) {
+          const bool in_node = sub.size() > 2 && sub[0] == "nodes";
+          std::string dotted;
+          for (std::size_t i = in_node ? 2 : 0; i < sub.size(); ++i)
+            dotted += (dotted.empty() ? "" : ".") + sub[i];
+          error(kv.first, in_node ? sub[1] : "", dotted,
+                "duplicate key (first defined at " + it->second.str() + ")");
+          continue;
+        }
+        seen[key] = locs_.of(kv.first);
+      }
+      check_duplicate_keys(kv.second, sub);
+    }
   }
 
   // --- overrides -------------------------------------------------------------------------
@@ -326,7 +355,7 @@ class Loader {
       if (values.count(ps.name)) continue;
       if (ps.default_value)
         values[ps.name] = *ps.default_value;
-      else if (!params || !params.IsMap() || !params[ps.name])
+      else if (!params || params.IsNull() || (params.IsMap() && !params[ps.name]))
         error(params && params.IsMap() ? params : node, ns.name, "params." + ps.name,
               "missing required parameter of plugin '" + spec.name() + "' (expected " +
                   detail::expectation(ps) + (ps.doc.empty() ? "" : ": " + ps.doc) + ")");
@@ -355,7 +384,6 @@ class Loader {
             error(wk.first, ns.name, key + "." + k,
                   "unknown key" + did_you_mean(k, kWireKeys) + "; expected one of: from, delayed");
         }
-        from.reset(kv.second["from"]);
         if (const YAML::Node d = kv.second["delayed"]; d) {
           const auto b = d.IsScalar() ? detail::parse_bool(d.Scalar()) : std::nullopt;
           if (!b)
@@ -364,10 +392,13 @@ class Loader {
           else
             w.delayed = *b;
         }
-        if (!from) {
+        // (a missing key of a const map is an invalid node: test it before reset())
+        const YAML::Node f = kv.second["from"];
+        if (!f) {
           error(kv.second, ns.name, key, "missing 'from: node.port'");
           continue;
         }
+        from.reset(f);
       }
       const std::string text = from.IsScalar() ? from.Scalar() : "";
       const auto dot = text.find('.');

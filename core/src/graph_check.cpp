@@ -62,7 +62,13 @@ void check_inputs(const Experiment& exp, Diagnostics& diags, bool allow_harness)
       if (p.direction != PortDirection::Input || p.optional) continue;
       const bool wired = std::any_of(n.inputs.begin(), n.inputs.end(),
                                      [&](const InputWire& w) { return w.port == p.name; });
-      if (!wired)
+      // A malformed wire (or inputs map) was reported already: "not wired" would be noise.
+      const bool reported =
+          std::any_of(diags.items().begin(), diags.items().end(), [&](const Diagnostic& d) {
+            return d.node == n.name && (d.key == "inputs" || d.key == "inputs." + p.name ||
+                                        d.key.rfind("inputs." + p.name + ".", 0) == 0);
+          });
+      if (!wired && !reported)
         diags.add(n.where, n.name, "inputs." + p.name,
                   "required input is not wired (expected 'node.port' giving '" + p.type->name +
                       "': " + p.doc + ")");
