@@ -1,0 +1,30 @@
+#pragma once
+// Runs a shipped experiment config into a fresh folder and reads its outputs (for tests).
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "somasim/experiment.hpp"
+#include "somasim/runner.hpp"
+
+namespace somasim::testing {
+
+struct ExperimentRun {
+  std::filesystem::path dir;
+  RunReport report;
+  nlohmann::json metrics;  ///< metrics.json as written
+};
+
+/// Runs `configs/<name>.yaml` with `overrides` into a fresh temporary folder `tag`.
+ExperimentRun run_config(const std::string& name, const std::vector<Override>& overrides = {},
+                         const std::string& tag = "");
+
+/// The content of a file (empty if missing).
+std::string read_file(const std::filesystem::path& file);
+
+/// The shared reference-data folder (SOMASIM_SHARED_DIR or <source>/../shared), or "" if absent.
+std::filesystem::path shared_dir();
+
+}  // namespace somasim::testing
