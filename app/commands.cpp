@@ -107,7 +107,10 @@ int cmd_describe(const CommonOptions& common, const std::string& name) {
   fmt::print("{}\n  {}\n  library: {}\n\nparameters:\n", spec->name(), spec->doc(),
              spec->library_path);
   for (const auto& p : spec->params()) {
-    std::string line = fmt::format("  {:<24} {}", p.name, param_type_name(p.type));
+    const std::string type = p.type == ParamType::DoubleList && p.list_size
+                                 ? fmt::format("a list of {} numbers", *p.list_size)
+                                 : std::string(param_type_name(p.type));
+    std::string line = fmt::format("  {:<24} {}", p.name, type);
     if (!p.unit.empty()) line += " [" + p.unit + "]";
     line += p.default_value ? ", default " + param_value_str(*p.default_value) : ", required";
     if (p.min || p.max)
@@ -118,10 +121,14 @@ int cmd_describe(const CommonOptions& common, const std::string& name) {
   }
   for (auto dir : {PortDirection::Input, PortDirection::Output}) {
     fmt::print("\n{}:\n", dir == PortDirection::Input ? "inputs" : "outputs");
+    bool any = false;
     for (const auto& p : spec->ports())
-      if (p.direction == dir)
+      if (p.direction == dir) {
+        any = true;
         fmt::print("  {:<24} {}{}\n      {}\n", p.name, p.type->name,
                    p.optional ? " (optional)" : "", p.doc);
+      }
+    if (!any) fmt::print("  (none)\n");
   }
   return kExitOk;
 }

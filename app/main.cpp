@@ -1,4 +1,6 @@
 // somasim: run experiment graphs headless. See README.md.
+#include <cstdio>
+
 #include <CLI/CLI.hpp>
 
 #include "commands.hpp"
@@ -19,9 +21,10 @@ int main(int argc, char** argv) {
   RunArgs run;
   auto* run_cmd = app.add_subcommand("run", "Run an experiment; results go to the run folder");
   run_cmd->add_option("file", run.file, "Experiment YAML")->required();
-  run_cmd->add_option(
-      "--set", run.sets,
-      "Override a value: path=value, e.g. nodes.pps.params.threshold=0.2 (repeatable)");
+  run_cmd
+      ->add_option("--set", run.sets,
+                   "Override a value: path=value, e.g. nodes.pps.params.threshold=0.2 (repeatable)")
+      ->allow_extra_args(false);  // one value per --set, so `run --set a=1 FILE` works
   run_cmd->add_option("--seed", run.seed, "Replace the experiment's seed");
   run_cmd->add_option("--out", run.out, "Run folder (default: runs/<experiment name>)");
   run_cmd->add_flag("--quiet", run.quiet, "No progress line; only warnings and errors on stderr");
@@ -30,7 +33,8 @@ int main(int argc, char** argv) {
   std::vector<std::string> validate_sets;
   auto* validate_cmd = app.add_subcommand("validate", "Check an experiment without running it");
   validate_cmd->add_option("file", validate_file, "Experiment YAML")->required();
-  validate_cmd->add_option("--set", validate_sets, "Override a value: path=value (repeatable)");
+  validate_cmd->add_option("--set", validate_sets, "Override a value: path=value (repeatable)")
+      ->allow_extra_args(false);
 
   auto* plugins_cmd = app.add_subcommand("plugins", "List the plugins found on the search path");
   std::string describe_name;
@@ -49,7 +53,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForAllHelp& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    app.exit(e);
+    // Usage errors are bad input too: the same "error: ..." line as every other.
+    std::fprintf(stderr, "error: %s\nRun with --help for more information.\n", e.what());
     return kExitBadInput;
   }
   if (*run_cmd) return cmd_run(common, run);

@@ -141,11 +141,17 @@ RunReport run_experiment(const Experiment& exp, const RunOptions& options) {
     }
   m["nodes"] = sim.node_metrics();
   write_metrics(options.out_dir / "metrics.json", m);
-  if (report.status == RunStatus::Completed)
+  if (report.status == RunStatus::Completed) {
     logger->info("completed ({}) in {:.2f} s wall time", report.stop_reason, wall_s);
-  else
-    logger->error("run {}: {}", run_status_name(report.status),
-                  report.error.empty() ? report.stop_reason : report.error);
+  } else {
+    // Into log.txt only: the caller reports the outcome to the user (the CLI in one line), so
+    // echoing it on stderr here would say it twice.
+    spdlog::logger file_only("somasim", logger->sinks().front());
+    file_only.set_level(spdlog::level::debug);
+    file_only.error("run {}: {}", run_status_name(report.status),
+                    report.error.empty() ? report.stop_reason : report.error);
+    file_only.flush();
+  }
   logger->flush();
   return report;
 }
