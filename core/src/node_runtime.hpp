@@ -13,6 +13,7 @@
 namespace somasim {
 
 class Simulation;
+class CsvRecorder;
 
 class NodeRuntime {
  public:
@@ -27,6 +28,8 @@ class NodeRuntime {
   std::map<std::string, std::shared_ptr<void>> outputs;  // owned storage
   std::map<std::string, void*> inputs;                   // producer storage or delay buffer
   std::vector<std::pair<std::string, nlohmann::json>> metrics;
+  std::int64_t next_tick = 0;           // the base tick of this node's next step
+  std::vector<CsvRecorder*> recorders;  // recorders of this node's outputs
 };
 
 /// Writes one recorded port to `<dir>/<node>.<port>.csv`; header on the first row.

@@ -67,6 +67,7 @@ class Simulation {
   std::filesystem::path out_dir_;
   std::shared_ptr<spdlog::logger> logger_;
   std::vector<std::unique_ptr<NodeRuntime>> nodes_;  // in exp_.nodes order
+  std::vector<NodeRuntime*> ordered_;                // in exp_.order (step order)
   struct DelayedEdge {
     const PortTypeInfo* type;
     void* producer;
