@@ -42,6 +42,10 @@ struct Fixture {
     exp = load_experiment_text(chain_yaml(kNodes), "bench.yaml", ".", registry);
     fs::create_directories(out);
   }
+  ~Fixture() {
+    std::error_code ec;
+    fs::remove_all(out, ec);
+  }
 };
 
 void BM_SimulationStep(benchmark::State& state) {
