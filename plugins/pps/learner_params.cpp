@@ -5,28 +5,53 @@
 namespace somasim::plugins {
 
 void declare_learner_params(PluginSpec& s) {
-  s.add_double("d_min").unit_is("m").defaults(-0.10).range(-1, 1).describe("lower edge of the D range");
-  s.add_double("d_max").unit_is("m").defaults(0.20).range(-1, 1).describe("upper edge of the D range");
+  s.add_double("d_min").unit_is("m").defaults(-0.10).range(-1, 1).describe(
+      "lower edge of the D range");
+  s.add_double("d_max").unit_is("m").defaults(0.20).range(-1, 1).describe(
+      "upper edge of the D range");
   s.add_int("d_bins").defaults(std::int64_t{8}).range(1, 32).describe("number of D bins");
-  s.add_double("ttc_max").unit_is("s").defaults(3.0).range(0.01, 100)
-      .describe("upper edge of the TTC range (paper text 3 s; released robot code 1.2 s)");
+  s.add_double("ttc_max").unit_is("s").defaults(3.0).range(0.01, 100).describe(
+      "upper edge of the TTC range (paper text 3 s; released robot code 1.2 s)");
   s.add_int("ttc_bins").defaults(std::int64_t{4}).range(1, 32).describe("number of TTC bins");
-  s.add_string("ttc").defaults(std::string("signed")).one_of({"signed", "unsigned"})
-      .describe("signed: TTC = -|p|^2/(p.v), receding stimuli dropped (paper, robot code); "
-                "unsigned: |p|/|v|, also behind the skin (authors' single-taxel data)");
-  s.add_double("sigma_scale").defaults(1.0).range(0.05, 10)
+  s.add_string("ttc")
+      .defaults(std::string("signed"))
+      .one_of({"signed", "unsigned"})
+      .describe(
+          "signed: TTC = -|p|^2/(p.v), receding stimuli dropped (paper, robot code); "
+          "unsigned: |p|/|v|, also behind the skin (authors' single-taxel data)");
+  s.add_double("sigma_scale")
+      .defaults(1.0)
+      .range(0.05, 10)
       .describe("Parzen kernel sigma in bin widths (paper 1.0, released code 0.75)");
-  s.add_string("kernel_anchor").defaults(std::string("centre")).one_of({"centre", "lower_edge"})
+  s.add_string("kernel_anchor")
+      .defaults(std::string("centre"))
+      .one_of({"centre", "lower_edge"})
       .describe("Parzen kernels at bin centres (paper) or lower edges (released code)");
-  s.add_string("rf_shape").defaults(std::string("cone")).one_of({"cone", "cone_mirrored_cylinder"})
-      .describe("receptive field: cone around the normal, or the released code's cone mirrored "
-                "below the skin plus a cylinder near it");
-  s.add_double("rf_half_angle").unit_is("deg").defaults(50.0).range(0, 90)
+  s.add_string("rf_shape")
+      .defaults(std::string("cone"))
+      .one_of({"cone", "cone_mirrored_cylinder"})
+      .describe(
+          "receptive field: cone around the normal, or the released code's cone mirrored "
+          "below the skin plus a cylinder near it");
+  s.add_double("rf_half_angle")
+      .unit_is("deg")
+      .defaults(50.0)
+      .range(0, 90)
       .describe("cone half-angle from the normal");
-  s.add_double("rf_range").unit_is("m").defaults(0.20).range(0, 2).describe("cone height along the normal");
-  s.add_double("buffer_horizon").unit_is("s").defaults(3.0).range(0, 1e6)
+  s.add_double("rf_range")
+      .unit_is("m")
+      .defaults(0.20)
+      .range(0, 2)
+      .describe("cone height along the normal");
+  s.add_double("buffer_horizon")
+      .unit_is("s")
+      .defaults(3.0)
+      .range(0, 1e6)
       .describe("samples kept before a contact (paper 3 s, code 4 s); 0 keeps every sample");
-  s.add_double("buffer_reset").unit_is("s").defaults(2.0).range(0, 1e6)
+  s.add_double("buffer_reset")
+      .unit_is("s")
+      .defaults(2.0)
+      .range(0, 1e6)
       .describe("the buffer is forgotten after this long without a stimulus");
 }
 
@@ -41,7 +66,7 @@ pps::LearnerParams read_learner_params(const NodeContext& ctx) {
   if (p.grid.d_max <= p.grid.d_min)
     ctx.param_error("d_max", "must be greater than d_min (" + std::to_string(p.grid.d_min) + ")");
   p.ttc = ctx.param<std::string>("ttc") == "signed" ? pps::TtcDefinition::kSigned
-                                                     : pps::TtcDefinition::kUnsigned;
+                                                    : pps::TtcDefinition::kUnsigned;
   p.parzen.sigma_scale = ctx.param<double>("sigma_scale");
   pps::parse_kernel_anchor(ctx.param<std::string>("kernel_anchor"), p.parzen.anchor);
   p.rf.shape = ctx.param<std::string>("rf_shape") == "cone" ? pps::RfShape::kCone

@@ -4,8 +4,8 @@
 #include <cmath>
 
 #include "landscape_figure.hpp"
-#include "somasim/diagnostics.hpp"
 #include "learner_params.hpp"
+#include "somasim/diagnostics.hpp"
 #include "somasim/pps/learned_state.hpp"
 #include "somasim/pps/map_io.hpp"
 #include "somasim/pps/offset_estimate.hpp"
@@ -16,19 +16,26 @@ PluginSpec PpsLearner::spec() {
   PluginSpec s("pps_learner",
                "Peripersonal-space learner (Roncone et al. 2016): per taxel (D, TTC) counts "
                "learned from buffered stimuli at skin contacts; Parzen-smoothed activations.");
-  s.add_string("body_part").defaults(std::string("taxel"))
+  s.add_string("body_part")
+      .defaults(std::string("taxel"))
       .describe("the skin part (a name in the 'taxels' input) whose taxels learn");
   declare_learner_params(s);
   s.add_bool("learn").defaults(true).describe("learn from contact events (false: only evaluate)");
-  s.add_string("load").defaults(std::string(""))
+  s.add_string("load")
+      .defaults(std::string(""))
       .describe("learned-state file to start from (somasim JSON); relative to the experiment");
-  s.add_string("save").defaults(std::string("pps_map.json"))
+  s.add_string("save")
+      .defaults(std::string("pps_map.json"))
       .describe("file name of the learned state written into the run folder ('' = none)");
-  s.add_list("figure_taxels").defaults(std::vector<double>{})
+  s.add_list("figure_taxels")
+      .defaults(std::vector<double>{})
       .describe("taxel ids whose landscapes are drawn (empty: the first four)");
-  s.add_list("snapshot_events").defaults(std::vector<double>{})
+  s.add_list("snapshot_events")
+      .defaults(std::vector<double>{})
       .describe("also draw the landscapes after these many events (e.g. [1, 4] as in Fig 9)");
-  s.add_int("min_samples").defaults(std::int64_t{50}).at_least(0)
+  s.add_int("min_samples")
+      .defaults(std::int64_t{50})
+      .at_least(0)
       .describe("taxels with fewer learned samples are left out of offset statistics");
   s.input<Stimulus>("stimulus", "perceived stimulus (root frame), sampled at this node's rate");
   s.input<SkinTaxels>("taxels", "taxel poses in the root frame");
@@ -67,7 +74,8 @@ const SkinPart* PpsLearner::find_part(NodeContext& ctx) const {
   std::vector<std::string> names;
   for (const auto& p : skin_->parts) names.push_back(p.name);
   ctx.param_error("body_part", "no skin part '" + body_part_ + "' in the 'taxels' input" +
-                                   did_you_mean(body_part_, names) + "; parts: " + join_names(names));
+                                   did_you_mean(body_part_, names) +
+                                   "; parts: " + join_names(names));
 }
 
 void PpsLearner::create_learner(NodeContext& ctx, const SkinPart& part) {
@@ -89,7 +97,8 @@ void PpsLearner::create_learner(NodeContext& ctx, const SkinPart& part) {
     learner_ = std::make_unique<pps::BodyPartLearner>(body_part_, std::move(taxels), params_);
   }
   activations_->labels.clear();
-  for (int id : part.taxel_ids) activations_->labels.push_back(body_part_ + "/" + std::to_string(id));
+  for (int id : part.taxel_ids)
+    activations_->labels.push_back(body_part_ + "/" + std::to_string(id));
   activations_->values.assign(part.taxel_ids.size(), 0.0);
   poses_.resize(part.taxel_ids.size());
   ctx.log().info("{} taxels on '{}'", part.taxel_ids.size(), body_part_);
@@ -131,7 +140,8 @@ void PpsLearner::learn_from_events(NodeContext& ctx, const SkinPart& part, doubl
     learner_->on_contact(poses_, touched_);
     ++events_;
     if (std::find(snapshot_after_.begin(), snapshot_after_.end(), events_) != snapshot_after_.end())
-      draw_landscapes(ctx, *learner_, figure_taxels_, "after_" + std::to_string(events_) + "_events");
+      draw_landscapes(ctx, *learner_, figure_taxels_,
+                      "after_" + std::to_string(events_) + "_events");
     (void)part;
   }
 }
@@ -140,7 +150,8 @@ void PpsLearner::update_activations(const SkinPart&) {
   double max_a = 0.0;
   const pps::Stimulus s{stimulus_->position, stimulus_->velocity, stimulus_->radius};
   for (std::size_t k = 0; k < poses_.size(); ++k) {
-    const double a = stimulus_->present ? learner_->activation(static_cast<int>(k), poses_[k], s) : 0.0;
+    const double a =
+        stimulus_->present ? learner_->activation(static_cast<int>(k), poses_[k], s) : 0.0;
     activations_->values[k] = a;
     max_a = std::max(max_a, a);
   }
@@ -150,7 +161,8 @@ void PpsLearner::update_activations(const SkinPart&) {
 void PpsLearner::finish(NodeContext& ctx) {
   if (!learner_) return;
   report(ctx);
-  if (!save_name_.empty()) pps::save_learned_state(pps::learned_state(*learner_), ctx.output_path(save_name_).string());
+  if (!save_name_.empty())
+    pps::save_learned_state(pps::learned_state(*learner_), ctx.output_path(save_name_).string());
   draw_landscapes(ctx, *learner_, figure_taxels_, "");
 }
 
@@ -161,7 +173,8 @@ void PpsLearner::report(NodeContext& ctx) {
   ctx.report_metric("samples", counted);
   ctx.report_metric("positive_samples", t.positives);
   ctx.report_metric("negative_samples", t.negatives);
-  ctx.report_metric("negative_d_share", counted ? static_cast<double>(t.behind_skin) / counted : 0.0);
+  ctx.report_metric("negative_d_share",
+                    counted ? static_cast<double>(t.behind_skin) / counted : 0.0);
   // Fig 8 offset per taxel with enough samples; the part's offset is their mean.
   nlohmann::json per_taxel = nlohmann::json::object();
   double sum = 0.0;
@@ -173,7 +186,8 @@ void PpsLearner::report(NodeContext& ctx) {
     for (std::size_t i = 0; i < map.pos().size(); ++i) samples += map.pos()[i] + map.neg()[i];
     const auto offset = pps::estimate_offset(map);
     const std::string id = std::to_string(learner_->taxels()[k].id);
-    per_taxel[id] = {{"samples", samples}, {"offset_estimate_m", offset ? nlohmann::json(*offset) : nlohmann::json()}};
+    per_taxel[id] = {{"samples", samples},
+                     {"offset_estimate_m", offset ? nlohmann::json(*offset) : nlohmann::json()}};
     if (offset && samples >= static_cast<std::uint64_t>(min_samples_)) {
       sum += *offset;
       ++n;

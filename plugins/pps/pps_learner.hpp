@@ -38,7 +38,7 @@ class PpsLearner : public Plugin {
   std::unique_ptr<pps::BodyPartLearner> learner_;
   std::uint64_t last_event_id_ = 0;
   std::size_t events_ = 0;
-  std::vector<pps::TaxelPose> poses_;      // root frame, current tick
+  std::vector<pps::TaxelPose> poses_;  // root frame, current tick
   std::vector<int> touched_;
   std::vector<std::size_t> snapshot_after_;  // event counts at which maps are drawn (Fig 9)
 };

@@ -16,21 +16,68 @@ PluginSpec TaxelThrower::spec() {
   PluginSpec s("taxel_thrower",
                "Single-taxel Monte Carlo (Roncone et al. 2016, Figs 2-3): objects thrown at one "
                "taxel on a skin plane; perceived stimulus with noise and a systematic offset.");
-  s.add_int("throws").defaults(std::int64_t{500}).range(1, 10000000).describe("number of objects thrown; the run stops after the last");
-  s.add_list("taxel_position").size(3).unit_is("m").defaults(std::vector<double>{0, 0, 0}).describe("taxel centre, root frame");
-  s.add_list("taxel_normal").size(3).defaults(std::vector<double>{0, 0, 1}).describe("outward skin normal, root frame (normalised)");
-  s.add_string("body_part").defaults(std::string("taxel")).describe("name of the skin part in the outputs");
-  s.add_double("start_distance_min").unit_is("m").defaults(0.25).range(0, 10).describe("closest start of a throw from the taxel");
-  s.add_double("start_distance_max").unit_is("m").defaults(0.30).range(0, 10).describe("farthest start of a throw");
-  s.add_double("start_cone").unit_is("deg").defaults(45.0).range(0, 89).describe("start directions within this angle of the normal (uniform over the solid angle)");
-  s.add_double("landing_sigma").unit_is("m").defaults(0.018).range(0, 1).describe("landing point: Gaussian around the taxel, per skin-plane axis (released data 1.8 cm; paper text 5 cm)");
+  s.add_int("throws")
+      .defaults(std::int64_t{500})
+      .range(1, 10000000)
+      .describe("number of objects thrown; the run stops after the last");
+  s.add_list("taxel_position")
+      .size(3)
+      .unit_is("m")
+      .defaults(std::vector<double>{0, 0, 0})
+      .describe("taxel centre, root frame");
+  s.add_list("taxel_normal")
+      .size(3)
+      .defaults(std::vector<double>{0, 0, 1})
+      .describe("outward skin normal, root frame (normalised)");
+  s.add_string("body_part")
+      .defaults(std::string("taxel"))
+      .describe("name of the skin part in the outputs");
+  s.add_double("start_distance_min")
+      .unit_is("m")
+      .defaults(0.25)
+      .range(0, 10)
+      .describe("closest start of a throw from the taxel");
+  s.add_double("start_distance_max")
+      .unit_is("m")
+      .defaults(0.30)
+      .range(0, 10)
+      .describe("farthest start of a throw");
+  s.add_double("start_cone")
+      .unit_is("deg")
+      .defaults(45.0)
+      .range(0, 89)
+      .describe("start directions within this angle of the normal (uniform over the solid angle)");
+  s.add_double("landing_sigma")
+      .unit_is("m")
+      .defaults(0.018)
+      .range(0, 1)
+      .describe(
+          "landing point: Gaussian around the taxel, per skin-plane axis (released data 1.8 cm; "
+          "paper text 5 cm)");
   s.add_double("speed_min").unit_is("m/s").defaults(0.05).range(1e-4, 10).describe("slowest throw");
   s.add_double("speed_max").unit_is("m/s").defaults(0.07).range(1e-4, 10).describe("fastest throw");
-  s.add_double("hit_radius").unit_is("m").defaults(0.02).range(0, 1).describe("a landing point this close to the taxel centre touches it");
-  s.add_double("object_radius").unit_is("m").defaults(0.0).range(0, 1).describe("radius of the thrown objects (the centre lands at this height)");
-  s.add_double("position_noise").unit_is("m").defaults(0.0).range(0, 1).describe("perceived position noise, std per axis");
-  s.add_double("velocity_noise").unit_is("m/s").defaults(0.0).range(0, 10).describe("perceived velocity noise, std per axis");
-  s.add_double("offset").unit_is("m").defaults(0.0).range(-1, 1).describe("systematic error of the perceived position along the normal (Fig 3: -0.10)");
+  s.add_double("hit_radius")
+      .unit_is("m")
+      .defaults(0.02)
+      .range(0, 1)
+      .describe("a landing point this close to the taxel centre touches it");
+  s.add_double("object_radius")
+      .unit_is("m")
+      .defaults(0.0)
+      .range(0, 1)
+      .describe("radius of the thrown objects (the centre lands at this height)");
+  s.add_double("position_noise")
+      .unit_is("m")
+      .defaults(0.0)
+      .range(0, 1)
+      .describe("perceived position noise, std per axis");
+  s.add_double("velocity_noise")
+      .unit_is("m/s")
+      .defaults(0.0)
+      .range(0, 10)
+      .describe("perceived velocity noise, std per axis");
+  s.add_double("offset").unit_is("m").defaults(0.0).range(-1, 1).describe(
+      "systematic error of the perceived position along the normal (Fig 3: -0.10)");
   s.output<Stimulus>("stimulus", "the stimulus as perceived (root frame)");
   s.output<Stimulus>("truth", "the true object state (root frame)");
   s.output<SkinTaxels>("taxels", "the one taxel, as a skin part");
@@ -92,7 +139,8 @@ TaxelThrower::Throw TaxelThrower::draw_throw(std::mt19937_64& rng, double t0) {
   const double speed = speed_min_ + unit(rng) * (speed_max_ - speed_min_);
   th.start = taxel_position_ + dist * dir;
   // The object's centre lands one radius above the plane: its surface touches the skin.
-  th.landing = taxel_position_ + land.x() * tangent_u_ + land.y() * tangent_v_ + radius_ * taxel_normal_;
+  th.landing =
+      taxel_position_ + land.x() * tangent_u_ + land.y() * tangent_v_ + radius_ * taxel_normal_;
   const Eigen::Vector3d path = th.landing - th.start;
   th.duration = path.norm() / speed;
   th.velocity = path / th.duration;
@@ -101,7 +149,9 @@ TaxelThrower::Throw TaxelThrower::draw_throw(std::mt19937_64& rng, double t0) {
   return th;
 }
 
-void TaxelThrower::start(NodeContext& ctx) { current_ = draw_throw(ctx.rng(), ctx.time_s()); }
+void TaxelThrower::start(NodeContext& ctx) {
+  current_ = draw_throw(ctx.rng(), ctx.time_s());
+}
 
 void TaxelThrower::perceive(std::mt19937_64& rng, const Eigen::Vector3d& position,
                             const Eigen::Vector3d& velocity) {
@@ -165,7 +215,8 @@ void TaxelThrower::finish(NodeContext& ctx) {
   ctx.report_metric("hits", hits_);
   ctx.report_metric("hit_rate", thrown_ ? static_cast<double>(hits_) / thrown_ : 0.0);
   ctx.report_metric("stimulus_samples", samples_);
-  ctx.report_metric("contact_distance_m", hits_ ? nlohmann::json(contact_d_sum_ / hits_) : nlohmann::json());
+  ctx.report_metric("contact_distance_m",
+                    hits_ ? nlohmann::json(contact_d_sum_ / hits_) : nlohmann::json());
 }
 
 }  // namespace somasim::plugins

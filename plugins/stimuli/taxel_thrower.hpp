@@ -31,7 +31,8 @@ class TaxelThrower : public Plugin {
     bool hit = false;
   };
   Throw draw_throw(std::mt19937_64& rng, double t0);
-  void perceive(std::mt19937_64& rng, const Eigen::Vector3d& position, const Eigen::Vector3d& velocity);
+  void perceive(std::mt19937_64& rng, const Eigen::Vector3d& position,
+                const Eigen::Vector3d& velocity);
   void emit_contact(double t);
 
   // parameters
