@@ -1,0 +1,23 @@
+#pragma once
+/// @file
+/// Reading robot descriptions (YAML). The format is documented in assets/robots/README.md.
+/// Every error names the file, line and column, the item (link, joint, chain, ...) and the key,
+/// says what was expected and suggests the nearest valid name; all errors of a file are
+/// collected and thrown together as one InputError.
+#include <filesystem>
+#include <string>
+
+#include "somasim/robot/robot_model.hpp"
+
+namespace somasim::robot {
+
+/// Loads a robot description file. Relative paths inside it (extends, mesh files) are relative
+/// to the file's directory.
+RobotModel load_robot_model(const std::filesystem::path& file);
+
+/// Parses description text; `display_name` is used in messages, `base_dir` resolves relative
+/// paths.
+RobotModel parse_robot_model(const std::string& text, const std::string& display_name,
+                             const std::filesystem::path& base_dir);
+
+}  // namespace somasim::robot
