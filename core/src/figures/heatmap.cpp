@@ -185,6 +185,13 @@ Figure render_heatmap(const HeatmapSpec& s) {
     for (std::size_t i = 0; i < l.x.size(); ++i) {
       const cv::Point2d p = px(frame, l.x[i], l.y[i]);
       pts.push_back(p - origin);
+      if (!std::isfinite(p.x) || !std::isfinite(p.y)) continue;
+      if (i > 0) {  // densify so that kBest legend placement sees the whole segment
+        const cv::Point2d a = px(frame, l.x[i - 1], l.y[i - 1]);
+        const int n = std::isfinite(a.x) && std::isfinite(a.y)
+                          ? std::min(200, static_cast<int>(cv::norm(p - a) / 10)) : 0;
+        for (int k = 1; k < n; ++k) data_px.push_back(a + (p - a) * (double(k) / n));
+      }
       data_px.push_back(p);
     }
     draw_polyline(roi, pts, kWhite, l.width_px + 2.5, LineStyle::kSolid);

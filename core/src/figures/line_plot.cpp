@@ -73,21 +73,21 @@ void draw_panel(cv::Mat& img, const AxesFrame& f, const PanelLayout& pl, const A
   if (p.grid) draw_grid(img, f, xt, pl.yt);
   cv::Mat roi = img(plot_rect(f));
   const cv::Point2d origin(f.left, f.top);
-  std::vector<LegendEntry> legend;
+  std::vector<LegendEntry> legend, ref_legend;  // series first, then reference lines
   std::vector<cv::Point2d> data_px;
   const Color ref_default{70, 70, 70};
   for (const auto& h : p.hlines) {
     const Color c = h.color.value_or(ref_default);
     const double y = px(f, f.x.lo, h.value).y - f.top;
     draw_polyline(roi, {{0, y}, {static_cast<double>(f.width), y}}, c, h.width_px, h.style);
-    legend.push_back({h.label, c, true, h.style, h.width_px, std::nullopt, 8, false});
+    ref_legend.push_back({h.label, c, true, h.style, h.width_px, std::nullopt, 8, false});
     for (int x = 0; x <= f.width; x += 8) data_px.push_back({origin.x + x, origin.y + y});
   }
   for (const auto& v : p.vlines) {
     const Color c = v.color.value_or(ref_default);
     const double x = px(f, v.value, f.y.lo).x - f.left;
     draw_polyline(roi, {{x, 0}, {x, static_cast<double>(f.height)}}, c, v.width_px, v.style);
-    legend.push_back({v.label, c, true, v.style, v.width_px, std::nullopt, 8, false});
+    ref_legend.push_back({v.label, c, true, v.style, v.width_px, std::nullopt, 8, false});
     for (int y = 0; y <= f.height; y += 8) data_px.push_back({origin.x + x, origin.y + y});
   }
   std::size_t next = 0;
@@ -113,6 +113,7 @@ void draw_panel(cv::Mat& img, const AxesFrame& f, const PanelLayout& pl, const A
       for (const auto& q : pts) draw_marker(roi, q, *s.marker, 4 + 2 * s.width_px, c);
     legend.push_back({s.label, c, true, s.style, s.width_px, s.marker, 4 + 2 * s.width_px});
   }
+  legend.insert(legend.end(), ref_legend.begin(), ref_legend.end());
   draw_axes(img, f, xt, pl.yt, text, fonts);
   draw_legend(img, f, legend, p.legend, fonts, data_px);
 }
