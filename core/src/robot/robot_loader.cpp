@@ -110,7 +110,6 @@ class Loader {
   RobotModel load(const std::string& text, const std::string& display_name,
                   const fs::path& base_dir) {
     YAML::Node root = resolve(text, display_name, base_dir, 0, {});
-    diags_.throw_if_any();
     read(root);
     diags_.throw_if_any();
     return build();
@@ -171,6 +170,7 @@ class Loader {
     }
     if (const YAML::Node set = root["set"]; set) {
       if (!reader_.expect_map(set, "", "set", "a map of dotted paths to values")) return base;
+      origins_.add(set, display, dir);
       for (const auto& kv : set) apply_set(base, kv.first, kv.second, display, dir, base_display);
     }
     return base;
@@ -258,12 +258,13 @@ class Loader {
     density_ =
         reader_.positive(root, "density", "", "", false, "a density", "kg/m^3").value_or(1000.0);
     add_link(root_name_);
+    const std::size_t errors_before_tree = diags_.items().size();
     read_link_declarations(root["links"]);
     read_chains(root["chains"]);
     read_joints(root["joints"]);
     resolve_joint_parents();
     check_tree();
-    if (!diags_.empty()) return;  // geometry/frames need a consistent tree
+    if (diags_.items().size() != errors_before_tree) return;  // the rest needs a sound tree
     for (const auto& l : links_) old_link_names_.push_back(l.name);
     order_tree();
     read_link_properties();
@@ -553,7 +554,10 @@ class Loader {
           jb.joint.upper = (*limits)[1];
         }
       }
-      if (!ok) continue;
+      if (!ok) {
+        if (child) unattached_ok_.insert(*child);  // already reported: say nothing more about it
+        continue;
+      }
       jb.joint.pre = *pre;
       jb.joint.post = *post;
       jb.parent_name = *parent;
@@ -587,7 +591,7 @@ class Loader {
   // Every link reaches the root through its parents: report detached links and cycles.
   void check_tree() {
     for (std::size_t l = 1; l < links_.size(); ++l)
-      if (links_[l].parent_joint < 0 && links_[l].declared)
+      if (links_[l].parent_joint < 0 && links_[l].declared && !unattached_ok_.count(links_[l].name))
         reader_.error(links_[l].decl_key, "link '" + links_[l].name + "'", "",
                       "not attached to the robot; expected a joint or a chain link with child '" +
                           links_[l].name + "'");
@@ -1075,6 +1079,7 @@ class Loader {
   std::vector<ChainInfo> chains_;
   std::vector<ChainTip> chain_tips_;
   std::vector<std::string> old_link_names_;
+  std::set<std::string> unattached_ok_;  // children of joints that failed to load
   std::vector<Link> built_links_;
   std::vector<Frame> frames_;
   std::vector<Camera> cameras_;

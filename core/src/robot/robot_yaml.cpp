@@ -85,8 +85,9 @@ void YamlReader::check_keys(const YAML::Node& map, const std::vector<std::string
   for (const auto& kv : map) {
     const std::string key = kv.first.IsScalar() ? kv.first.Scalar() : describe(kv.first);
     if (std::find(allowed.begin(), allowed.end(), key) == allowed.end())
+      // Keys put in place by 'set' have no position: point at their value instead.
       error(
-          kv.first, item, prefix + key,
+          kv.first.Mark().is_null() ? kv.second : kv.first, item, prefix + key,
           "unknown key" + did_you_mean(key, allowed) + "; expected one of: " + join_names(allowed));
   }
 }
