@@ -76,10 +76,10 @@ void put_text(cv::Mat& img, const std::string& text, cv::Point2d anchor, HAlign 
 
 void draw_polyline(cv::Mat& img, const std::vector<cv::Point2d>& pts, Color color,
                    double width_px, LineStyle style) {
-  const double on = style == LineStyle::kDashed ? 4.0 * std::max(2.0, width_px)
-                                                : std::max(1.5, width_px);
-  const double off = style == LineStyle::kDashed ? 2.5 * std::max(2.0, width_px)
-                                                 : 1.8 * std::max(1.5, width_px);
+  // Round caps add about half the width at each dash end: lengthen the gaps accordingly.
+  const double w = std::max(2.0, width_px);
+  const double on = style == LineStyle::kDashed ? 3.5 * w : 0.5;
+  const double off = style == LineStyle::kDashed ? 3.0 * w + width_px + 1 : 2.0 * w + width_px;
   double phase = 0;  // distance travelled along the current dash cycle
   for (std::size_t i = 1; i < pts.size(); ++i) {
     const cv::Point2d a = pts[i - 1], b = pts[i];
