@@ -6,7 +6,7 @@
 
 namespace somasim::pps {
 
-std::optional<double> estimate_offset(const TaxelMap& map, const OffsetOptions& opt) {
+std::optional<RegressionLine> fit_activation_line(const TaxelMap& map, const OffsetOptions& opt) {
   const GridSpec& g = map.grid();
   if (opt.n_d < 2 || opt.n_ttc < 2) return std::nullopt;
   double sw = 0, sx = 0, sy = 0;
@@ -37,10 +37,18 @@ std::optional<double> estimate_offset(const TaxelMap& map, const OffsetOptions& 
   const Eigen::Vector2d ev = es.eigenvalues();  // ascending
   if (!(ev(1) > 0.0) || ev(1) - ev(0) <= 1e-9 * ev(1)) return std::nullopt;
   const Eigen::Vector2d dir = es.eigenvectors().col(1);
-  if (std::abs(dir.y()) < 1e-9) return std::nullopt;
-  const double y0 = (0.0 - g.ttc_min) / (g.ttc_max - g.ttc_min);
-  const double x0 = mx + (y0 - my) * dir.x() / dir.y();
-  return g.d_min + x0 * (g.d_max - g.d_min);
+  RegressionLine line;
+  line.centre = {g.d_min + mx * (g.d_max - g.d_min), g.ttc_min + my * (g.ttc_max - g.ttc_min)};
+  line.direction = Eigen::Vector2d(dir.x() * (g.d_max - g.d_min), dir.y() * (g.ttc_max - g.ttc_min))
+                       .normalized();
+  return line;
+}
+
+std::optional<double> estimate_offset(const TaxelMap& map, const OffsetOptions& opt) {
+  const auto line = fit_activation_line(map, opt);
+  if (!line || std::abs(line->direction.y()) < 1e-9 * line->direction.norm()) return std::nullopt;
+  // D where the line meets TTC = 0 (the same point in scaled or unscaled axes).
+  return line->centre.x() - line->centre.y() * line->direction.x() / line->direction.y();
 }
 
 }  // namespace somasim::pps

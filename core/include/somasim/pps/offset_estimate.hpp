@@ -5,6 +5,8 @@
 /// the fitted line meets TTC = 0.
 #include <optional>
 
+#include <Eigen/Core>
+
 #include "somasim/pps/taxel_map.hpp"
 
 namespace somasim::pps {
@@ -17,6 +19,17 @@ struct OffsetOptions {
   /// Points with activation below this are left out (0: all points, weight = activation).
   double min_activation = 0.0;
 };
+
+/// The fitted line in map units: through `centre` (D [m], TTC [s]) along the unit `direction`.
+struct RegressionLine {
+  Eigen::Vector2d centre;
+  Eigen::Vector2d direction;
+};
+
+/// The line of estimate_offset() (same fit, mapped back to D [m] x TTC [s]); nullopt when there
+/// is no weight or no principal direction.
+std::optional<RegressionLine> fit_activation_line(const TaxelMap& map,
+                                                  const OffsetOptions& opt = {});
 
 /// Fit, in scaled axes x = (D - d_min)/(d_max - d_min), y = (TTC - ttc_min)/(ttc_max - ttc_min)
 /// (so that metres and seconds weigh alike), the line through the weighted mean along the
