@@ -87,8 +87,8 @@ int run(const std::vector<std::string>& args) {
   spec.y_min = table.ttc_edges.front();
   spec.y_max = table.ttc_edges.back();
   spec.title = !title.empty() ? title
-                              : table.source + " (" + table.part + ", taxel " +
-                                    std::to_string(table.taxel) + "): activation landscape";
+                              : table.source + ": " + table.part + ", taxel " +
+                                    std::to_string(table.taxel);
   spec.x_label = "D [cm]";
   spec.y_label = "TTC [s]";
   spec.colorbar_label = "activation (max-normalised)";

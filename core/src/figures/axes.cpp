@@ -103,9 +103,13 @@ int title_height(const std::string& title, const Fonts& fonts) {
 }
 
 int draw_title(cv::Mat& img, const std::string& title, const Fonts& fonts) {
-  if (!title.empty())
-    put_text(img, title, {img.cols / 2.0, 14.0}, HAlign::kCenter, VAlign::kTop, fonts.title(),
-             kBlack, 2);
+  if (!title.empty()) {
+    // Shrink a title too long for the figure rather than clipping it.
+    double scale = fonts.title();
+    const int w = text_size(title, scale, 2).width;
+    if (w > img.cols - 2 * kPad) scale *= static_cast<double>(img.cols - 2 * kPad) / w;
+    put_text(img, title, {img.cols / 2.0, 14.0}, HAlign::kCenter, VAlign::kTop, scale, kBlack, 2);
+  }
   return title_height(title, fonts);
 }
 
