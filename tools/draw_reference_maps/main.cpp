@@ -4,8 +4,9 @@
 //   draw_reference_maps CSV SOURCE OUT.png [--part P] [--taxel N] [--title T]
 //                       [--colormap viridis|jet|turbo|inferno] [--no-bin-grid]
 //
-// r = pos / (pos + neg) per bin (0 for empty bins), Parzen kernels at the bin centres with
-// sigma = one bin width per axis, sampled on a 301 x 121 lattice and max-normalised.
+// Drawn exactly like the pps_learner's landscapes (somasim::pps::landscape_heatmap): r =
+// pos / (pos + neg) per bin, Parzen kernels at the bin centres with sigma = one bin width,
+// normalised as the pps library does, with the Fig 8 regression line.
 // Exit codes: 0 done, 2 bad arguments or input.
 #include <cstdio>
 #include <iostream>
@@ -15,6 +16,7 @@
 #include "reference_map.hpp"
 #include "somasim/error.hpp"
 #include "somasim/figures/heatmap.hpp"
+#include "somasim/pps/landscape_plot.hpp"
 
 namespace {
 
@@ -72,32 +74,30 @@ int run(const std::vector<std::string>& args) {
     }
   }
   if (positional.size() != 3)
-    throw InputError("expected CSV, SOURCE and OUT.png, got " +
-                     std::to_string(positional.size()) + " arguments");
+    throw InputError("expected CSV, SOURCE and OUT.png, got " + std::to_string(positional.size()) +
+                     " arguments");
   key.source = positional[1];
   const auto table = somasim::tools::read_table(positional[0], key);
 
-  constexpr int kDSamples = 301, kTtcSamples = 121;
-  fig::HeatmapSpec spec;
-  spec.grid = fig::Grid::row_major(kTtcSamples, kDSamples,
-                                   somasim::tools::landscape(table, kDSamples, kTtcSamples));
-  spec.layout = fig::GridLayout::kSamples;
-  spec.x_min = table.d_edges.front() * 100;  // [cm]
-  spec.x_max = table.d_edges.back() * 100;
-  spec.y_min = table.ttc_edges.front();
-  spec.y_max = table.ttc_edges.back();
-  spec.title = !title.empty() ? title
-                              : table.source + ": " + table.part + ", taxel " +
-                                    std::to_string(table.taxel);
-  spec.x_label = "D [cm]";
-  spec.y_label = "TTC [s]";
-  spec.colorbar_label = "activation (max-normalised)";
-  spec.value_range = fig::Range{0, 1};
+  // The same landscape as the pps_learner's figures: the paper's Parzen variant (kernels at
+  // bin centres, sigma = one bin width) over the table's own grid.
+  somasim::pps::GridSpec grid;
+  grid.d_min = table.d_edges.front();
+  grid.d_max = table.d_edges.back();
+  grid.d_bins = table.d_bins;
+  grid.ttc_min = table.ttc_edges.front();
+  grid.ttc_max = table.ttc_edges.back();
+  grid.ttc_bins = table.ttc_bins;
+  std::vector<somasim::pps::TaxelMap::Count> pos(table.pos.begin(), table.pos.end());
+  std::vector<somasim::pps::TaxelMap::Count> neg(table.neg.begin(), table.neg.end());
+  const somasim::pps::TaxelMap map(grid, somasim::pps::ParzenSpec::paper(), pos, neg);
+  somasim::pps::LandscapeOptions options;
+  options.title = !title.empty()
+                      ? title
+                      : table.source + ": " + table.part + ", taxel " + std::to_string(table.taxel);
+  options.bin_grid = bin_grid;
+  fig::HeatmapSpec spec = somasim::pps::landscape_heatmap(map, options);
   spec.colormap = cmap;
-  if (bin_grid) {
-    for (double e : table.d_edges) spec.x_edges.push_back(e * 100);
-    spec.y_edges = table.ttc_edges;
-  }
   fig::save_png(fig::render_heatmap(spec), positional[2]);
   std::cout << "wrote " << positional[2] << "\n";
   return 0;

@@ -43,8 +43,8 @@ CountTable read_table(const std::string& path, const TableKey& key) {
   const std::string expected =
       "source,protocol_or_part,taxel,d_bin,ttc_bin,d_lo_m,d_hi_m,ttc_lo,ttc_hi,pos_count,neg_count";
   if (line != expected)
-    throw InputError("CSV '" + path + "': unexpected header '" + line + "'; expected '" +
-                     expected + "'");
+    throw InputError("CSV '" + path + "': unexpected header '" + line + "'; expected '" + expected +
+                     "'");
   struct Row {
     int d, t;
     double dlo, dhi, tlo, thi, pos, neg;
@@ -65,11 +65,10 @@ CountTable read_table(const std::string& path, const TableKey& key) {
     const int taxel = static_cast<int>(to_double(c[2], path, n));
     if (!key.part.empty() && c[1] != key.part) continue;
     if (key.taxel >= 0 && taxel != key.taxel) continue;
-    tables[{c[1], taxel}].push_back(Row{static_cast<int>(to_double(c[3], path, n)),
-                                        static_cast<int>(to_double(c[4], path, n)),
-                                        to_double(c[5], path, n), to_double(c[6], path, n),
-                                        to_double(c[7], path, n), to_double(c[8], path, n),
-                                        to_double(c[9], path, n), to_double(c[10], path, n)});
+    tables[{c[1], taxel}].push_back(
+        Row{static_cast<int>(to_double(c[3], path, n)), static_cast<int>(to_double(c[4], path, n)),
+            to_double(c[5], path, n), to_double(c[6], path, n), to_double(c[7], path, n),
+            to_double(c[8], path, n), to_double(c[9], path, n), to_double(c[10], path, n)});
   }
   if (tables.empty()) {
     std::string msg = "no table in '" + path + "' matches source '" + key.source + "'";
@@ -120,37 +119,6 @@ CountTable read_table(const std::string& path, const TableKey& key) {
     t.neg[i] = r.neg;
   }
   return t;
-}
-
-std::vector<double> landscape(const CountTable& t, int d_samples, int ttc_samples) {
-  const double d0 = t.d_edges.front(), d1 = t.d_edges.back();
-  const double t0 = t.ttc_edges.front(), t1 = t.ttc_edges.back();
-  const double sd = (d1 - d0) / t.d_bins, st = (t1 - t0) / t.ttc_bins;
-  std::vector<double> out(static_cast<std::size_t>(d_samples) * ttc_samples, 0.0);
-  double peak = 0;
-  for (int r = 0; r < ttc_samples; ++r) {
-    const double ttc = t0 + (t1 - t0) * r / (ttc_samples - 1);
-    for (int c = 0; c < d_samples; ++c) {
-      const double d = d0 + (d1 - d0) * c / (d_samples - 1);
-      double f = 0;
-      for (int i = 0; i < t.d_bins; ++i)
-        for (int j = 0; j < t.ttc_bins; ++j) {
-          const std::size_t k = static_cast<std::size_t>(i) * t.ttc_bins + j;
-          const double total = t.pos[k] + t.neg[k];
-          const double ratio = total > 0 ? t.pos[k] / total : 0.0;
-          if (ratio == 0) continue;
-          const double cd = (t.d_edges[i] + t.d_edges[i + 1]) / 2;
-          const double ct = (t.ttc_edges[j] + t.ttc_edges[j + 1]) / 2;
-          const double zd = (d - cd) / sd, zt = (ttc - ct) / st;
-          f += ratio * std::exp(-0.5 * (zd * zd + zt * zt));
-        }
-      out[static_cast<std::size_t>(r) * d_samples + c] = f;
-      peak = std::max(peak, f);
-    }
-  }
-  if (peak > 0)
-    for (double& v : out) v /= peak;
-  return out;
 }
 
 }  // namespace somasim::tools

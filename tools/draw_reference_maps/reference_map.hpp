@@ -1,6 +1,5 @@
 #pragma once
-// Reading one 8x4 count table from histograms_2D_long.csv and smoothing it into an activation
-// landscape (Parzen windows at bin centres, sigma = one bin width per axis, max-normalised).
+// Reading one (D, TTC) count table from histograms_2D_long.csv.
 #include <string>
 #include <vector>
 
@@ -27,12 +26,5 @@ struct TableKey {
 /// missing or malformed, when nothing matches, or when several tables match (the message lists
 /// them so that the user can add --part / --taxel).
 CountTable read_table(const std::string& path, const TableKey& key);
-
-/// Activation landscape on a d_samples x ttc_samples lattice covering the table's ranges
-/// (both ends included). Returned row-major with rows along TTC (row 0 = lowest TTC) and
-/// columns along D; max-normalised to 1 (all zeros when the table has no positive counts).
-/// r = pos / (pos + neg) per bin (0 for empty bins);
-/// f(D, TTC) = sum_ij r_ij exp(-((D - cD_j)^2 / sD^2 + (TTC - cT_i)^2 / sT^2) / 2).
-std::vector<double> landscape(const CountTable& t, int d_samples, int ttc_samples);
 
 }  // namespace somasim::tools
