@@ -10,7 +10,8 @@
 
 namespace {
 
-const std::string kConfig = std::string(SOMASIM_SOURCE_DIR) + "/configs/pps_single_taxel_offset.yaml";
+const std::string kConfig =
+    std::string(SOMASIM_SOURCE_DIR) + "/configs/pps_single_taxel_offset.yaml";
 const std::string kOut = (std::filesystem::temp_directory_path() / "somasim-bench-mc").string();
 
 void run_command(benchmark::State& state, const std::string& command) {
@@ -23,7 +24,8 @@ void run_command(benchmark::State& state, const std::string& command) {
 }
 
 void BM_MonteCarlo500Throws_WholeProcess(benchmark::State& state) {
-  run_command(state, std::string(SOMASIM_BIN) + " run " + kConfig + " --quiet --out " + kOut + " > /dev/null");
+  run_command(state, std::string(SOMASIM_BIN) + " run " + kConfig + " --quiet --out " + kOut +
+                         " > /dev/null");
 }
 
 void BM_Baseline_ValidateOnly(benchmark::State& state) {

@@ -28,7 +28,7 @@ enum class JointCommandMode : std::uint8_t { kNone = 0, kPosition = 1, kVelocity
 struct JointCommand {
   std::vector<JointCommandMode> mode;  ///< per dof
   Eigen::VectorXd position;            ///< target [rad] where mode == kPosition
-  Eigen::VectorXd velocity;            ///< target [rad/s] where mode == kVelocity (and feed-forward)
+  Eigen::VectorXd velocity;  ///< target [rad/s] where mode == kVelocity (and feed-forward)
 };
 
 /// Poses of every link of the robot model, in link order.
@@ -44,7 +44,7 @@ struct Contact {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();       ///< on body a [m], root frame
   Eigen::Vector3d point_in_a = Eigen::Vector3d::Zero();  ///< the same point in a's frame [m]
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();     ///< unit, from b towards a, root frame
-  double normal_force = 0.0;                              ///< [N], >= 0
+  double normal_force = 0.0;                             ///< [N], >= 0
 };
 
 /// All contact points of the current step.
@@ -60,7 +60,8 @@ struct ObjectSpawn {
   std::uint64_t id = 0;  ///< strictly increasing per producer
   std::string name;
   ObjectShape shape = ObjectShape::kSphere;
-  Eigen::Vector3d size = Eigen::Vector3d::Zero();  ///< sphere: (r,-,-); box: half extents; cylinder: (r, half height, -) [m]
+  Eigen::Vector3d size = Eigen::Vector3d::Zero();  ///< sphere: (r,-,-); box: half extents;
+                                                   ///< cylinder: (r, half height, -) [m]
   std::string mesh;                                ///< mesh file for kMesh
   ObjectMotion motion = ObjectMotion::kDynamic;
   double mass = 0.1;                                          ///< [kg] (dynamic)

@@ -35,7 +35,9 @@ int max_label_width(const AxisTicks& t, double scale) {
   return w;
 }
 
-int label_height(double scale) { return text_size("0", scale).height; }
+int label_height(double scale) {
+  return text_size("0", scale).height;
+}
 
 Range padded_range(double lo, double hi, double pad_frac) {
   if (!(lo <= hi)) return {0.0, 1.0};
@@ -130,6 +132,8 @@ int bottom_margin(bool has_x_tick_labels, bool has_x_label, const Fonts& fonts) 
   return m + kPad;
 }
 
-double y_label_center(const Fonts& fonts) { return kPad + 3 + label_height(fonts.label()) / 2.0; }
+double y_label_center(const Fonts& fonts) {
+  return kPad + 3 + label_height(fonts.label()) / 2.0;
+}
 
 }  // namespace somasim::figures::detail

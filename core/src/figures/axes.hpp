@@ -11,8 +11,8 @@
 
 namespace somasim::figures::detail {
 
-inline constexpr int kTickLen = 5;   // [px] outward tick marks
-inline constexpr int kPad = 10;      // [px] outer padding / gaps between text blocks
+inline constexpr int kTickLen = 5;  // [px] outward tick marks
+inline constexpr int kPad = 10;     // [px] outer padding / gaps between text blocks
 
 struct AxisTicks {
   std::vector<double> values;
@@ -62,7 +62,9 @@ inline cv::Point2d px(const AxesFrame& f, double x, double y) {
 }
 
 /// A rectangle view of the plot area.
-inline cv::Rect plot_rect(const AxesFrame& f) { return {f.left, f.top, f.width, f.height}; }
+inline cv::Rect plot_rect(const AxesFrame& f) {
+  return {f.left, f.top, f.width, f.height};
+}
 
 }  // namespace somasim::figures::detail
 

@@ -18,7 +18,9 @@ cv::Point fixed(cv::Point2d p) {
   return cv::Point(static_cast<int>(std::lround(p.x * kOne)),
                    static_cast<int>(std::lround(p.y * kOne)));
 }
-bool finite(cv::Point2d p) { return std::isfinite(p.x) && std::isfinite(p.y); }
+bool finite(cv::Point2d p) {
+  return std::isfinite(p.x) && std::isfinite(p.y);
+}
 
 void segment(cv::Mat& img, cv::Point2d a, cv::Point2d b, Color c, double w) {
   // Pixel centres are at integer + 0.5 in our convention and at integers in OpenCV's.
@@ -39,8 +41,8 @@ void put_text(cv::Mat& img, const std::string& text, cv::Point2d anchor, HAlign 
   const cv::Size sz = cv::getTextSize(text, kFont, scale, thickness, &baseline);
   const int pad = 2 + thickness;
   cv::Mat mask = cv::Mat::zeros(sz.height + baseline + 2 * pad, sz.width + 2 * pad, CV_8UC1);
-  cv::putText(mask, text, cv::Point(pad, pad + sz.height), kFont, scale, cv::Scalar(255),
-              thickness, cv::LINE_AA);
+  cv::putText(mask, text, cv::Point(pad, pad + sz.height), kFont, scale, cv::Scalar(255), thickness,
+              cv::LINE_AA);
   // Alignment box (cap height) inside the mask, before rotation.
   double box_w = sz.width, box_h = sz.height, off_x = pad, off_y = pad;
   if (vertical) {
@@ -74,8 +76,8 @@ void put_text(cv::Mat& img, const std::string& text, cv::Point2d anchor, HAlign 
   }
 }
 
-void draw_polyline(cv::Mat& img, const std::vector<cv::Point2d>& pts, Color color,
-                   double width_px, LineStyle style) {
+void draw_polyline(cv::Mat& img, const std::vector<cv::Point2d>& pts, Color color, double width_px,
+                   LineStyle style) {
   // Round caps add about half the width at each dash end: lengthen the gaps accordingly.
   const double w = std::max(2.0, width_px);
   const double on = style == LineStyle::kDashed ? 3.5 * w : 0.5;
@@ -160,8 +162,8 @@ void draw_marker(cv::Mat& img, cv::Point2d p, Marker marker, double size_px, Col
       const int w = std::max(2, static_cast<int>(std::lround(size_px / 4)));
       for (int i = 0; i < 4; i += 2) {
         if (outline)
-          cv::line(img, fixed(c + ends[i]), fixed(c + ends[i + 1]), bgr(kWhite), w + 2,
-                   cv::LINE_AA, kShift);
+          cv::line(img, fixed(c + ends[i]), fixed(c + ends[i + 1]), bgr(kWhite), w + 2, cv::LINE_AA,
+                   kShift);
       }
       for (int i = 0; i < 4; i += 2)
         cv::line(img, fixed(c + ends[i]), fixed(c + ends[i + 1]), col, w, cv::LINE_AA, kShift);

@@ -9,7 +9,9 @@
 
 namespace somasim::figures::detail {
 
-inline cv::Scalar bgr(Color c) { return cv::Scalar(c.b, c.g, c.r); }
+inline cv::Scalar bgr(Color c) {
+  return cv::Scalar(c.b, c.g, c.r);
+}
 inline constexpr Color kBlack{0, 0, 0};
 inline constexpr Color kWhite{255, 255, 255};
 inline constexpr Color kGridGrey{225, 225, 225};
@@ -36,8 +38,8 @@ void put_text(cv::Mat& img, const std::string& text, cv::Point2d anchor, HAlign 
               double scale, Color color, int thickness = 1, bool vertical = false);
 
 /// Anti-aliased polyline through pixel points (NaN breaks it), with dash pattern.
-void draw_polyline(cv::Mat& img, const std::vector<cv::Point2d>& pts, Color color,
-                   double width_px, LineStyle style);
+void draw_polyline(cv::Mat& img, const std::vector<cv::Point2d>& pts, Color color, double width_px,
+                   LineStyle style);
 
 /// Marker of diameter size_px centred at p (white outline for contrast when `outline`).
 void draw_marker(cv::Mat& img, cv::Point2d p, Marker marker, double size_px, Color color,

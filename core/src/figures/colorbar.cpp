@@ -17,8 +17,8 @@ int colorbar_total_width(Range values, int bar_height, const std::string& label,
   return w + kPad;
 }
 
-void draw_colorbar(cv::Mat& img, cv::Rect bar, Colormap map, Range values,
-                   const std::string& label, const Fonts& fonts) {
+void draw_colorbar(cv::Mat& img, cv::Rect bar, Colormap map, Range values, const std::string& label,
+                   const Fonts& fonts) {
   cv::Mat levels(bar.height, 1, CV_8UC1);
   for (int r = 0; r < bar.height; ++r)
     levels.at<std::uint8_t>(r) = quantise(1.0 - (r + 0.5) / bar.height);

@@ -25,14 +25,29 @@ cv::Mat apply_colormap(const cv::Mat& levels, Colormap map) {
   }
   int cv_map = cv::COLORMAP_VIRIDIS;
   switch (map) {
-    case Colormap::kViridis: cv_map = cv::COLORMAP_VIRIDIS; break;
-    case Colormap::kPlasma: cv_map = cv::COLORMAP_PLASMA; break;
-    case Colormap::kInferno: cv_map = cv::COLORMAP_INFERNO; break;
-    case Colormap::kMagma: cv_map = cv::COLORMAP_MAGMA; break;
-    case Colormap::kCividis: cv_map = cv::COLORMAP_CIVIDIS; break;
-    case Colormap::kTurbo: cv_map = cv::COLORMAP_TURBO; break;
-    case Colormap::kJet: cv_map = cv::COLORMAP_JET; break;
-    case Colormap::kGray: break;
+    case Colormap::kViridis:
+      cv_map = cv::COLORMAP_VIRIDIS;
+      break;
+    case Colormap::kPlasma:
+      cv_map = cv::COLORMAP_PLASMA;
+      break;
+    case Colormap::kInferno:
+      cv_map = cv::COLORMAP_INFERNO;
+      break;
+    case Colormap::kMagma:
+      cv_map = cv::COLORMAP_MAGMA;
+      break;
+    case Colormap::kCividis:
+      cv_map = cv::COLORMAP_CIVIDIS;
+      break;
+    case Colormap::kTurbo:
+      cv_map = cv::COLORMAP_TURBO;
+      break;
+    case Colormap::kJet:
+      cv_map = cv::COLORMAP_JET;
+      break;
+    case Colormap::kGray:
+      break;
   }
   cv::applyColorMap(levels, out, cv_map);
   return out;

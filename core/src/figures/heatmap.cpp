@@ -40,8 +40,8 @@ void validate(const HeatmapSpec& s) {
     throw InputError(os.str());
   }
   if (g.values.size() != static_cast<std::size_t>(g.rows) * g.cols) {
-    os << "heatmap: grid has " << g.values.size() << " values but rows x cols = " << g.rows
-       << " x " << g.cols << " = " << static_cast<std::size_t>(g.rows) * g.cols;
+    os << "heatmap: grid has " << g.values.size() << " values but rows x cols = " << g.rows << " x "
+       << g.cols << " = " << static_cast<std::size_t>(g.rows) * g.cols;
     throw InputError(os.str());
   }
   if (s.layout == GridLayout::kSamples && (g.rows < 2 || g.cols < 2)) {
@@ -54,8 +54,8 @@ void validate(const HeatmapSpec& s) {
   if (s.value_range) check_range("heatmap", "value", *s.value_range);
   for (const auto& l : s.lines)
     if (l.x.size() != l.y.size()) {
-      os << "heatmap: line '" << l.label << "' has " << l.x.size() << " x values but "
-         << l.y.size() << " y values";
+      os << "heatmap: line '" << l.label << "' has " << l.x.size() << " x values but " << l.y.size()
+         << " y values";
       throw InputError(os.str());
     }
   for (const auto& p : s.points)
@@ -189,7 +189,8 @@ Figure render_heatmap(const HeatmapSpec& s) {
       if (i > 0) {  // densify so that kBest legend placement sees the whole segment
         const cv::Point2d a = px(frame, l.x[i - 1], l.y[i - 1]);
         const int n = std::isfinite(a.x) && std::isfinite(a.y)
-                          ? std::min(200, static_cast<int>(cv::norm(p - a) / 10)) : 0;
+                          ? std::min(200, static_cast<int>(cv::norm(p - a) / 10))
+                          : 0;
         for (int k = 1; k < n; ++k) data_px.push_back(a + (p - a) * (double(k) / n));
       }
       data_px.push_back(p);

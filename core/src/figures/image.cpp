@@ -12,7 +12,7 @@ namespace somasim::figures {
 
 const std::vector<Color>& palette() {
   static const std::vector<Color> kTab10 = {
-      {31, 119, 180}, {255, 127, 14}, {44, 160, 44},   {214, 39, 40},  {148, 103, 189},
+      {31, 119, 180}, {255, 127, 14},  {44, 160, 44},   {214, 39, 40},  {148, 103, 189},
       {140, 86, 75},  {227, 119, 194}, {127, 127, 127}, {188, 189, 34}, {23, 190, 207}};
   return kTab10;
 }
@@ -32,7 +32,8 @@ void save_png(const Image& image, const std::filesystem::path& path) {
                      parent.string() + "' does not exist");
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   if (!out) throw InputError("cannot write PNG file '" + path.string() + "': cannot open it");
-  out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  out.write(reinterpret_cast<const char*>(bytes.data()),
+            static_cast<std::streamsize>(bytes.size()));
   out.close();
   if (!out) throw InputError("cannot write PNG file '" + path.string() + "': write failed");
 }
@@ -42,7 +43,8 @@ Image load_png(const std::filesystem::path& path) {
   if (!std::filesystem::is_regular_file(path, ec))
     throw InputError("cannot read image '" + path.string() + "': no such file");
   cv::Mat m = cv::imread(path.string(), cv::IMREAD_COLOR);
-  if (m.empty()) throw InputError("cannot read image '" + path.string() + "': not a decodable image");
+  if (m.empty())
+    throw InputError("cannot read image '" + path.string() + "': not a decodable image");
   return detail::to_image(m);
 }
 

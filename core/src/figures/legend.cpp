@@ -26,9 +26,9 @@ void draw_legend(cv::Mat& img, const AxesFrame& f, const std::vector<LegendEntry
   const int box_w = pad + sample_w + 8 + text_w + pad;
   const int box_h = pad / 2 + row_h * static_cast<int>(entries.size()) + pad / 2;
 
-  const std::array<LegendPosition, 4> corners = {LegendPosition::kTopRight, LegendPosition::kTopLeft,
-                                                 LegendPosition::kBottomRight,
-                                                 LegendPosition::kBottomLeft};
+  const std::array<LegendPosition, 4> corners = {
+      LegendPosition::kTopRight, LegendPosition::kTopLeft, LegendPosition::kBottomRight,
+      LegendPosition::kBottomLeft};
   auto rect_at = [&](LegendPosition p) {
     const bool right = p == LegendPosition::kTopRight || p == LegendPosition::kBottomRight;
     const bool top = p == LegendPosition::kTopRight || p == LegendPosition::kTopLeft;
@@ -43,7 +43,8 @@ void draw_legend(cv::Mat& img, const AxesFrame& f, const std::vector<LegendEntry
       const cv::Rect r = rect_at(c);
       std::size_t n = 0;
       for (const auto& p : data_px)
-        if (std::isfinite(p.x) && std::isfinite(p.y) && r.contains(cv::Point(std::floor(p.x), std::floor(p.y))))
+        if (std::isfinite(p.x) && std::isfinite(p.y) &&
+            r.contains(cv::Point(std::floor(p.x), std::floor(p.y))))
           ++n;
       if (n < best) {
         best = n;

@@ -27,8 +27,8 @@ void validate(const ScatterSpec& s) {
       throw InputError(os.str());
     }
     if (!g.annotations.empty() && g.annotations.size() != g.x.size()) {
-      os << "scatter: group '" << g.label << "' has " << g.annotations.size()
-         << " annotations but " << g.x.size() << " points";
+      os << "scatter: group '" << g.label << "' has " << g.annotations.size() << " annotations but "
+         << g.x.size() << " points";
       throw InputError(os.str());
     }
   }

@@ -21,8 +21,12 @@ void check(double lo, double hi, int max_ticks) {
                      "; expected at least 2");
 }
 
-long long first_k(double lo, double step) { return static_cast<long long>(std::ceil(lo / step - 1e-9)); }
-long long last_k(double hi, double step) { return static_cast<long long>(std::floor(hi / step + 1e-9)); }
+long long first_k(double lo, double step) {
+  return static_cast<long long>(std::ceil(lo / step - 1e-9));
+}
+long long last_k(double hi, double step) {
+  return static_cast<long long>(std::floor(hi / step + 1e-9));
+}
 
 }  // namespace
 

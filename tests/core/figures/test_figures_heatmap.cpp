@@ -59,8 +59,8 @@ TEST(Heatmap, DefaultSizeAndAxesFrameInsideTheImage) {
   EXPECT_EQ(g.image.height, 600);
   ASSERT_EQ(g.axes.size(), 1u);
   const auto& f = g.axes[0];
-  EXPECT_GT(f.left, 40);  // room for tick labels and the y label
-  EXPECT_GT(f.top, 20);   // room for the title
+  EXPECT_GT(f.left, 40);                  // room for tick labels and the y label
+  EXPECT_GT(f.top, 20);                   // room for the title
   EXPECT_LT(f.left + f.width, 900 - 80);  // room for the colour bar
   EXPECT_LT(f.top + f.height, 600 - 40);  // room for tick labels and the x label
   EXPECT_EQ(f.x, (fig::Range{0, 10}));

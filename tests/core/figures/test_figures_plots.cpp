@@ -153,7 +153,9 @@ TEST(Scatter, GroupsByCategoryInAscendingOrder) {
   EXPECT_EQ(groups[0].x, (std::vector<double>{2, 4}));
   EXPECT_EQ(groups[1].label, "seven");
   EXPECT_EQ(groups[1].y, (std::vector<double>{5, 7}));
-  EXPECT_EQ(message_of([] { fig::group_by_category({1}, {1, 2}, {0}); }),
+  EXPECT_EQ(message_of([] {
+              fig::group_by_category({1}, {1, 2}, {0});
+            }),
             "scatter: group_by_category got 1 x, 2 y and 1 category values; expected equal sizes");
 }
 
@@ -190,7 +192,7 @@ TEST(Compose, RowPlacesFiguresSideBySide) {
   EXPECT_EQ(row.axes[1].top, b.axes[0].top);
   for (int y : {0, 100, 299})
     for (int x : {0, 123, 399}) EXPECT_EQ(row.image.at(910 + x, y), b.image.at(x, y));
-  EXPECT_EQ(row.image.at(905, 10), kWhite);  // the gap
+  EXPECT_EQ(row.image.at(905, 10), kWhite);    // the gap
   EXPECT_EQ(row.image.at(1000, 450), kWhite);  // below the shorter figure
   EXPECT_EQ(pixel_at(row, 1, 1.0, 0.5), fig::palette()[0]);
 

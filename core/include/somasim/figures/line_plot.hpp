@@ -35,8 +35,8 @@ struct LinePlotSpec {
   std::string x_label;  ///< ignored in stacked panels (the stack has one)
   std::string y_label;
   std::vector<Series> series;
-  std::vector<RefLine> hlines;  ///< y = value
-  std::vector<RefLine> vlines;  ///< x = value
+  std::vector<RefLine> hlines;   ///< y = value
+  std::vector<RefLine> vlines;   ///< x = value
   std::optional<Range> x_range;  ///< default: data extent (ignored in stacked panels)
   std::optional<Range> y_range;  ///< default: data and hlines extent, padded by 5 %
   bool grid = true;              ///< light grid lines at the ticks
@@ -55,7 +55,7 @@ Figure render_line_plot(const LinePlotSpec& spec);
 struct StackedPlotSpec {
   std::string title;
   std::string x_label;
-  std::optional<Range> x_range;  ///< default: extent of all panels' data
+  std::optional<Range> x_range;      ///< default: extent of all panels' data
   std::vector<LinePlotSpec> panels;  ///< top to bottom; their width/height/x_* are ignored
   int width = 900;
   int panel_height = 220;  ///< [px] plot height of each panel

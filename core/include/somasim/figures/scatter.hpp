@@ -15,7 +15,7 @@ struct ScatterGroup {
   std::string label;           ///< legend entry; empty = not in the legend
   std::optional<Color> color;  ///< default: next palette() colour
   Marker marker = Marker::kCircle;
-  double size_px = 8;                ///< marker diameter
+  double size_px = 8;                    ///< marker diameter
   std::vector<std::string> annotations;  ///< optional text next to each point (empty or x.size())
 };
 
