@@ -1,0 +1,58 @@
+#pragma once
+// ball_thrower: throws balls one at a time at chosen skin parts of the robot and checks, against
+// the physics ground truth, that every ball touching a part produces a skin contact event there.
+//
+// For each throw a target part is drawn (cycling through `parts`), then a random taxel of that
+// part; the ball starts `distance` away along a direction within `cone` of the taxel's outward
+// normal and flies ballistically (gravity included) so that, undisturbed, its surface reaches the
+// taxel after `flight_time`. It is removed after `ball_lifetime`, then the next one follows.
+#include <map>
+#include <memory>
+#include <random>
+
+#include "somasim/plugin.hpp"
+#include "somasim/port_types.hpp"
+#include "somasim/robot/robot_model.hpp"
+#include "somasim/robot_ports.hpp"
+
+namespace somasim::plugins {
+
+class BallThrower : public Plugin {
+ public:
+  static PluginSpec spec();
+  void configure(NodeContext& ctx) override;
+  void step(NodeContext& ctx) override;
+  void finish(NodeContext& ctx) override;
+
+ private:
+  struct Throw {
+    std::string name, part;
+    int part_link = -1;
+    double t_spawn = 0.0;
+    bool touched_part = false, touched_skin_link = false, event_on_part = false;
+    double first_touch = -1.0;
+  };
+  void launch(NodeContext& ctx);
+  void observe(double now);
+  void close_throw();
+
+  std::shared_ptr<const robot::RobotModel> model_;
+  std::vector<std::string> parts_;
+  int throws_ = 0;
+  double distance_ = 0, cone_rad_ = 0, flight_time_ = 0, lifetime_ = 0, radius_ = 0, mass_ = 0;
+  double gravity_ = -9.81, event_window_ = 0.2;
+  const SkinTaxels* skin_ = nullptr;
+  const ObjectStates* objects_ = nullptr;
+  const Contacts* contacts_ = nullptr;
+  const ContactEvents* events_ = nullptr;
+  ObjectSpawns* spawns_ = nullptr;
+  std::vector<int> skin_links_;  // links carrying skin (any part)
+  Throw current_;
+  bool active_ = false;
+  int thrown_ = 0, hit_skin_ = 0, touched_expected_ = 0, hits_on_expected_ = 0,
+      wrong_part_events_ = 0;
+  std::uint64_t last_event_id_ = 0, next_spawn_id_ = 1;
+  std::map<std::string, int> per_part_thrown_, per_part_hits_;
+};
+
+}  // namespace somasim::plugins
