@@ -1,0 +1,43 @@
+#pragma once
+/// @file
+/// Contacts of the current step, read from Bullet's persistent manifolds; and the overlap test
+/// for objects that would start inside the robot.
+#include <string>
+#include <vector>
+
+#include <BulletCollision/CollisionDispatch/btCollisionWorld.h>
+
+#include "body_tag.hpp"
+#include "object_manager.hpp"
+#include "robot_multibody.hpp"
+#include "somasim/robot_ports.hpp"
+
+namespace somasim::bullet_world {
+
+/// The deepest interpenetration of a step.
+struct Penetration {
+  double depth = 0.0;  ///< [m], >= 0
+  BodyTag a, b;
+};
+
+/// "link 'r_hand'" or "object 'ball'".
+std::string body_name(const BodyTag& tag, const robot::RobotModel& model,
+                      const ObjectManager& objects);
+
+/// Fills `out` with the manifold points closer than `max_distance` [m] (touching or
+/// penetrating). A link is always side a when one body is a link; otherwise the lower index is.
+/// normal_force = applied impulse / dt [N]. `link_poses`: model link poses of this step.
+/// Returns the deepest penetration among all points.
+Penetration extract_contacts(btDispatcher& dispatcher,
+                             const std::vector<Eigen::Isometry3d>& link_poses,
+                             const ObjectManager& objects, double dt, double max_distance,
+                             Contacts& out);
+
+/// The robot link that `object` overlaps most, and by how much.
+struct RobotOverlap {
+  int link = -1;       ///< -1: no overlap
+  double depth = 0.0;  ///< [m]
+};
+RobotOverlap deepest_robot_overlap(btCollisionWorld& world, btCollisionObject& object);
+
+}  // namespace somasim::bullet_world

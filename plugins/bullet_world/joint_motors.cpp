@@ -1,0 +1,99 @@
+#include "joint_motors.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "somasim/error.hpp"
+
+namespace somasim::bullet_world {
+
+JointMotors::JointMotors(RobotMultiBody& robot, btMultiBodyDynamicsWorld& world,
+                         const MotorGains& gains, double dt, const Eigen::VectorXd& hold)
+    : robot_(robot), world_(world), gains_(gains), dt_(dt) {
+  const robot::RobotModel& m = robot.model();
+  const int n = m.num_dofs();
+  mode_.assign(n, JointCommandMode::kPosition);
+  position_.assign(n, 0.0);
+  for (int d = 0; d < n; ++d) {
+    const int link = robot.dof_link(d);
+    auto motor = std::make_unique<btMultiBodyJointMotor>(&robot.multibody(), link, 0.0,
+                                                         gains_.max_torque * dt_);
+    motor->setErp(1.0);
+    world_.addMultiBodyConstraint(motor.get());
+    motors_.push_back(std::move(motor));
+    const double lo = m.lower_limits()[d], hi = m.upper_limits()[d];
+    if (lo < hi) {
+      auto limit =
+          std::make_unique<btMultiBodyJointLimitConstraint>(&robot.multibody(), link, lo, hi);
+      world_.addMultiBodyConstraint(limit.get());
+      limits_.push_back(std::move(limit));
+    }
+    set_position(d, hold[d], 0.0);
+  }
+}
+
+JointMotors::~JointMotors() {
+  for (auto& l : limits_) world_.removeMultiBodyConstraint(l.get());
+  for (auto& m : motors_) world_.removeMultiBodyConstraint(m.get());
+}
+
+void JointMotors::set_position(int dof, double q, double v_feed_forward) {
+  const robot::RobotModel& m = robot_.model();
+  q = std::clamp(q, m.lower_limits()[dof], m.upper_limits()[dof]);
+  mode_[dof] = JointCommandMode::kPosition;
+  position_[dof] = q;
+  // btMultiBodyJointMotor: v_target = kp·erp·(q* − q)/dt + v + kd·(v* − v), erp = 1.
+  motors_[dof]->setPositionTarget(q, gains_.position_gain * dt_);
+  motors_[dof]->setVelocityTarget(v_feed_forward, gains_.velocity_gain);
+}
+
+void JointMotors::set_velocity(int dof, double v) {
+  mode_[dof] = JointCommandMode::kVelocity;
+  position_[dof] = robot_.position(dof);
+  motors_[dof]->setPositionTarget(0.0, 0.0);
+  motors_[dof]->setVelocityTarget(v, gains_.velocity_gain);
+}
+
+void JointMotors::apply(const JointCommand& c, double t) {
+  if (c.mode.empty()) return;
+  const robot::RobotModel& m = robot_.model();
+  const auto n = static_cast<std::size_t>(m.num_dofs());
+  auto size_error = [&](const char* what, std::size_t got) {
+    throw RunError(
+        fmt::format("t = {:.3f} s: joint command: expected {} {}, got {}", t, n, what, got));
+  };
+  if (c.mode.size() != n) size_error("modes", c.mode.size());
+  const bool any_position =
+      std::find(c.mode.begin(), c.mode.end(), JointCommandMode::kPosition) != c.mode.end();
+  const bool any_velocity =
+      std::find(c.mode.begin(), c.mode.end(), JointCommandMode::kVelocity) != c.mode.end();
+  if (any_position && static_cast<std::size_t>(c.position.size()) != n)
+    size_error("position targets", c.position.size());
+  const bool has_velocity = static_cast<std::size_t>(c.velocity.size()) == n;
+  if (any_velocity && !has_velocity) size_error("velocity targets", c.velocity.size());
+  for (std::size_t d = 0; d < n; ++d) {
+    const int dof = static_cast<int>(d);
+    auto not_finite = [&](const char* what, double v) {
+      throw RunError(fmt::format("t = {:.3f} s: joint command for '{}': {} is {}", t,
+                                 m.joint(m.dof_joint(dof)).name, what, v));
+    };
+    const double v = has_velocity ? c.velocity[dof] : 0.0;
+    switch (c.mode[d]) {
+      case JointCommandMode::kNone:
+        break;
+      case JointCommandMode::kPosition:
+        if (!std::isfinite(c.position[dof])) not_finite("the position target", c.position[dof]);
+        if (!std::isfinite(v)) not_finite("the velocity feed-forward", v);
+        set_position(dof, c.position[dof], v);
+        break;
+      case JointCommandMode::kVelocity:
+        if (!std::isfinite(v)) not_finite("the velocity target", v);
+        set_velocity(dof, v);
+        break;
+    }
+  }
+}
+
+}  // namespace somasim::bullet_world

@@ -1,0 +1,191 @@
+#include "object_manager.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "body_tag.hpp"
+#include "bullet_math.hpp"
+
+namespace somasim::bullet_world {
+namespace {
+
+robot::Geometry geometry_of(const ObjectSpawn& s) {
+  robot::Geometry g;
+  switch (s.shape) {
+    case ObjectShape::kSphere:
+      g.type = robot::GeometryType::Sphere;
+      g.radius = s.size.x();
+      break;
+    case ObjectShape::kBox:
+      g.type = robot::GeometryType::Box;
+      g.size = 2.0 * s.size;
+      break;
+    case ObjectShape::kCylinder:
+      g.type = robot::GeometryType::Cylinder;
+      g.radius = s.size.x();
+      g.length = 2.0 * s.size.y();
+      break;
+    case ObjectShape::kMesh:
+      g.type = robot::GeometryType::Mesh;
+      g.mesh_file = s.mesh;
+      for (int i = 0; i < 3; ++i) g.mesh_scale[i] = s.size[i] > 0 ? s.size[i] : 1.0;
+      break;
+  }
+  return g;
+}
+
+bool finite(const Eigen::Isometry3d& t) {
+  return t.matrix().allFinite();
+}
+
+}  // namespace
+
+std::string spawn_problem(const ObjectSpawn& s) {
+  if (!finite(s.pose) || !s.linear_velocity.allFinite() || !s.size.allFinite() ||
+      !std::isfinite(s.mass))
+    return "has a non-finite pose, velocity, size or mass";
+  switch (s.shape) {
+    case ObjectShape::kSphere:
+      if (s.size.x() <= 0) return fmt::format("sphere radius must be > 0 m, got {}", s.size.x());
+      break;
+    case ObjectShape::kBox:
+      if ((s.size.array() <= 0).any())
+        return fmt::format("box half extents must be > 0 m, got [{}, {}, {}]", s.size.x(),
+                           s.size.y(), s.size.z());
+      break;
+    case ObjectShape::kCylinder:
+      if (s.size.x() <= 0 || s.size.y() <= 0)
+        return fmt::format("cylinder radius and half height must be > 0 m, got {} and {}",
+                           s.size.x(), s.size.y());
+      break;
+    case ObjectShape::kMesh:
+      if (s.mesh.empty()) return "mesh object without a mesh file";
+      if ((s.size.array() < 0).any()) return "mesh scale must not be negative";
+      break;
+  }
+  if (s.motion == ObjectMotion::kDynamic && s.mass <= 0)
+    return fmt::format("dynamic object mass must be > 0 kg, got {}", s.mass);
+  return "";
+}
+
+ObjectManager::ObjectManager(btMultiBodyDynamicsWorld& world, ShapeStore& shapes,
+                             const ObjectMaterial& material)
+    : world_(world), shapes_(shapes), material_(material) {}
+
+ObjectManager::~ObjectManager() {
+  for (auto& o : objects_)
+    if (o.body) world_.removeRigidBody(o.body.get());
+}
+
+int ObjectManager::add(const ObjectSpawn& s, double t) {
+  Object o;
+  o.name = s.name.empty() ? "object" + std::to_string(s.id) : s.name;
+  o.motion = s.motion;
+  o.start_pose = s.pose;
+  o.velocity = s.linear_velocity;
+  o.spawn_time = t;
+  if (s.remove_after_s > 0) o.remove_time = t + s.remove_after_s;
+  // Moving meshes are convex hulls; static ones keep their exact triangles.
+  btCollisionShape* shape =
+      shapes_.make(geometry_of(s),
+                   s.motion == ObjectMotion::kStatic ? MeshUse::kTriangles : MeshUse::kConvexHull);
+  btVector3 centre;
+  btScalar radius = 0;
+  shape->getBoundingSphere(centre, radius);
+  o.radius = radius + centre.length();
+
+  const double mass = s.motion == ObjectMotion::kDynamic ? s.mass : 0.0;
+  btVector3 inertia(0, 0, 0);
+  if (mass > 0) shape->calculateLocalInertia(mass, inertia);
+  o.motion_state = std::make_unique<btDefaultMotionState>(to_bt(s.pose));
+  btRigidBody::btRigidBodyConstructionInfo info(mass, o.motion_state.get(), shape, inertia);
+  info.m_friction = material_.friction;
+  info.m_rollingFriction = material_.rolling_friction;
+  info.m_spinningFriction = material_.rolling_friction;
+  info.m_restitution = material_.restitution;
+  o.body = std::make_unique<btRigidBody>(info);
+  const int index = static_cast<int>(objects_.size());
+  set_tag(*o.body, {BodyKind::kObject, index, s.motion != ObjectMotion::kDynamic});
+  if (s.motion == ObjectMotion::kKinematic)
+    o.body->setCollisionFlags(o.body->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
+  if (s.motion != ObjectMotion::kStatic) o.body->setActivationState(DISABLE_DEACTIVATION);
+  if (s.motion == ObjectMotion::kDynamic) o.body->setLinearVelocity(to_bt(s.linear_velocity));
+  world_.addRigidBody(o.body.get());
+  o.last_pose = s.pose;
+  o.last_linear = s.motion == ObjectMotion::kStatic ? Eigen::Vector3d::Zero() : s.linear_velocity;
+  objects_.push_back(std::move(o));
+  return index;
+}
+
+void ObjectManager::remove(int i) {
+  Object& o = objects_[i];
+  if (!o.body) return;
+  o.last_pose = pose(i);
+  world_.removeRigidBody(o.body.get());
+  o.body.reset();
+  o.motion_state.reset();
+}
+
+int ObjectManager::remove_expired(double t) {
+  int n = 0;
+  for (int i = 0; i < size(); ++i)
+    if (present(i) && t >= objects_[i].remove_time - 1e-12) {
+      remove(i);
+      ++n;
+    }
+  return n;
+}
+
+int ObjectManager::remove_beyond(double radius) {
+  int n = 0;
+  for (int i = 0; i < size(); ++i)
+    if (present(i) && objects_[i].motion == ObjectMotion::kDynamic &&
+        pose(i).translation().norm() > radius) {
+      remove(i);
+      ++n;
+    }
+  return n;
+}
+
+void ObjectManager::move_kinematic(double t_next) {
+  for (auto& o : objects_) {
+    if (!o.body || o.motion != ObjectMotion::kKinematic) continue;
+    Eigen::Isometry3d p = o.start_pose;
+    p.translation() += (t_next - o.spawn_time) * o.velocity;
+    o.motion_state->setWorldTransform(to_bt(p));
+  }
+}
+
+Eigen::Isometry3d ObjectManager::pose(int i) const {
+  const Object& o = objects_[i];
+  if (!o.body) return o.last_pose;
+  return to_eigen(o.body->getWorldTransform());
+}
+
+void ObjectManager::write_states(ObjectStates& s) const {
+  const std::size_t n = objects_.size();
+  s.names.resize(n);
+  s.present.resize(n);
+  s.poses.resize(n);
+  s.linear_velocity.resize(n);
+  s.angular_velocity.resize(n);
+  s.radius.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Object& o = objects_[i];
+    s.names[i] = o.name;
+    s.present[i] = o.body != nullptr;
+    s.radius[i] = o.radius;
+    if (o.body) {
+      s.poses[i] = to_eigen(o.body->getWorldTransform());
+      s.linear_velocity[i] = to_eigen(o.body->getLinearVelocity());
+      s.angular_velocity[i] = to_eigen(o.body->getAngularVelocity());
+    } else {
+      s.poses[i] = o.last_pose;
+      s.linear_velocity[i].setZero();
+      s.angular_velocity[i].setZero();
+    }
+  }
+}
+
+}  // namespace somasim::bullet_world

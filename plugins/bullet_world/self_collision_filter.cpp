@@ -1,0 +1,52 @@
+#include "self_collision_filter.hpp"
+
+#include <BulletCollision/CollisionDispatch/btCollisionObject.h>
+
+#include "body_tag.hpp"
+
+namespace somasim::bullet_world {
+
+SelfCollisionFilter::SelfCollisionFilter(const robot::RobotModel& model) {
+  const int n = model.num_links();
+  // Rigid group of each link: the link reached by walking up through fixed joints.
+  std::vector<int> group(n);
+  for (int i = 0; i < n; ++i) {
+    int g = i;
+    while (model.link(g).parent_joint >= 0 &&
+           model.joint(model.link(g).parent_joint).type == robot::JointType::Fixed)
+      g = model.link(g).parent_link;
+    group[i] = g;
+  }
+  std::vector<bool> group_has_geometry(n, false);
+  for (int i = 0; i < n; ++i)
+    if (!model.link(i).collision.empty()) group_has_geometry[group[i]] = true;
+  // Nearest ancestor group with geometry (-1 for none).
+  std::vector<int> geometric_parent(n, -1);
+  for (int i = 0; i < n; ++i) {
+    int p = model.link(group[i]).parent_link;
+    while (p >= 0 && !group_has_geometry[group[p]]) p = model.link(group[p]).parent_link;
+    geometric_parent[i] = p >= 0 ? group[p] : -1;
+  }
+  adjacent_.assign(n, std::vector<bool>(n, false));
+  for (int a = 0; a < n; ++a)
+    for (int b = 0; b < n; ++b)
+      adjacent_[a][b] = group[a] == group[b] || geometric_parent[a] == group[b] ||
+                        geometric_parent[b] == group[a];
+}
+
+bool SelfCollisionFilter::needBroadphaseCollision(btBroadphaseProxy* proxy0,
+                                                  btBroadphaseProxy* proxy1) const {
+  // Bullet's default group/mask test first.
+  if (!(proxy0->m_collisionFilterGroup & proxy1->m_collisionFilterMask) ||
+      !(proxy1->m_collisionFilterGroup & proxy0->m_collisionFilterMask))
+    return false;
+  const auto* a = static_cast<const btCollisionObject*>(proxy0->m_clientObject);
+  const auto* b = static_cast<const btCollisionObject*>(proxy1->m_clientObject);
+  const BodyTag ta = tag_of(*a), tb = tag_of(*b);
+  if (ta.immovable && tb.immovable) return false;
+  if (ta.kind == BodyKind::kLink && tb.kind == BodyKind::kLink)
+    return !adjacent_[ta.index][tb.index];
+  return true;
+}
+
+}  // namespace somasim::bullet_world
