@@ -30,8 +30,11 @@ void draw_landscapes(NodeContext& ctx, pps::BodyPartLearner& learner,
     std::uint64_t samples = 0;
     for (std::size_t i = 0; i < map.pos().size(); ++i) samples += map.pos()[i] + map.neg()[i];
     pps::LandscapeOptions options;
-    options.title =
-        fmt::format("{}, taxel {}: {} samples{}", learner.body_part(), id, samples, when);
+    const bool distance_only = learner.params().model == pps::PpsModel::kDistanceOnly;
+    // A distance-only map is constant along its placeholder TTC axis; no Fig 8 line.
+    options.regression_line = !distance_only;
+    options.title = fmt::format("{}, taxel {}: {} samples{}{}", learner.body_part(), id, samples,
+                                when, distance_only ? " (distance only)" : "");
     const std::string file = fmt::format("landscape_{}_{}{}.png", learner.body_part(), id,
                                          suffix.empty() ? "" : "_" + suffix);
     figures::save_png(figures::render_heatmap(pps::landscape_heatmap(map, options)),

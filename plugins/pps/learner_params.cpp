@@ -5,6 +5,13 @@
 namespace somasim::plugins {
 
 void declare_learner_params(PluginSpec& s) {
+  s.add_string("model")
+      .defaults(std::string("d_ttc"))
+      .one_of({"d_ttc", "distance_only"})
+      .describe(
+          "d_ttc: (D, TTC) maps (paper); distance_only: maps over D alone, TTC ignored in "
+          "learning and activation (the paper's S2 ablation: static and receding stimuli "
+          "activate too)");
   s.add_double("d_min").unit_is("m").defaults(-0.10).range(-1, 1).describe(
       "lower edge of the D range");
   s.add_double("d_max").unit_is("m").defaults(0.20).range(-1, 1).describe(
@@ -75,6 +82,7 @@ pps::LearnerParams read_learner_params(const NodeContext& ctx) {
   p.rf.range_m = ctx.param<double>("rf_range");
   p.buffer.horizon_s = ctx.param<double>("buffer_horizon");
   p.buffer.reset_after_s = ctx.param<double>("buffer_reset");
+  pps::parse_pps_model(ctx.param<std::string>("model"), p.model);
   return p;
 }
 

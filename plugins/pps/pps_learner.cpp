@@ -9,6 +9,7 @@
 #include "somasim/pps/learned_state.hpp"
 #include "somasim/pps/map_io.hpp"
 #include "somasim/pps/offset_estimate.hpp"
+#include "somasim/pps/offset_ridge.hpp"
 
 namespace somasim::plugins {
 
@@ -63,6 +64,7 @@ void PpsLearner::configure(NodeContext& ctx) {
     load_path_ = ctx.resolve_input_path(load).string();
     pps::LoadExpectations expect;
     expect.body_part = body_part_;
+    expect.model = params_.model;
     const pps::LearnedState state = pps::load_learned_state(load_path_, expect);
     learner_ = std::make_unique<pps::BodyPartLearner>(pps::make_learner(state, params_));
   }
@@ -175,25 +177,40 @@ void PpsLearner::report(NodeContext& ctx) {
   ctx.report_metric("negative_samples", t.negatives);
   ctx.report_metric("negative_d_share",
                     counted ? static_cast<double>(t.behind_skin) / counted : 0.0);
-  // Fig 8 offset per taxel with enough samples; the part's offset is their mean.
+  // Offsets per taxel with enough samples: the paper's Fig 8 regression (offset_estimate_m)
+  // and the ridge-end estimator (offset_ridge_m); the part's offsets are their means.
   nlohmann::json per_taxel = nlohmann::json::object();
-  double sum = 0.0;
-  int n = 0;
+  double sum = 0.0, sum_ridge = 0.0;
+  int n = 0, n_ridge = 0;
+  const auto opt_json = [](const std::optional<double>& v) {
+    return v ? nlohmann::json(*v) : nlohmann::json();
+  };
+  const bool distance_only = params_.model == pps::PpsModel::kDistanceOnly;
   for (std::size_t k = 0; k < learner_->maps().size(); ++k) {
     auto& map = learner_->maps()[k];
     if (map.stale()) map.refresh();
     std::uint64_t samples = 0;
     for (std::size_t i = 0; i < map.pos().size(); ++i) samples += map.pos()[i] + map.neg()[i];
-    const auto offset = pps::estimate_offset(map);
+    // Fig 8 needs a TTC axis: undefined for the distance-only model.
+    const auto offset = distance_only ? std::nullopt : pps::estimate_offset(map);
+    const auto ridge = pps::estimate_offset_ridge(map);
     const std::string id = std::to_string(learner_->taxels()[k].id);
     per_taxel[id] = {{"samples", samples},
-                     {"offset_estimate_m", offset ? nlohmann::json(*offset) : nlohmann::json()}};
-    if (offset && samples >= static_cast<std::uint64_t>(min_samples_)) {
+                     {"offset_estimate_m", opt_json(offset)},
+                     {"offset_ridge_m", opt_json(ridge)}};
+    if (samples < static_cast<std::uint64_t>(min_samples_)) continue;
+    if (offset) {
       sum += *offset;
       ++n;
     }
+    if (ridge) {
+      sum_ridge += *ridge;
+      ++n_ridge;
+    }
   }
   ctx.report_metric("offset_estimate_m", n ? nlohmann::json(sum / n) : nlohmann::json());
+  ctx.report_metric("offset_ridge_m",
+                    n_ridge ? nlohmann::json(sum_ridge / n_ridge) : nlohmann::json());
   ctx.report_metric("taxels", per_taxel);
 }
 

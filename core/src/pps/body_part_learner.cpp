@@ -18,8 +18,11 @@ BodyPartLearner::BodyPartLearner(std::string body_part, std::vector<TaxelInfo> t
     throw InputError("PPS learner '" + body_part_ + "': invalid grid: " + e);
   if (const std::string e = params_.parzen.validate(); !e.empty())
     throw InputError("PPS learner '" + body_part_ + "': invalid Parzen spec: " + e);
+  const bool distance_only = params_.model == PpsModel::kDistanceOnly;
+  map_grid_ = distance_only ? distance_only_grid(params_.grid) : params_.grid;
+  query_ttc_ = distance_only_query_ttc(map_grid_, params_.parzen);
   maps_.reserve(taxels_.size());
-  for (std::size_t k = 0; k < taxels_.size(); ++k) maps_.emplace_back(params_.grid, params_.parzen);
+  for (std::size_t k = 0; k < taxels_.size(); ++k) maps_.emplace_back(map_grid_, params_.parzen);
   touched_.assign(taxels_.size(), 0);
   scratch_poses_.resize(taxels_.size());
 }
@@ -58,8 +61,9 @@ LearningStats BodyPartLearner::on_contact(std::span<const TaxelPose> taxels_root
     }
   }
   const auto& samples = buffer_.samples();
-  const GridSpec& grid = params_.grid;
+  const GridSpec& grid = map_grid_;
   const TtcDefinition ttc_def = params_.ttc;
+  const bool distance_only = params_.model == PpsModel::kDistanceOnly;
   if (!samples.empty()) {
     for (std::size_t k = 0; k < taxels_.size(); ++k) {
       const Eigen::Matrix3d rt = taxel_rotation(taxels_root[k].normal).transpose();
@@ -73,7 +77,11 @@ LearningStats BodyPartLearner::on_contact(std::span<const TaxelPose> taxels_root
         if (!rf_.contains(p)) continue;
         ++st.in_rf;
         const Eigen::Vector3d v = rt * s.stimulus.velocity;
-        const DTtc dt = compute_d_ttc(p, v, ttc_def);
+        DTtc dt = compute_d_ttc(p, v, ttc_def);
+        if (distance_only) {  // D only: TTC neither needed nor binned
+          dt.ttc = query_ttc_;
+          dt.valid = true;
+        }
         if (!dt.valid) {
           ++st.invalid_ttc;
           continue;
@@ -106,9 +114,14 @@ LearningStats BodyPartLearner::on_contact(std::span<const TaxelPose> taxels_root
 double BodyPartLearner::activation(int k, const TaxelPose& taxel_root, const Stimulus& s) const {
   const TaxelFrameStimulus ts = to_taxel_frame(taxel_root, s);
   if (!rf_.contains(ts.p)) return 0.0;
+  const TaxelMap& map = maps_.at(static_cast<std::size_t>(k));
+  if (params_.model == PpsModel::kDistanceOnly) {
+    const double n = ts.p.norm();
+    return map.activation(ts.p.z() < 0.0 ? -n : n, query_ttc_);
+  }
   const DTtc dt = compute_d_ttc(ts.p, ts.v, params_.ttc);
   if (!dt.valid) return 0.0;
-  return maps_.at(static_cast<std::size_t>(k)).activation(dt.d, dt.ttc);
+  return map.activation(dt.d, dt.ttc);
 }
 
 }  // namespace somasim::pps

@@ -53,4 +53,28 @@ bool parse_kernel_anchor(const std::string& s, KernelAnchor& out) {
   return false;
 }
 
+const char* to_string(PpsModel m) {
+  return m == PpsModel::kDTtc ? "d_ttc" : "distance_only";
+}
+
+bool parse_pps_model(const std::string& s, PpsModel& out) {
+  if (s == "d_ttc") {
+    out = PpsModel::kDTtc;
+    return true;
+  }
+  if (s == "distance_only") {
+    out = PpsModel::kDistanceOnly;
+    return true;
+  }
+  return false;
+}
+
+GridSpec distance_only_grid(const GridSpec& g) {
+  return GridSpec{g.d_min, g.d_max, g.d_bins, 0.0, 1.0, 1};
+}
+
+double distance_only_query_ttc(const GridSpec& g, const ParzenSpec& p) {
+  return g.ttc_min + (p.anchor == KernelAnchor::kCentre ? 0.5 : 0.0) * g.ttc_width();
+}
+
 }  // namespace somasim::pps

@@ -7,7 +7,8 @@ namespace somasim::pps {
 LearnedState learned_state(const BodyPartLearner& learner) {
   LearnedState s;
   s.body_part = learner.body_part();
-  s.grid = learner.params().grid;
+  s.model = learner.params().model;
+  s.grid = learner.map_grid();
   s.parzen = learner.params().parzen;
   s.taxels.reserve(learner.taxels().size());
   for (std::size_t k = 0; k < learner.taxels().size(); ++k)
@@ -21,6 +22,7 @@ TaxelMap make_map(const LearnedState& state, const LearnedTaxel& taxel) {
 }
 
 BodyPartLearner make_learner(const LearnedState& state, LearnerParams params) {
+  params.model = state.model;
   params.grid = state.grid;
   params.parzen = state.parzen;
   std::vector<TaxelInfo> infos;

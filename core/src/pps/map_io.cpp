@@ -88,12 +88,17 @@ std::vector<TaxelMap::Count> get_counts(const json& obj, const char* key, const 
 
 json to_json(const LearnedState& s) {
   json j;
+  const bool distance_only = s.model == PpsModel::kDistanceOnly;
   j["format"] = kMapFormat;
-  j["version"] = kMapFormatVersion;
+  j["version"] = distance_only ? kMapFormatVersionModel : kMapFormatVersion;
+  if (distance_only) j["model"] = to_string(s.model);
   j["body_part"] = s.body_part;
-  j["grid"] = {{"d_min", s.grid.d_min},     {"d_max", s.grid.d_max},
-               {"d_bins", s.grid.d_bins},   {"ttc_min", s.grid.ttc_min},
-               {"ttc_max", s.grid.ttc_max}, {"ttc_bins", s.grid.ttc_bins}};
+  if (distance_only)
+    j["grid"] = {{"d_min", s.grid.d_min}, {"d_max", s.grid.d_max}, {"d_bins", s.grid.d_bins}};
+  else
+    j["grid"] = {{"d_min", s.grid.d_min},     {"d_max", s.grid.d_max},
+                 {"d_bins", s.grid.d_bins},   {"ttc_min", s.grid.ttc_min},
+                 {"ttc_max", s.grid.ttc_max}, {"ttc_bins", s.grid.ttc_bins}};
   j["parzen"] = {{"sigma_scale", s.parzen.sigma_scale}, {"anchor", to_string(s.parzen.anchor)}};
   json taxels = json::array();
   for (const LearnedTaxel& t : s.taxels) {
@@ -115,10 +120,21 @@ LearnedState from_json(const json& j, const std::string& source, const LoadExpec
   if (!fmt.is_string() || fmt.get<std::string>() != kMapFormat)
     fail(source, "'format' is " + fmt.dump() + ", expected \"" + kMapFormat + "\"");
   const json& ver = member(j, "version", "", source);
-  if (!ver.is_number_integer() || ver.get<int>() != kMapFormatVersion)
-    fail(source, "'version' is " + ver.dump() + ", expected " + std::to_string(kMapFormatVersion));
+  if (!ver.is_number_integer() ||
+      (ver.get<int>() != kMapFormatVersion && ver.get<int>() != kMapFormatVersionModel))
+    fail(source, "'version' is " + ver.dump() + ", expected " + std::to_string(kMapFormatVersion) +
+                     " or " + std::to_string(kMapFormatVersionModel));
 
   LearnedState s;
+  if (ver.get<int>() == kMapFormatVersionModel) {
+    const json& m = member(j, "model", "", source);
+    if (!m.is_string() || !parse_pps_model(m.get<std::string>(), s.model))
+      fail(source, "'model' is " + m.dump() + ", expected \"d_ttc\" or \"distance_only\"");
+  }
+  if (expect.model && *expect.model != s.model)
+    fail(source, std::string("model is \"") + to_string(s.model) + "\", expected \"" +
+                     to_string(*expect.model) + "\"");
+  const bool distance_only = s.model == PpsModel::kDistanceOnly;
   const json& bp = member(j, "body_part", "", source);
   if (!bp.is_string()) fail(source, "'body_part' is " + bp.dump() + ", expected a string");
   s.body_part = bp.get<std::string>();
@@ -130,9 +146,13 @@ LearnedState from_json(const json& j, const std::string& source, const LoadExpec
   s.grid.d_min = get_number(g, "d_min", "grid.", source);
   s.grid.d_max = get_number(g, "d_max", "grid.", source);
   s.grid.d_bins = get_int(g, "d_bins", "grid.", source);
-  s.grid.ttc_min = get_number(g, "ttc_min", "grid.", source);
-  s.grid.ttc_max = get_number(g, "ttc_max", "grid.", source);
-  s.grid.ttc_bins = get_int(g, "ttc_bins", "grid.", source);
+  if (distance_only) {
+    s.grid = distance_only_grid(s.grid);
+  } else {
+    s.grid.ttc_min = get_number(g, "ttc_min", "grid.", source);
+    s.grid.ttc_max = get_number(g, "ttc_max", "grid.", source);
+    s.grid.ttc_bins = get_int(g, "ttc_bins", "grid.", source);
+  }
   if (const std::string e = s.grid.validate(); !e.empty()) fail(source, "invalid grid: " + e);
 
   const json& pz = member(j, "parzen", "", source);

@@ -84,8 +84,14 @@ TEST(PpsMapIo, CorruptedFiles) {
   EXPECT_EQ(load_error(dir, "[1, 2]"), "top level is array, expected a JSON object");
   EXPECT_EQ(load_error(dir, mutated([](json& j) { j["format"] = "other"; })),
             "'format' is \"other\", expected \"somasim-pps-map\"");
-  EXPECT_EQ(load_error(dir, mutated([](json& j) { j["version"] = 2; })),
-            "'version' is 2, expected 1");
+  EXPECT_EQ(load_error(dir, mutated([](json& j) { j["version"] = 3; })),
+            "'version' is 3, expected 1 or 2");
+  EXPECT_EQ(load_error(dir, mutated([](json& j) { j["version"] = 2; })), "missing key 'model'");
+  EXPECT_EQ(load_error(dir, mutated([](json& j) {
+                         j["version"] = 2;
+                         j["model"] = "ttc_only";
+                       })),
+            "'model' is \"ttc_only\", expected \"d_ttc\" or \"distance_only\"");
   EXPECT_EQ(load_error(dir, mutated([](json& j) { j.erase("grid"); })), "missing key 'grid'");
   EXPECT_EQ(load_error(dir, mutated([](json& j) { j["grid"]["d_bins"] = 8.5; })),
             "'grid.d_bins' is 8.5, expected an integer");

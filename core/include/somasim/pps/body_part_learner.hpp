@@ -24,11 +24,14 @@ struct LearnerParams {
   ReceptiveField rf = ReceptiveField::paper();
   TtcDefinition ttc = TtcDefinition::kSigned;
   BufferSpec buffer = BufferSpec::paper();
+  /// kDistanceOnly: 1-D maps over D (grid's D axis only); every in-RF sample with D in range
+  /// counts (receding or static ones too), and activation() ignores the velocity.
+  PpsModel model = PpsModel::kDTtc;
 
   static LearnerParams paper() { return LearnerParams{}; }
   static LearnerParams code() {
-    return LearnerParams{GridSpec::code(), ParzenSpec::code(), ReceptiveField::code(),
-                         TtcDefinition::kSigned, BufferSpec::code()};
+    return LearnerParams{GridSpec::code(),       ParzenSpec::code(), ReceptiveField::code(),
+                         TtcDefinition::kSigned, BufferSpec::code(), PpsModel::kDTtc};
   }
 };
 
@@ -58,6 +61,9 @@ class BodyPartLearner {
   const std::string& body_part() const { return body_part_; }
   const LearnerParams& params() const { return params_; }
   const std::vector<TaxelInfo>& taxels() const { return taxels_; }
+  /// The maps' grid: params().grid, or distance_only_grid(params().grid) for the distance-only
+  /// model.
+  const GridSpec& map_grid() const { return map_grid_; }
   const std::vector<TaxelMap>& maps() const { return maps_; }
   std::vector<TaxelMap>& maps() { return maps_; }
   /// Index of taxel `id`, or -1.
@@ -83,7 +89,8 @@ class BodyPartLearner {
   const LearningStats& totals() const { return totals_; }
 
   /// Activation of taxel index k for a stimulus in the root frame, with the taxel at
-  /// `taxel_root` (0 outside the RF or when TTC is undefined).
+  /// `taxel_root` (0 outside the RF or, for the (D, TTC) model, when TTC is undefined, e.g. for
+  /// a receding or static stimulus with the signed TTC; the distance-only model uses D only).
   double activation(int k, const TaxelPose& taxel_root, const Stimulus& s) const;
 
  private:
@@ -93,6 +100,8 @@ class BodyPartLearner {
   std::vector<TaxelMap> maps_;
   StimulusBuffer buffer_;
   PreparedRf rf_;
+  GridSpec map_grid_;
+  double query_ttc_ = 0.0;  // distance-only: the TTC at which maps are queried
   LearningStats totals_;
   std::vector<TaxelPose> scratch_poses_;
   std::vector<std::uint8_t> touched_;

@@ -61,6 +61,24 @@ struct ParzenSpec {
   bool operator==(const ParzenSpec&) const = default;
 };
 
+/// Which representation a taxel learns.
+enum class PpsModel {
+  kDTtc,          ///< (D, TTC) map (paper).
+  kDistanceOnly,  ///< D only (the paper's S2 ablation): TTC ignored in learning and queries.
+};
+
+/// "d_ttc" / "distance_only".
+const char* to_string(PpsModel m);
+/// Parses "d_ttc" / "distance_only"; returns false on anything else.
+bool parse_pps_model(const std::string& s, PpsModel& out);
+
+/// The grid of a distance-only map: `g`'s D axis and one placeholder TTC bin [0, 1]. With one
+/// TTC bin the Parzen sum queried at that bin's kernel anchor (distance_only_query_ttc) is the
+/// 1-D Parzen sum over D, and the normaliser its maximum over the D anchors.
+GridSpec distance_only_grid(const GridSpec& g);
+/// The TTC at which a distance-only map (grid from distance_only_grid) is queried.
+double distance_only_query_ttc(const GridSpec& g, const ParzenSpec& p);
+
 /// "centre" / "lower_edge".
 const char* to_string(KernelAnchor a);
 /// Parses "centre" / "lower_edge"; returns false on anything else.

@@ -20,6 +20,8 @@ struct LearnedTaxel {
 
 struct LearnedState {
   std::string body_part;
+  PpsModel model = PpsModel::kDTtc;
+  /// The maps' grid (for the distance-only model: distance_only_grid(), one TTC bin).
   GridSpec grid;
   ParzenSpec parzen;
   std::vector<LearnedTaxel> taxels;
@@ -28,7 +30,7 @@ struct LearnedState {
 /// Snapshot of a learner's maps.
 LearnedState learned_state(const BodyPartLearner& learner);
 
-/// A learner restored from `state`; grid and Parzen variant come from the state, the rest of
+/// A learner restored from `state`; model, grid and Parzen variant come from the state, the rest of
 /// `params` (RF, TTC definition, buffer) is used as given.
 BodyPartLearner make_learner(const LearnedState& state, LearnerParams params);
 

@@ -1,6 +1,7 @@
 #pragma once
 /// @file
-/// Save/load of learned PPS state as JSON. Format (version 1; see README.md here):
+/// Save/load of learned PPS state as JSON. Format (version 1 for (D, TTC) maps, version 2 for
+/// distance-only maps; see README.md here):
 /// @code
 /// {
 ///   "format": "somasim-pps-map", "version": 1,
@@ -12,6 +13,9 @@
 ///                "pos": [32 non-negative integers], "neg": [32 ...]} ]    // D-major
 /// }
 /// @endcode
+/// Version 2 adds "model": "d_ttc" | "distance_only"; a distance-only file's grid has the D
+/// fields only and its counts d_bins entries. (D, TTC) maps are written as version 1, so that
+/// older readers still read them; both versions are read.
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -23,12 +27,14 @@
 namespace somasim::pps {
 
 inline constexpr const char* kMapFormat = "somasim-pps-map";
-inline constexpr int kMapFormatVersion = 1;
+inline constexpr int kMapFormatVersion = 1;       ///< (D, TTC) maps
+inline constexpr int kMapFormatVersionModel = 2;  ///< with "model" (distance-only maps)
 
 /// What the caller expects of a loaded file (unset: anything).
 struct LoadExpectations {
   std::optional<std::string> body_part;
   std::optional<std::size_t> taxel_count;
+  std::optional<PpsModel> model;
 };
 
 nlohmann::json to_json(const LearnedState& state);
