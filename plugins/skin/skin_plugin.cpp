@@ -1,0 +1,316 @@
+#include "skin_plugin.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "skin_figure.hpp"
+#include "somasim/diagnostics.hpp"
+#include "somasim/figures/figure.hpp"
+#include "somasim/robot/kinematics.hpp"
+#include "somasim/robot/robot_cache.hpp"
+#include "somasim/skin/layout_file.hpp"
+
+namespace somasim::plugins {
+namespace {
+
+std::string trim(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t");
+  if (b == std::string::npos) return "";
+  return s.substr(b, s.find_last_not_of(" \t") - b + 1);
+}
+
+std::vector<std::string> split_list(const std::string& s) {
+  std::vector<std::string> items;
+  std::size_t start = 0;
+  while (start <= s.size()) {
+    const auto comma = s.find(',', start);
+    const std::string item =
+        trim(s.substr(start, comma == std::string::npos ? comma : comma - start));
+    if (!item.empty()) items.push_back(item);
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return items;
+}
+
+}  // namespace
+
+PluginSpec SkinPlugin::spec() {
+  PluginSpec s("skin",
+               "Artificial skin: taxel layouts on the robot's skin patches (generated or from "
+               "files), grouped into virtual taxels (modules); contact points -> taxel pressures "
+               "-> one contact event per body part and contact episode (pressure over threshold "
+               "on more than min_taxels taxels); virtual taxel poses in the root frame.");
+  s.add_string("robot").describe("robot description file (relative to the experiment file)");
+  s.add_string("parts")
+      .defaults(std::string(""))
+      .describe(
+          "body parts with skin, comma-separated (names of the robot's skin patches); "
+          "'' = all");
+  s.add_double("spacing").unit_is("m").defaults(0.0).range(0.0, 1.0).describe(
+      "distance between neighbouring physical taxels; 0 = each patch's own");
+  s.add_int("group_size")
+      .defaults(std::int64_t{0})
+      .range(0, 10000)
+      .describe("physical taxels per virtual taxel (module); 0 = each patch's own");
+  s.add_string("layout_files")
+      .defaults(std::string(""))
+      .describe(
+          "'part=file, ...': layouts read from files (format: somasim/skin/layout_file.hpp) "
+          "instead of generated; relative to the experiment file");
+  s.add_double("contact_radius")
+      .unit_is("m")
+      .defaults(0.01)
+      .range(1e-4, 1.0)
+      .describe("taxels within this distance of a contact point respond");
+  s.add_string("pressure_model")
+      .defaults(std::string("shared"))
+      .one_of({"shared", "kernel"})
+      .describe(
+          "shared: normal force / taxels in the radius; kernel: force x "
+          "exp(-d^2 / (2 sigma^2)), sigma = contact_radius / 2");
+  s.add_double("pressure_threshold")
+      .unit_is("N")
+      .defaults(0.01)
+      .at_least(0.0)
+      .describe("a taxel is active when its pressure (force per taxel) exceeds this");
+  s.add_int("min_taxels")
+      .defaults(std::int64_t{2})
+      .at_least(0)
+      .describe("a contact event needs MORE than this many active physical taxels on a part");
+  s.add_double("release_s")
+      .unit_is("s")
+      .defaults(0.1)
+      .at_least(0.0)
+      .describe("a contact episode ends after this long without active taxels on the part");
+  s.add_bool("figure").defaults(true).describe("draw figures/skin_layout.png at the end");
+  s.input<LinkPoses>("link_poses",
+                     "poses of all robot links (root frame); empty = the robot at q = 0");
+  s.input<Contacts>("contacts", "contact points; those on skin links press taxels", true);
+  s.output<SkinTaxels>("taxels",
+                       "one part per body part: virtual taxel ids, poses in the root frame (this "
+                       "tick) and in the link frame");
+  s.output<ContactEvents>("contacts",
+                          "one event per part and contact episode, with the touched virtual "
+                          "taxels; events older than 2 s are pruned");
+  s.output<TaxelValues>("pressures",
+                        "per virtual taxel (order of 'taxels'): peak pressure of its physical "
+                        "taxels [N]");
+  return s;
+}
+
+void SkinPlugin::configure(NodeContext& ctx) {
+  model_ = robot::shared_robot_model(ctx.resolve_input_path(ctx.param<std::string>("robot")));
+  response_params_.contact_radius = ctx.param<double>("contact_radius");
+  response_params_.model = ctx.param<std::string>("pressure_model") == "kernel"
+                               ? skin::PressureModel::kKernel
+                               : skin::PressureModel::kShared;
+  response_params_.pressure_threshold = ctx.param<double>("pressure_threshold");
+  response_params_.min_taxels = ctx.param<int>("min_taxels");
+  response_params_.release_s = ctx.param<double>("release_s");
+  draw_figure_ = ctx.param<bool>("figure");
+
+  select_parts(ctx);
+  load_layouts(ctx);
+  parts_on_link_.assign(static_cast<std::size_t>(model_->num_links()), {});
+  for (std::size_t k = 0; k < parts_.size(); ++k) {
+    Part& p = parts_[k];
+    p.response = std::make_unique<skin::PartResponse>(p.layout, response_params_);
+    parts_on_link_[static_cast<std::size_t>(p.layout.link)].push_back(static_cast<int>(k));
+    ctx.log().info("skin '{}' on link '{}': {} taxels, {} virtual", p.layout.body_part,
+                   model_->link(p.layout.link).name, p.layout.size(),
+                   p.layout.virtual_taxels.size());
+  }
+  robot::RobotData data(*model_);
+  robot::forward_kinematics(*model_, data, Eigen::VectorXd::Zero(model_->num_dofs()));
+  rest_poses_ = data.link_poses;
+
+  link_poses_ = &ctx.input<LinkPoses>("link_poses");
+  contacts_ = ctx.is_wired("contacts") ? &ctx.input<Contacts>("contacts") : nullptr;
+  taxels_ = &ctx.output<SkinTaxels>("taxels");
+  events_ = &ctx.output<ContactEvents>("contacts");
+  pressures_ = &ctx.output<TaxelValues>("pressures");
+  init_outputs();
+  update_poses(rest_poses_);
+}
+
+void SkinPlugin::select_parts(NodeContext& ctx) {
+  std::vector<std::string> available;
+  for (const auto& patch : model_->skin_patches()) available.push_back(patch.body_part);
+  const auto find_patch = [&](const std::string& name,
+                              const std::string& param) -> const robot::SkinPatch* {
+    for (const auto& patch : model_->skin_patches())
+      if (patch.body_part == name) return &patch;
+    ctx.param_error(param, "unknown body part '" + name + "'" + did_you_mean(name, available) +
+                               "; robot '" + model_->name() + "' has skin on: " +
+                               (available.empty() ? "nothing" : join_names(available)));
+  };
+  std::vector<std::string> names = split_list(ctx.param<std::string>("parts"));
+  if (names.empty()) names = available;
+  for (const auto& name : names) {
+    for (const auto& p : parts_)
+      if (p.patch->body_part == name) ctx.param_error("parts", "body part '" + name + "' twice");
+    Part part;
+    part.patch = find_patch(name, "parts");
+    parts_.push_back(std::move(part));
+  }
+  if (parts_.empty())
+    ctx.param_error("robot", "robot '" + model_->name() + "' has no skin patches");
+}
+
+void SkinPlugin::load_layouts(NodeContext& ctx) {
+  skin::LayoutOptions options;
+  options.spacing = ctx.param<double>("spacing");
+  options.group_size = ctx.param<int>("group_size");
+  std::map<std::string, std::string> files;
+  for (const auto& item : split_list(ctx.param<std::string>("layout_files"))) {
+    const auto eq = item.find('=');
+    if (eq == std::string::npos || trim(item.substr(0, eq)).empty() ||
+        trim(item.substr(eq + 1)).empty())
+      ctx.param_error("layout_files",
+                      "expected 'part=file' items separated by commas, got '" + item + "'");
+    const std::string part = trim(item.substr(0, eq));
+    bool selected = false;
+    std::vector<std::string> names;
+    for (const auto& p : parts_) {
+      names.push_back(p.patch->body_part);
+      selected = selected || p.patch->body_part == part;
+    }
+    if (!selected)
+      ctx.param_error("layout_files", "body part '" + part + "' has no skin in this node" +
+                                          did_you_mean(part, names) +
+                                          "; parts: " + join_names(names));
+    files[part] = ctx.resolve_input_path(trim(item.substr(eq + 1))).string();
+  }
+  for (auto& p : parts_) {
+    const auto it = files.find(p.patch->body_part);
+    try {
+      p.layout = it != files.end()
+                     ? skin::load_layout_file(it->second, p.patch->body_part, p.patch->link)
+                     : skin::generate_layout(*p.patch, options);
+    } catch (const InputError& e) {
+      ctx.param_error(it != files.end() ? "layout_files" : "spacing", e.what());
+    }
+  }
+}
+
+void SkinPlugin::init_outputs() {
+  taxels_->parts.clear();
+  pressures_->labels.clear();
+  for (const auto& p : parts_) {
+    SkinPart out;
+    out.name = p.layout.body_part;
+    out.link = model_->link(p.layout.link).name;
+    for (std::size_t v = 0; v < p.layout.virtual_taxels.size(); ++v) {
+      out.taxel_ids.push_back(p.layout.virtual_taxels[v].id);
+      out.positions_link.push_back(p.layout.virtual_position(v));
+      out.normals_link.push_back(p.layout.virtual_normal(v));
+      pressures_->labels.push_back(out.name + "/" + std::to_string(out.taxel_ids.back()));
+    }
+    out.positions = out.positions_link;
+    out.normals = out.normals_link;
+    taxels_->parts.push_back(std::move(out));
+  }
+  pressures_->values.assign(pressures_->labels.size(), 0.0);
+}
+
+void SkinPlugin::update_poses(const std::vector<Eigen::Isometry3d>& poses) {
+  for (std::size_t k = 0; k < parts_.size(); ++k) {
+    SkinPart& out = taxels_->parts[k];
+    const Eigen::Isometry3d& pose = poses[static_cast<std::size_t>(parts_[k].layout.link)];
+    for (std::size_t v = 0; v < out.taxel_ids.size(); ++v) {
+      out.positions[v] = pose * out.positions_link[v];
+      out.normals[v] = pose.linear() * out.normals_link[v];
+    }
+  }
+}
+
+void SkinPlugin::apply_contacts(const Contacts& contacts,
+                                const std::vector<Eigen::Isometry3d>& poses) {
+  const auto press = [&](int link, const Eigen::Vector3d& point_link, double force) {
+    if (link < 0 || link >= static_cast<int>(parts_on_link_.size())) return;
+    for (int k : parts_on_link_[static_cast<std::size_t>(link)])
+      parts_[static_cast<std::size_t>(k)].response->add_contact(point_link, force);
+  };
+  for (const Contact& c : contacts.points) {
+    if (!std::isfinite(c.normal_force) || !c.point.allFinite() || !c.point_in_a.allFinite())
+      throw RunError(fmt::format("input 'contacts': non-finite contact (links {} / {}, force {})",
+                                 c.link_a, c.link_b, c.normal_force));
+    press(c.link_a, c.point_in_a, c.normal_force);
+    if (c.link_b >= 0 && c.link_b < static_cast<int>(poses.size()))
+      press(c.link_b, poses[static_cast<std::size_t>(c.link_b)].inverse() * c.point,
+            c.normal_force);
+  }
+}
+
+void SkinPlugin::step(NodeContext& ctx) {
+  const auto& poses = link_poses_->poses.empty() ? rest_poses_ : link_poses_->poses;
+  if (poses.size() != static_cast<std::size_t>(model_->num_links()))
+    throw RunError(fmt::format("input 'link_poses': expected {} link poses (robot '{}'), got {}",
+                               model_->num_links(), model_->name(), poses.size()));
+  update_poses(poses);
+  for (auto& p : parts_) p.response->clear();
+  if (contacts_) apply_contacts(*contacts_, poses);
+
+  const double now = ctx.time_s();
+  std::size_t out = 0;
+  for (auto& p : parts_) {
+    if (auto onset = p.response->update(now)) {
+      ContactEvent e;
+      e.id = next_event_id_++;
+      e.time_s = now;
+      e.body_part = p.layout.body_part;
+      e.touched_taxels = std::move(onset->virtual_ids);
+      p.touched_virtual.insert(e.touched_taxels.begin(), e.touched_taxels.end());
+      ++p.events;
+      ctx.log().debug("contact on '{}' at t = {:.3f} s: {} taxels, virtual {}", e.body_part, now,
+                      onset->physical_count, fmt::join(e.touched_taxels, " "));
+      events_->recent.push_back(std::move(e));
+    }
+    for (std::size_t v = 0; v < p.layout.virtual_taxels.size(); ++v)
+      pressures_->values[out++] = p.response->virtual_pressure(v);
+  }
+  auto& recent = events_->recent;
+  recent.erase(std::remove_if(recent.begin(), recent.end(),
+                              [&](const ContactEvent& e) {
+                                return e.time_s < now - keep_events_s_ &&
+                                       e.id + 1 != next_event_id_;
+                              }),
+               recent.end());
+}
+
+void SkinPlugin::finish(NodeContext& ctx) {
+  if (!model_) return;
+  report(ctx);
+  if (!draw_figure_ || parts_.empty()) return;
+  std::vector<SkinFigurePanel> panels;
+  for (const auto& p : parts_)
+    panels.push_back({p.patch, &p.layout, p.response->fired(), p.touched_virtual, p.events});
+  figures::save_png(render_skin_layout(panels), ctx.figure_path("skin_layout.png"));
+}
+
+void SkinPlugin::report(NodeContext& ctx) {
+  nlohmann::json events = nlohmann::json::object(), fired = nlohmann::json::object(),
+                 taxels = nlohmann::json::object();
+  std::size_t total = 0;
+  for (const auto& p : parts_) {
+    const std::string& name = p.layout.body_part;
+    events[name] = p.events;
+    total += p.events;
+    const auto& f = p.response->fired();
+    fired[name] = {
+        {"physical", std::count(f.begin(), f.end(), true)},
+        {"virtual", std::vector<int>(p.touched_virtual.begin(), p.touched_virtual.end())}};
+    taxels[name] = {{"physical", p.layout.size()}, {"virtual", p.layout.virtual_taxels.size()}};
+  }
+  ctx.report_metric("events", events);
+  ctx.report_metric("events_total", total);
+  ctx.report_metric("taxels_fired", fired);
+  ctx.report_metric("taxels", taxels);
+}
+
+}  // namespace somasim::plugins

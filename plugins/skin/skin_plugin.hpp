@@ -1,0 +1,58 @@
+#pragma once
+// skin: taxel layouts on the robot's skin patches, contacts -> pressures -> contact events,
+// and taxel poses in the root frame every tick.
+#include <memory>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "somasim/plugin.hpp"
+#include "somasim/port_types.hpp"
+#include "somasim/robot/robot_model.hpp"
+#include "somasim/robot_ports.hpp"
+#include "somasim/skin/skin_layout.hpp"
+#include "somasim/skin/skin_response.hpp"
+
+namespace somasim::plugins {
+
+class SkinPlugin : public Plugin {
+ public:
+  static PluginSpec spec();
+  void configure(NodeContext& ctx) override;
+  void step(NodeContext& ctx) override;
+  void finish(NodeContext& ctx) override;
+
+ private:
+  /// One body part: its patch, layout, response and statistics.
+  struct Part {
+    const robot::SkinPatch* patch = nullptr;
+    skin::SkinLayout layout;
+    std::unique_ptr<skin::PartResponse> response;
+    std::size_t events = 0;
+    std::set<int> touched_virtual;  // virtual ids named in any event
+  };
+
+  void select_parts(NodeContext& ctx);
+  void load_layouts(NodeContext& ctx);
+  void init_outputs();
+  void update_poses(const std::vector<Eigen::Isometry3d>& poses);
+  void apply_contacts(const Contacts& contacts, const std::vector<Eigen::Isometry3d>& poses);
+  void report(NodeContext& ctx);
+
+  std::shared_ptr<const robot::RobotModel> model_;
+  skin::ResponseParams response_params_;
+  std::vector<Part> parts_;
+  std::vector<std::vector<int>> parts_on_link_;  // link index -> indices into parts_
+  std::vector<Eigen::Isometry3d> rest_poses_;    // link poses at q = 0 (before any input)
+  bool draw_figure_ = true;
+  double keep_events_s_ = 2.0;
+  std::uint64_t next_event_id_ = 1;
+
+  const LinkPoses* link_poses_ = nullptr;
+  const Contacts* contacts_ = nullptr;
+  SkinTaxels* taxels_ = nullptr;
+  ContactEvents* events_ = nullptr;
+  TaxelValues* pressures_ = nullptr;
+};
+
+}  // namespace somasim::plugins
