@@ -164,3 +164,94 @@ TEST(PpsLearner, ALearnedFileForAnotherBodyPartIsRejected) {
   }
   std::filesystem::remove(saved);
 }
+
+// The single-taxel Monte Carlo (Fig 3 noise and speeds, unsigned TTC, the code's RF) with a
+// -2 cm systematic offset, shortened: the ridge-end estimate is within 1 cm of the truth (the
+// mean perceived D at contact, from the thrower) and of the injected offset; the Fig 8 estimate
+// is reported alongside under its old key.
+TEST(PpsLearner, RidgeEndOffsetRecoversAnInjectedTwoCentimetreOffset) {
+  Harness h(R"(
+base_rate_hz: 20
+nodes:
+  thrower:
+    plugin: taxel_thrower
+    params: {throws: 150, landing_sigma: 0.018, speed_min: 0.02, speed_max: 0.12,
+             position_noise: 0.001, velocity_noise: 0.01, offset: -0.02}
+  pps:
+    plugin: pps_learner
+    params: {body_part: taxel, ttc: unsigned, buffer_horizon: 0,
+             rf_shape: cone_mirrored_cylinder, save: ''}
+    inputs: {stimulus: thrower.stimulus, taxels: thrower.taxels, contacts: thrower.contacts}
+)");
+  while (h.step()) {
+  }
+  h.finish();
+  const double truth = h.metric("thrower", "contact_distance_m").get<double>();
+  const double ridge = h.metric("pps", "offset_ridge_m").get<double>();
+  EXPECT_NEAR(truth, -0.024, 0.003);
+  EXPECT_NEAR(ridge, truth, 0.01);
+  EXPECT_NEAR(ridge, -0.02, 0.01);
+  const auto taxel = h.metric("pps", "taxels")["0"];
+  EXPECT_DOUBLE_EQ(taxel["offset_ridge_m"].get<double>(), ridge);
+  EXPECT_TRUE(taxel["offset_estimate_m"].is_number());
+  EXPECT_TRUE(h.metric("pps", "offset_estimate_m").is_number());
+}
+
+TEST(PpsLearner, DistanceOnlyModelActivatesForStaticAndRecedingObjects) {
+  Harness with_ttc(graph());
+  Harness distance_only(graph("model: distance_only"));
+  for (Harness* h : {&with_ttc, &distance_only}) {
+    set_patch(*h);
+    approach_and_touch(*h, 1);
+    approach_and_touch(*h, 2);
+    auto& s = h->input<Stimulus>("stimulus");
+    s.present = true;
+    s.position = {0, 0, 0.08};
+    s.velocity = {0, 0, -0.1};
+    h->step();
+    EXPECT_GT(h->output<TaxelValues>("pps.activations").values[0], 0.5);
+  }
+  for (const Eigen::Vector3d v : {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0, 0, 0.1)}) {
+    for (Harness* h : {&with_ttc, &distance_only}) {
+      h->input<Stimulus>("stimulus").velocity = v;
+      h->step();
+    }
+    EXPECT_EQ(with_ttc.output<TaxelValues>("pps.activations").values[0], 0.0);
+    EXPECT_GT(distance_only.output<TaxelValues>("pps.activations").values[0], 0.5);
+    EXPECT_GT(distance_only.output<double>("pps.max_activation"), 0.5);
+  }
+  distance_only.finish();
+  EXPECT_TRUE(distance_only.metric("pps", "offset_estimate_m").is_null());  // no TTC axis
+  const auto state =
+      somasim::pps::load_learned_state((distance_only.out_dir() / "learned.json").string());
+  EXPECT_EQ(state.model, somasim::pps::PpsModel::kDistanceOnly);
+}
+
+TEST(PpsLearner, ALearnedFileOfTheOtherModelIsRejected) {
+  std::filesystem::path saved =
+      std::filesystem::temp_directory_path() / "somasim_test_pps_distance_only.json";
+  {
+    Harness h(graph("model: distance_only"));
+    set_patch(h);
+    approach_and_touch(h, 1);
+    h.finish();
+    std::filesystem::copy_file(h.out_dir() / "learned.json", saved,
+                               std::filesystem::copy_options::overwrite_existing);
+  }
+  try {
+    Harness h(graph("load: " + saved.string()));
+    FAIL() << "expected an InputError";
+  } catch (const somasim::InputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              saved.string() + ": model is \"distance_only\", expected \"d_ttc\"");
+  }
+  Harness h(graph("model: distance_only, learn: false, load: " + saved.string()));
+  set_patch(h);
+  auto& s = h.input<Stimulus>("stimulus");
+  s.present = true;
+  s.position = {0, 0, 0.05};
+  s.velocity = {0, 0, 0};
+  h.step();
+  EXPECT_GT(h.output<TaxelValues>("pps.activations").values[0], 0.5);
+  std::filesystem::remove(saved);
+}
