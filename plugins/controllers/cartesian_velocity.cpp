@@ -15,14 +15,22 @@ PluginSpec CartesianVelocity::spec() {
                "Moves a point of any link of a chain at a commanded Cartesian velocity: damped "
                "pseudo-inverse of the point's Jacobian, joint- and velocity-limit aware.");
   add_robot_param(s);
-  s.add_string("chain").defaults(std::string()).describe(
-      "a named chain of the robot (e.g. right_arm); or leave empty and give `tip` (and `base`)");
-  s.add_string("base").defaults(std::string()).describe(
-      "with `tip`: the chain's base link (empty: the root)");
-  s.add_string("tip").defaults(std::string()).describe(
-      "with `base`: the chain's tip frame or link (instead of `chain`)");
-  s.add_string("link").defaults(std::string()).describe(
-      "the link the controlled point is fixed to; must be in the chain (empty: the tip's link)");
+  s.add_string("chain")
+      .defaults(std::string())
+      .describe(
+          "a named chain of the robot (e.g. right_arm); or leave empty and give `tip` (and "
+          "`base`)");
+  s.add_string("base")
+      .defaults(std::string())
+      .describe("with `tip`: the chain's base link (empty: the root)");
+  s.add_string("tip")
+      .defaults(std::string())
+      .describe("with `base`: the chain's tip frame or link (instead of `chain`)");
+  s.add_string("link")
+      .defaults(std::string())
+      .describe(
+          "the link the controlled point is fixed to; must be in the chain (empty: the tip's "
+          "link)");
   s.add_list("point")
       .unit_is("m")
       .size(3)
@@ -47,8 +55,10 @@ PluginSpec CartesianVelocity::spec() {
       .defaults(2.0)
       .range(0, 90)
       .describe("joints stop this far from their limits (clamped within the next period)");
-  s.add_bool("hold_orientation").defaults(false).describe(
-      "also keep the link's orientation (captured at the first step); else position only");
+  s.add_bool("hold_orientation")
+      .defaults(false)
+      .describe(
+          "also keep the link's orientation (captured at the first step); else position only");
   s.add_double("orientation_gain")
       .unit_is("1/s")
       .defaults(2.0)
@@ -69,9 +79,12 @@ void CartesianVelocity::configure(NodeContext& ctx) {
   const auto chain_name = ctx.param<std::string>("chain");
   const auto tip = ctx.param<std::string>("tip");
   const auto base = ctx.param<std::string>("base");
-  if (chain_name.empty() == tip.empty())
-    ctx.param_error(chain_name.empty() ? "chain" : "tip",
-                    "give either `chain` (a named chain) or `tip` (and `base`), not both");
+  if (chain_name.empty() && tip.empty())
+    ctx.param_error("chain",
+                    "expected a chain: give `chain` (a named chain of the robot) or `tip` "
+                    "(and optionally `base`)");
+  if (!chain_name.empty() && !tip.empty())
+    ctx.param_error("tip", "give either `chain` or `tip` (and `base`), not both");
   if (!chain_name.empty() && !base.empty())
     ctx.param_error("base", "`base` goes with `tip`, not with `chain`");
   control::ChainSelection chain;
@@ -86,9 +99,9 @@ void CartesianVelocity::configure(NodeContext& ctx) {
   options.damping = ctx.param<double>("damping");
   options.singular_threshold = ctx.param<double>("singular_threshold");
   const auto max_deg = ctx.param<std::vector<double>>("max_joint_velocity_deg");
-  options.max_joint_velocity = Eigen::Map<const Eigen::VectorXd>(
-                                   max_deg.data(), static_cast<Eigen::Index>(max_deg.size())) *
-                               kDeg;
+  options.max_joint_velocity =
+      Eigen::Map<const Eigen::VectorXd>(max_deg.data(), static_cast<Eigen::Index>(max_deg.size())) *
+      kDeg;
   options.limit_margin = ctx.param<double>("limit_margin_deg") * kDeg;
   options.hold_orientation = ctx.param<bool>("hold_orientation");
   options.orientation_gain = ctx.param<double>("orientation_gain");

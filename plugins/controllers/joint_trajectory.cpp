@@ -26,8 +26,10 @@ PluginSpec JointTrajectoryController::spec() {
                "Joint-space trajectories (linear or minimum-jerk) through YAML waypoints or to "
                "targets on the `target` port; position commands with velocity feed-forward.");
   add_robot_param(s);
-  s.add_string("joints").defaults(std::string()).describe(
-      "controlled joints, space-separated (e.g. \"r_shoulder_pitch r_shoulder_roll r_elbow\")");
+  s.add_string("joints")
+      .defaults(std::string())
+      .describe(
+          "controlled joints, space-separated (e.g. \"r_shoulder_pitch r_shoulder_roll r_elbow\")");
   s.add_list("targets_deg")
       .unit_is("deg")
       .defaults(std::vector<double>{})
@@ -93,11 +95,10 @@ void JointTrajectoryController::read_waypoints(NodeContext& ctx) {
   if (!durations.empty() && nj == 0)
     ctx.param_error("joints", "waypoints are given (durations) but no joints");
   if (targets.size() != durations.size() * nj)
-    ctx.param_error("targets_deg", "expected " + std::to_string(durations.size() * nj) +
-                                       " values (" + std::to_string(durations.size()) +
-                                       " waypoints x " + std::to_string(nj) +
-                                       " joints, waypoint-major), got " +
-                                       std::to_string(targets.size()));
+    ctx.param_error("targets_deg",
+                    "expected " + std::to_string(durations.size() * nj) + " values (" +
+                        std::to_string(durations.size()) + " waypoints x " + std::to_string(nj) +
+                        " joints, waypoint-major), got " + std::to_string(targets.size()));
   for (std::size_t w = 0; w < durations.size(); ++w) {
     control::JointTrajectory::Waypoint wp;
     wp.duration_s = durations[w];
@@ -123,10 +124,10 @@ void JointTrajectoryController::start_target(double t, const JointState& state) 
   const JointTarget& target = *target_;
   const auto n = static_cast<std::size_t>(model_->num_dofs());
   if (target.active.size() != n || static_cast<std::size_t>(target.position.size()) != n)
-    throw RunError(fmt::format("joint_trajectory: target {} has {} active flags and {} positions, "
-                               "expected {} (the dofs of robot '{}')",
-                               target.id, target.active.size(), target.position.size(), n,
-                               model_->name()));
+    throw RunError(
+        fmt::format("joint_trajectory: target {} has {} active flags and {} positions, "
+                    "expected {} (the dofs of robot '{}')",
+                    target.id, target.active.size(), target.position.size(), n, model_->name()));
   if (!(target.duration_s > 0.0) || !target.position.allFinite())
     throw RunError(fmt::format(
         "joint_trajectory: target {} needs a positive duration and finite positions", target.id));

@@ -39,8 +39,8 @@ class JointTrajectoryController : public Plugin {
 
   std::shared_ptr<const robot::RobotModel> model_;
   control::Profile profile_ = control::Profile::kMinimumJerk;
-  double tolerance_ = 0.0;                                   // [rad]
-  std::vector<int> joint_dofs_;                              // from `joints`
+  double tolerance_ = 0.0;                                     // [rad]
+  std::vector<int> joint_dofs_;                                // from `joints`
   std::vector<control::JointTrajectory::Waypoint> waypoints_;  // in joint_dofs_ order
   // ports
   const JointState* state_ = nullptr;

@@ -23,9 +23,8 @@ void check_joint_state(const NodeContext& ctx, const robot::RobotModel& model,
   const auto n = model.num_dofs();
   if (position.size() != n || velocity.size() != n)
     throw RunError(ctx.node_name() + ": joint state has " + std::to_string(position.size()) +
-                   " positions and " + std::to_string(velocity.size()) +
-                   " velocities, expected " + std::to_string(n) + " (the dofs of robot '" +
-                   model.name() + "')");
+                   " positions and " + std::to_string(velocity.size()) + " velocities, expected " +
+                   std::to_string(n) + " (the dofs of robot '" + model.name() + "')");
   if (!position.allFinite())
     throw RunError(ctx.node_name() + ": joint state holds non-finite positions");
 }

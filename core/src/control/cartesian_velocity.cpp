@@ -34,7 +34,7 @@ CartesianVelocityController::CartesianVelocityController(
   lower_rate_.setZero(n);
   upper_rate_.setZero(n);
   fixed_.assign(n, false);
-  if (!chain_.links.empty()) link_ = chain_.links.back();
+  link_ = chain_.tip_link;  // the tip link's origin until set_point()
 }
 
 void CartesianVelocityController::set_point(const std::string& link,
@@ -139,7 +139,8 @@ void CartesianVelocityController::compute(const Eigen::Ref<const Eigen::VectorXd
 
   double scale = 1.0;
   for (int k = 0; k < n; ++k)
-    if (std::abs(qdot_[k]) > max_velocity_[k]) scale = std::min(scale, max_velocity_[k] / std::abs(qdot_[k]));
+    if (std::abs(qdot_[k]) > max_velocity_[k])
+      scale = std::min(scale, max_velocity_[k] / std::abs(qdot_[k]));
   if (scale < 1.0) {
     qdot_ *= scale;
     limited_ = true;

@@ -17,6 +17,7 @@ ChainSelection make_selection(const robot::RobotModel& model, std::string name,
   ChainSelection sel;
   sel.name = std::move(name);
   sel.dofs = kc.dof_indices();
+  sel.tip_link = model.frame_ref(tip).link;
   const int base_link = base.empty() ? 0 : model.link_index(base);
   std::set<int> path;  // links strictly below the base, up to the tip link
   for (int l = model.frame_ref(tip).link; l != base_link; l = model.link(l).parent_link)
@@ -27,8 +28,8 @@ ChainSelection make_selection(const robot::RobotModel& model, std::string name,
   std::vector<bool> member(model.num_links(), false);
   for (int l = 1; l < model.num_links(); ++l) {
     const robot::Link& link = model.link(l);
-    member[l] = path.count(l) != 0 ||
-                (model.joint(link.parent_joint).dof < 0 && member[link.parent_link]);
+    member[l] =
+        path.count(l) != 0 || (model.joint(link.parent_joint).dof < 0 && member[link.parent_link]);
     if (member[l]) {
       sel.links.push_back(l);
       sel.link_names.push_back(link.name);
@@ -49,8 +50,7 @@ int ChainSelection::require_link(const robot::RobotModel& model,
   if (contains_link(l)) return l;
   std::string list;
   for (const auto& n : link_names) list += (list.empty() ? "" : ", ") + n;
-  throw InputError("link '" + link_name + "' is not in chain '" + name + "' (links: " + list +
-                   ")");
+  throw InputError("link '" + link_name + "' is not in chain '" + name + "' (links: " + list + ")");
 }
 
 ChainSelection select_chain(const robot::RobotModel& model, const std::string& chain_name) {
@@ -66,8 +66,7 @@ ChainSelection select_chain(const robot::RobotModel& model, const std::string& c
 
 ChainSelection select_chain(const robot::RobotModel& model, const std::string& tip,
                             const std::string& base) {
-  return make_selection(model, (base.empty() ? model.link(0).name : base) + "->" + tip, tip,
-                        base);
+  return make_selection(model, (base.empty() ? model.link(0).name : base) + "->" + tip, tip, base);
 }
 
 }  // namespace somasim::control

@@ -40,8 +40,8 @@ std::string merge_joint_commands(const std::vector<const JointCommand*>& inputs,
     for (std::size_t d = 0; d < dofs; ++d) {
       if (c->mode[d] == JointCommandMode::kNone) continue;
       if (owner[d] >= 0 && conflict == MergeConflict::kError)
-        return name(static_cast<std::size_t>(owner[d])) + " and " + name(i) +
-               " both command dof " + std::to_string(d);
+        return name(static_cast<std::size_t>(owner[d])) + " and " + name(i) + " both command dof " +
+               std::to_string(d);
       owner[d] = static_cast<int>(i);
       out.mode[d] = c->mode[d];
       out.position[static_cast<Eigen::Index>(d)] = c->position[static_cast<Eigen::Index>(d)];

@@ -14,7 +14,9 @@ Profile parse_profile(const std::string& name) {
                    "'; expected 'linear' or 'minimum_jerk'" + did_you_mean(name, profile_names()));
 }
 
-std::vector<std::string> profile_names() { return {"linear", "minimum_jerk"}; }
+std::vector<std::string> profile_names() {
+  return {"linear", "minimum_jerk"};
+}
 
 ProfileSample sample_profile(Profile profile, double tau) {
   tau = std::clamp(tau, 0.0, 1.0);

@@ -11,11 +11,12 @@
 
 namespace somasim::testing {
 
-inline std::string icub_path() { return std::string(SOMASIM_SOURCE_DIR) + "/assets/robots/icub_v1.yaml"; }
+inline std::string icub_path() {
+  return std::string(SOMASIM_SOURCE_DIR) + "/assets/robots/icub_v1.yaml";
+}
 
 struct KinematicWorld {
-  explicit KinematicWorld(double dt_s)
-      : model(robot::shared_robot_model(icub_path())), dt(dt_s) {
+  explicit KinematicWorld(double dt_s) : model(robot::shared_robot_model(icub_path())), dt(dt_s) {
     // Mid-range start so every joint is within its limits.
     state.position = 0.5 * (model->lower_limits() + model->upper_limits());
     state.velocity.setZero(model->num_dofs());

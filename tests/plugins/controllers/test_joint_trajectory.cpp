@@ -23,9 +23,8 @@ constexpr double kRate = 100.0;
 
 std::string graph(const std::string& params, bool with_target = false) {
   return "base_rate_hz: 100\nnodes:\n  traj: {plugin: joint_trajectory, params: {robot: " +
-         somasim::testing::icub_path() + ", " + params +
-         "}, inputs: {state: harness.state" + (with_target ? ", target: harness.target" : "") +
-         "}}\n";
+         somasim::testing::icub_path() + ", " + params + "}, inputs: {state: harness.state" +
+         (with_target ? ", target: harness.target" : "") + "}}\n";
 }
 
 // Steps the controller with the kinematic world in the loop; calls `check(t)` after each tick
@@ -50,8 +49,8 @@ std::vector<Sample> elbow_run(const std::string& profile) {
   KinematicWorld world(1.0 / kRate);
   const int elbow = world.dof("r_elbow");
   world.state.position[elbow] = 20 * kDeg;
-  Harness h(graph("joints: r_elbow, targets_deg: [60, 30], durations: [1.0, 0.5], profile: " +
-                  profile));
+  Harness h(
+      graph("joints: r_elbow, targets_deg: [60, 30], durations: [1.0, 0.5], profile: " + profile));
   std::vector<Sample> out;
   run(h, world, 200, [&](double) {
     const auto& c = h.output<JointCommand>("traj.command");
@@ -67,10 +66,10 @@ TEST(JointTrajectory, MinimumJerkStartMidEndWithZeroEndVelocity) {
   const auto s = elbow_run("minimum_jerk");
   EXPECT_NEAR(s[0].q, 20.0, 1e-9);  // starts from the measured state
   EXPECT_NEAR(s[0].qd, 0.0, 1e-9);
-  EXPECT_NEAR(s[50].q, 40.0, 1e-9);                 // s(1/2) = 1/2
-  EXPECT_NEAR(s[50].qd, 1.875 * 40.0 / 1.0, 1e-9);  // peak speed 15/8 Δ/T
+  EXPECT_NEAR(s[50].q, 40.0, 1e-9);                       // s(1/2) = 1/2
+  EXPECT_NEAR(s[50].qd, 1.875 * 40.0 / 1.0, 1e-9);        // peak speed 15/8 Δ/T
   EXPECT_NEAR(s[25].q, 20.0 + 40.0 * 0.103515625, 1e-9);  // s(1/4) = 53/512
-  EXPECT_NEAR(s[100].q, 60.0, 1e-9);  // first waypoint at t = 1 s, at rest
+  EXPECT_NEAR(s[100].q, 60.0, 1e-9);                      // first waypoint at t = 1 s, at rest
   EXPECT_NEAR(s[100].qd, 0.0, 1e-9);
   EXPECT_NEAR(s[125].q, 45.0, 1e-9);  // half way down the second segment
   EXPECT_NEAR(s[150].q, 30.0, 1e-9);  // last waypoint at t = 1.5 s
@@ -106,8 +105,7 @@ TEST(JointTrajectory, DoneToleranceWaitsForTheMeasuredJoints) {
   KinematicWorld world(1.0 / kRate);
   const int elbow = world.dof("r_elbow");
   world.state.position[elbow] = 20 * kDeg;
-  Harness h(graph(
-      "joints: r_elbow, targets_deg: [60], durations: [0.5], done_tolerance_deg: 1"));
+  Harness h(graph("joints: r_elbow, targets_deg: [60], durations: [0.5], done_tolerance_deg: 1"));
   for (int k = 0; k < 80; ++k) {
     h.input<JointState>("state") = world.state;  // the joint is stuck: never follows
     ASSERT_TRUE(h.step());
@@ -123,14 +121,14 @@ TEST(JointTrajectory, CommandsOnlyItsJointsAndMovesThemTogether) {
   KinematicWorld world(1.0 / kRate);
   const int sp = world.dof("r_shoulder_pitch"), el = world.dof("r_elbow");
   const Eigen::VectorXd start = world.state.position;
-  Harness h(graph(
-      "joints: \"r_shoulder_pitch  r_elbow\", targets_deg: [-30, 50, -10, 80], "
-      "durations: [0.4, 0.6]"));
+  Harness h(
+      graph("joints: \"r_shoulder_pitch  r_elbow\", targets_deg: [-30, 50, -10, 80], "
+            "durations: [0.4, 0.6]"));
   run(h, world, 120, [&](double) {
     const auto& c = h.output<JointCommand>("traj.command");
     for (int d = 0; d < world.model->num_dofs(); ++d)
-      EXPECT_EQ(c.mode[d], d == sp || d == el ? JointCommandMode::kPosition
-                                              : JointCommandMode::kNone);
+      EXPECT_EQ(c.mode[d],
+                d == sp || d == el ? JointCommandMode::kPosition : JointCommandMode::kNone);
   });
   EXPECT_NEAR(world.state.position[sp], -10 * kDeg, 1e-12);
   EXPECT_NEAR(world.state.position[el], 80 * kDeg, 1e-12);
@@ -159,9 +157,8 @@ TEST(JointTrajectory, TargetsOnThePortStartFromTheCurrentReference) {
   target.position[wy] = 20 * kDeg;
   target.duration_s = 0.5;
   std::vector<double> q;
-  run(h, world, 60, [&](double) {
-    q.push_back(h.output<JointCommand>("traj.command").position[wy] / kDeg);
-  });
+  run(h, world, 60,
+      [&](double) { q.push_back(h.output<JointCommand>("traj.command").position[wy] / kDeg); });
   EXPECT_NEAR(q[0], 0.0, 1e-9);
   EXPECT_NEAR(q[25], 10.0, 1e-9);
   EXPECT_NEAR(q[50], 20.0, 1e-9);

@@ -42,8 +42,8 @@ struct CartesianVelocityOptions {
 class CartesianVelocityController {
  public:
   /// InputError for a bad max_joint_velocity size ("expected 1 or N values, got M").
-  CartesianVelocityController(std::shared_ptr<const robot::RobotModel> model,
-                              ChainSelection chain, CartesianVelocityOptions options = {});
+  CartesianVelocityController(std::shared_ptr<const robot::RobotModel> model, ChainSelection chain,
+                              CartesianVelocityOptions options = {});
 
   /// The controlled point: `point_in_link` [m, link frame] fixed to `link`, which must be in
   /// the chain (InputError as ChainSelection::require_link says). Resets the held orientation.
@@ -87,7 +87,7 @@ class CartesianVelocityController {
   Eigen::Matrix3d orientation_ref_ = Eigen::Matrix3d::Identity();
   // Work space (sized once).
   robot::Matrix6Xd full_jacobian_;
-  robot::Matrix6Xd jacobian_;     ///< chain columns
+  robot::Matrix6Xd jacobian_;       ///< chain columns
   robot::Matrix6Xd jacobian_free_;  ///< chain columns, fixed joints zeroed
   Eigen::Matrix<double, 6, 1> task_, residual_;
   Eigen::VectorXd qdot_, command_qdot_, lower_rate_, upper_rate_, max_velocity_;

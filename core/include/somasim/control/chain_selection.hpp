@@ -15,6 +15,7 @@ struct ChainSelection {
   std::vector<int> links;  ///< model links moved by the chain dofs only: the links from the
                            ///< base (excluded) to the tip link, plus links fixed to them
   std::vector<std::string> link_names;
+  int tip_link = -1;  ///< the link of the tip frame (the default controlled link)
 
   bool contains_link(int link) const;
   /// Index of `link_name` if it is in the chain; InputError otherwise:
