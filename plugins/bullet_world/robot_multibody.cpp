@@ -28,6 +28,13 @@ BodyFrame body_frame(const robot::Inertial& inertial) {
   return f;
 }
 
+robot::Geometry frame_link_placeholder() {
+  robot::Geometry g;
+  g.type = robot::GeometryType::Sphere;
+  g.radius = 1e-3;
+  return g;
+}
+
 }  // namespace
 
 RobotMultiBody::RobotMultiBody(std::shared_ptr<const robot::RobotModel> model,
@@ -101,16 +108,27 @@ RobotMultiBody::RobotMultiBody(std::shared_ptr<const robot::RobotModel> model,
 
   colliders_.resize(n);
   for (int i = 0; i < n; ++i) {
-    if (m.link(i).collision.empty()) continue;
     auto col = std::make_unique<btMultiBodyLinkCollider>(multibody_.get(), i - 1);
-    col->setCollisionShape(shapes.make_compound(m.link(i).collision, frames[i].in_link.inverse(),
-                                                MeshUse::kConvexHull));
+    const bool has_geometry = !m.link(i).collision.empty();
+    if (has_geometry) {
+      col->setCollisionShape(shapes.make_compound(m.link(i).collision, frames[i].in_link.inverse(),
+                                                  MeshUse::kConvexHull));
+      set_tag(*col, {BodyKind::kLink, i, /*immovable=*/i == 0});
+    } else {
+      // Geometry-less frame links still need a collider that never collides: Bullet assigns a
+      // multibody constraint (a motor) to a simulation island through the colliders of its two
+      // links, and a constraint without an island is silently never solved.
+      col->setCollisionShape(shapes.make(frame_link_placeholder(), MeshUse::kConvexHull));
+      set_tag(*col, {BodyKind::kNone, i, false});
+    }
     col->setFriction(material.friction);
     col->setRollingFriction(material.rolling_friction);
     col->setRestitution(material.restitution);
-    set_tag(*col, {BodyKind::kLink, i, /*immovable=*/i == 0});
-    world_.addCollisionObject(col.get(), btBroadphaseProxy::DefaultFilter,
-                              btBroadphaseProxy::AllFilter);
+    if (has_geometry)
+      world_.addCollisionObject(col.get(), btBroadphaseProxy::DefaultFilter,
+                                btBroadphaseProxy::AllFilter);
+    else
+      world_.addCollisionObject(col.get(), /*group=*/0, /*mask=*/0);
     if (i == 0)
       multibody_->setBaseCollider(col.get());
     else

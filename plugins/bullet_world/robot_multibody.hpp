@@ -32,8 +32,8 @@ struct LinkMaterial {
 };
 
 /// Mass and inertia given to massless frame links (Featherstone needs positive values).
-inline constexpr double kFrameLinkMass = 1e-3;        ///< [kg]
-inline constexpr double kMinPrincipalInertia = 1e-7;  ///< [kg·m²]
+inline constexpr double kFrameLinkMass = 0.02;        ///< [kg]
+inline constexpr double kMinPrincipalInertia = 1e-5;  ///< [kg·m²]
 
 class RobotMultiBody {
  public:
@@ -58,8 +58,6 @@ class RobotMultiBody {
   /// Poses of all model links in the root frame (model link frames), in link order.
   void link_poses(std::vector<Eigen::Isometry3d>& poses) const;
 
-  /// The collider of a model link, or nullptr for links without geometry.
-  const btMultiBodyLinkCollider* collider(int link) const { return colliders_[link].get(); }
   /// Centre-of-mass frame of a model link, relative to the link frame.
   const Eigen::Isometry3d& body_in_link(int link) const { return body_in_link_[link]; }
 

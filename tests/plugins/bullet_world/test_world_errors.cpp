@@ -1,0 +1,117 @@
+// bullet_world: bad input and trouble during a run, whole messages asserted.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "world_test_support.hpp"
+
+using somasim::InputError;
+using somasim::JointCommand;
+using somasim::ObjectSpawns;
+using somasim::RunError;
+using somasim::testing::Harness;
+using namespace world_test;
+
+namespace {
+
+template <class E, class F>
+std::string message_of(F&& f) {
+  try {
+    f();
+  } catch (const E& e) {
+    return e.what();
+  }
+  return "<no exception>";
+}
+
+}  // namespace
+
+TEST(BulletWorldErrors, UnknownObjectTypeInTheScene) {
+  const TempFile scene("scene.yaml",
+                       "objects:\n"
+                       "  - {name: ball, shape: sphere, radius: 0.02, xyz: [-0.6, 0, 0.5]}\n"
+                       "  - {name: dice, shape: cube, size: [0.02, 0.02, 0.02]}\n");
+  const std::string msg =
+      message_of<InputError>([&] { Harness h(world_yaml("scene: " + scene.str())); });
+  EXPECT_EQ(msg, "<inline>:5:" + std::to_string(38 + kRobot.size() + 2 + 7) +
+                     ": node 'world', key 'params.scene': " + scene.str() +
+                     ":3:33: node 'object 'dice'', key 'shape': unknown object type 'cube' "
+                     "(did you mean 'tube'?); expected one of box, cylinder, mesh, sphere");
+}
+
+TEST(BulletWorldErrors, ObjectStartingInsideTheRobot) {
+  const TempFile scene("scene.yaml",
+                       "objects:\n"
+                       "  - {name: intruder, shape: sphere, radius: 0.03, motion: static,"
+                       " xyz: [0, 0, 0.15]}\n");
+  const std::string msg =
+      message_of<InputError>([&] { Harness h(world_yaml("scene: " + scene.str())); });
+  EXPECT_EQ(msg, scene.str() +
+                     ":2:5: object 'intruder' starts inside the robot: it overlaps "
+                     "link 'chest' by 0.0 mm");
+}
+
+TEST(BulletWorldErrors, ObjectSpawnedInsideTheRobot) {
+  const auto model = icub();
+  Harness h(world_yaml());
+  h.step(10);
+  h.input<ObjectSpawns>("spawns").recent = {
+      sphere(4, "ghost", 0.03, Eigen::Vector3d(-0.0, 0.0, 0.15))};
+  const std::string msg = message_of<RunError>([&] { h.step(); });
+  EXPECT_EQ(msg,
+            "t = 0.010 s: spawned object 'ghost' (id 4) starts inside the robot: it "
+            "overlaps link 'chest' by 0.0 mm");
+}
+
+TEST(BulletWorldErrors, NaNInACommandPort) {
+  const auto model = icub();
+  Harness h(world_yaml());
+  JointCommand cmd = hold(rest_posture(*model));
+  cmd.position[model->dof_index("r_elbow")] = std::numeric_limits<double>::quiet_NaN();
+  h.step(5);
+  h.input<JointCommand>("cmd") = cmd;
+  EXPECT_EQ(message_of<RunError>([&] { h.step(); }),
+            "t = 0.005 s: joint command for 'r_elbow': the position target is nan");
+  cmd = hold(rest_posture(*model));
+  cmd.mode[model->dof_index("l_wrist_yaw")] = somasim::JointCommandMode::kVelocity;
+  cmd.velocity[model->dof_index("l_wrist_yaw")] = std::numeric_limits<double>::infinity();
+  h.input<JointCommand>("cmd") = cmd;
+  EXPECT_EQ(message_of<RunError>([&] { h.step(); }),
+            "t = 0.006 s: joint command for 'l_wrist_yaw': the velocity target is inf");
+  cmd.mode.resize(7);
+  h.input<JointCommand>("cmd") = cmd;
+  EXPECT_EQ(message_of<RunError>([&] { h.step(); }),
+            "t = 0.007 s: joint command: expected 23 modes, got 7");
+}
+
+TEST(BulletWorldErrors, UnknownJointInTheInitialPosture) {
+  EXPECT_EQ(
+      message_of<InputError>([&] { Harness h(world_yaml("initial_posture_deg: 'r_elbw: 30'")); }),
+      "<inline>:5:" + std::to_string(38 + kRobot.size() + 2 + 21) +
+          ": node 'world', key 'params.initial_posture_deg': unknown joint 'r_elbw' (did "
+          "you mean 'r_elbow'?)");
+  EXPECT_EQ(
+      message_of<InputError>([&] { Harness h(world_yaml("initial_posture_deg: 'r_elbow: 200'")); }),
+      "<inline>:5:" + std::to_string(38 + kRobot.size() + 2 + 21) +
+          ": node 'world', key 'params.initial_posture_deg': joint 'r_elbow': 200 deg is "
+          "outside the limits [5.5, 106]");
+}
+
+TEST(BulletWorldErrors, PhysicsBlowUpStopsTheRunNamingTimeAndBody) {
+  Harness h(world_yaml());
+  auto s = sphere(1, "bullet", 0.01, Eigen::Vector3d(-1, 0, 0.5));
+  s.linear_velocity = Eigen::Vector3d(0, 0, 80);
+  h.input<ObjectSpawns>("spawns").recent = {s};
+  EXPECT_EQ(message_of<RunError>([&] { h.step(); }),
+            "physics blow-up at t = 0.001 s: object 'bullet' moves at 80.0 m/s "
+            "(max_object_speed: 50 m/s)");
+}
+
+TEST(BulletWorldErrors, BadSpawnRequest) {
+  Harness h(world_yaml());
+  auto s = sphere(3, "flat", 0.0, Eigen::Vector3d(-1, 0, 0.5));
+  h.input<ObjectSpawns>("spawns").recent = {s};
+  EXPECT_EQ(message_of<RunError>([&] { h.step(); }),
+            "t = 0.000 s: spawned object 'flat' (id 3): sphere radius must be > 0 m, got 0");
+}
