@@ -80,13 +80,13 @@ class SceneReader {
       if (std::isfinite(v)) return v;
     } catch (const YAML::Exception&) {
     }
-    diag_.add(at(n.Mark()), item, key, "expected a finite number");
+    add(at(n.Mark()), item, key, "expected a finite number");
     return std::nullopt;
   }
   std::optional<Eigen::Vector3d> vec3(const YAML::Node& n, const std::string& item,
                                       const std::string& key) {
     if (!n.IsSequence() || n.size() != 3) {
-      diag_.add(at(n.Mark()), item, key, "expected a list of 3 numbers");
+      add(at(n.Mark()), item, key, "expected a list of 3 numbers");
       return std::nullopt;
     }
     Eigen::Vector3d v;
@@ -101,16 +101,16 @@ class SceneReader {
                                  const std::string& key) {
     auto v = number(n, item, key);
     if (v && *v <= 0) {
-      diag_.add(at(n.Mark()), item, key, "expected a number > 0");
+      add(at(n.Mark()), item, key, "expected a number > 0");
       return std::nullopt;
     }
     return v;
   }
 
   void read_object(const YAML::Node& n, std::size_t index, std::vector<SceneObject>& out) {
-    std::string item = "objects[" + std::to_string(index) + "]";
+    const std::string prefix = "objects[" + std::to_string(index) + "]";
     if (!n.IsMap()) {
-      diag_.add(at(n.Mark()), item, "", "expected a map {name, shape, ...}");
+      diag_.add(at(n.Mark()), "", prefix, "expected a map {name, shape, ...}");
       return;
     }
     SceneObject so;
@@ -118,25 +118,23 @@ class SceneReader {
     ObjectSpawn& s = so.spawn;
     s.id = index;
     s.name = n["name"] ? n["name"].as<std::string>() : "object" + std::to_string(index);
-    item = "object '" + s.name + "'";
+    const std::string item = prefix;
     const std::size_t errors_before = diag_.items().size();
     for (const auto& [key, value] : pairs(n))
       if (std::find(kKeys.begin(), kKeys.end(), key) == kKeys.end())
-        diag_.add(
-            at(value.Mark()), item, key,
+        add(at(value.Mark()), item, key,
             "unknown key" + did_you_mean(key, kKeys) + "; expected one of " + join_names(kKeys));
     if (!n["shape"]) {
-      diag_.add(so.where, item, "shape",
-                "missing; expected one of " + join_names(keys_of(kShapes)));
+      add(so.where, item, "shape", "missing; expected one of " + join_names(keys_of(kShapes)));
       return;
     }
     const std::string shape = n["shape"].as<std::string>();
     if (auto it = kShapes.find(shape); it != kShapes.end()) {
       s.shape = it->second;
     } else {
-      diag_.add(at(n["shape"].Mark()), item, "shape",
-                "unknown object type '" + shape + "'" + did_you_mean(shape, keys_of(kShapes)) +
-                    "; expected one of " + join_names(keys_of(kShapes)));
+      add(at(n["shape"].Mark()), item, "shape",
+          "unknown object type '" + shape + "'" + did_you_mean(shape, keys_of(kShapes)) +
+              "; expected one of " + join_names(keys_of(kShapes)));
       return;
     }
     if (n["motion"]) {
@@ -144,12 +142,12 @@ class SceneReader {
       if (auto it = kMotions.find(motion); it != kMotions.end())
         s.motion = it->second;
       else
-        diag_.add(at(n["motion"].Mark()), item, "motion",
-                  "unknown motion '" + motion + "'" + did_you_mean(motion, keys_of(kMotions)) +
-                      "; expected one of " + join_names(keys_of(kMotions)));
+        add(at(n["motion"].Mark()), item, "motion",
+            "unknown motion '" + motion + "'" + did_you_mean(motion, keys_of(kMotions)) +
+                "; expected one of " + join_names(keys_of(kMotions)));
     }
     auto require = [&](const char* key) -> YAML::Node {
-      if (!n[key]) diag_.add(so.where, item, key, "missing (needed by a " + shape + ")");
+      if (!n[key]) add(so.where, item, key, "missing (needed by a " + shape + ")");
       return n[key];
     };
     switch (s.shape) {
@@ -160,8 +158,7 @@ class SceneReader {
       case ObjectShape::kBox:
         if (auto sz = require("size"); sz)
           if (auto v = vec3(sz, item, "size")) {
-            if ((v->array() <= 0).any())
-              diag_.add(at(sz.Mark()), item, "size", "expected 3 numbers > 0");
+            if ((v->array() <= 0).any()) add(at(sz.Mark()), item, "size", "expected 3 numbers > 0");
             s.size = 0.5 * *v;
           }
         break;
@@ -177,9 +174,9 @@ class SceneReader {
                                  ? fs::path(f.as<std::string>())
                                  : file_.parent_path() / f.as<std::string>();
           if (!fs::exists(p))
-            diag_.add(at(f.Mark()), item, "file",
-                      "mesh file '" + f.as<std::string>() + "' does not exist (resolved to '" +
-                          p.lexically_normal().string() + "')");
+            add(at(f.Mark()), item, "file",
+                "mesh file '" + f.as<std::string>() + "' does not exist (resolved to '" +
+                    p.lexically_normal().string() + "')");
           s.mesh = p.lexically_normal().string();
         }
         s.size = Eigen::Vector3d::Ones();
@@ -210,6 +207,12 @@ class SceneReader {
     if (n["remove_after_s"])
       if (auto v = number(n["remove_after_s"], item, "remove_after_s")) s.remove_after_s = *v;
     if (diag_.items().size() == errors_before) out.push_back(std::move(so));
+  }
+
+  // "file:line:col: key 'objects[2].shape': message".
+  void add(SourceLocation where, const std::string& item, const std::string& key,
+           std::string message) {
+    diag_.add(std::move(where), "", item + "." + key, std::move(message));
   }
 
   fs::path file_;
