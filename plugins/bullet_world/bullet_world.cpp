@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "contact_extraction.hpp"
+#include "contact_history.hpp"
 #include "posture_param.hpp"
 #include "scene_file.hpp"
 #include "somasim/robot/robot_cache.hpp"
@@ -71,6 +72,12 @@ PluginSpec BulletWorld::spec() {
       .defaults(0.0005)
       .range(0, 0.1)
       .describe("contact points closer than this (or penetrating) are reported");
+  s.add_double("contact_history")
+      .unit_is("s")
+      .defaults(0.1)
+      .range(0, 10)
+      .describe("contacts of this recent past are kept in the output's `recent` list, so that "
+                "slower nodes (a 50 Hz skin) see brief impacts");
   s.add_double("spawn_tolerance")
       .unit_is("m")
       .defaults(0.001)
@@ -123,6 +130,7 @@ void BulletWorld::configure(NodeContext& ctx) {
   }
   dt_ = ctx.period_s();
   contact_distance_ = ctx.param<double>("contact_distance");
+  contact_history_ = ctx.param<double>("contact_history");
   spawn_tolerance_ = ctx.param<double>("spawn_tolerance");
   world_radius_ = ctx.param<double>("world_radius");
   limits_ = {ctx.param<double>("max_joint_speed"), ctx.param<double>("max_object_speed"),
@@ -217,6 +225,7 @@ void BulletWorld::publish(double t) {
   robot_->link_poses(link_poses_->poses);
   const Penetration deepest = extract_contacts(physics_->dispatcher(), link_poses_->poses,
                                                *objects_, dt_, contact_distance_, *contacts_);
+  record_contact_history(*contacts_, t, contact_history_);
   max_penetration_ = std::max(max_penetration_, deepest.depth);
   const auto n = static_cast<std::int64_t>(contacts_->points.size());
   contact_points_ += n;

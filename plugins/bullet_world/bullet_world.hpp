@@ -52,6 +52,7 @@ class BulletWorld : public Plugin {
 
   double dt_ = 1e-3;
   double contact_distance_ = 0.0;
+  double contact_history_ = 0.1;  // [s] kept in Contacts::recent
   double spawn_tolerance_ = 0.0;
   double world_radius_ = 0.0;
   BlowupLimits limits_;

@@ -47,9 +47,13 @@ struct Contact {
   double normal_force = 0.0;                             ///< [N], >= 0
 };
 
-/// All contact points of the current step.
+/// Contact points of the current step, and of the recent past for consumers that run slower
+/// than the world (a 50 Hz skin must not miss a 3 ms impact): `recent` holds every point of the
+/// last `history` seconds in time order; consumers process the points newer than the last time
+/// they saw.
 struct Contacts {
   std::vector<Contact> points;
+  std::vector<Contact> recent;
 };
 
 enum class ObjectShape : std::uint8_t { kSphere, kBox, kCylinder, kMesh };
