@@ -45,6 +45,7 @@ struct Contact {
   Eigen::Vector3d point_in_a = Eigen::Vector3d::Zero();  ///< the same point in a's frame [m]
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();     ///< unit, from b towards a, root frame
   double normal_force = 0.0;                             ///< [N], >= 0
+  double time_s = 0.0;                                   ///< sim time of the contact [s]
 };
 
 /// Contact points of the current step, and of the recent past for consumers that run slower
