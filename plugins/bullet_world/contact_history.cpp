@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-namespace somasim::plugins {
+namespace somasim::bullet_world {
 
 void record_contact_history(Contacts& contacts, double t, double horizon) {
   for (Contact& c : contacts.points) c.time_s = t;
@@ -15,4 +15,4 @@ void record_contact_history(Contacts& contacts, double t, double horizon) {
   recent.insert(recent.end(), contacts.points.begin(), contacts.points.end());
 }
 
-}  // namespace somasim::plugins
+}  // namespace somasim::bullet_world
