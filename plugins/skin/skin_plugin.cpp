@@ -236,15 +236,35 @@ void SkinPlugin::apply_contacts(const Contacts& contacts,
     for (int k : parts_on_link_[static_cast<std::size_t>(link)])
       parts_[static_cast<std::size_t>(k)].response->add_contact(point_link, force);
   };
-  for (const Contact& c : contacts.points) {
+  // A world faster than the skin keeps a history: take every point since the last step, so
+  // that brief impacts between two skin samples still press the taxels.
+  const bool use_history = !contacts.recent.empty();
+  const std::vector<Contact>& points = use_history ? contacts.recent : contacts.points;
+  // Forces are averaged over the world steps since the last skin step (the taxels integrate).
+  int steps = 1;
+  if (use_history) {
+    double previous = last_contact_time_;
+    steps = 0;
+    for (const Contact& c : points)
+      if (c.time_s > last_contact_time_ && c.time_s != previous) {
+        ++steps;
+        previous = c.time_s;
+      }
+    steps = std::max(steps, 1);
+  }
+  double newest = last_contact_time_;
+  for (const Contact& c : points) {
+    if (use_history && c.time_s <= last_contact_time_) continue;
+    newest = std::max(newest, c.time_s);
+    const double force = c.normal_force / steps;
     if (!std::isfinite(c.normal_force) || !c.point.allFinite() || !c.point_in_a.allFinite())
       throw RunError(fmt::format("input 'contacts': non-finite contact (links {} / {}, force {})",
                                  c.link_a, c.link_b, c.normal_force));
-    press(c.link_a, c.point_in_a, c.normal_force);
+    press(c.link_a, c.point_in_a, force);
     if (c.link_b >= 0 && c.link_b < static_cast<int>(poses.size()))
-      press(c.link_b, poses[static_cast<std::size_t>(c.link_b)].inverse() * c.point,
-            c.normal_force);
+      press(c.link_b, poses[static_cast<std::size_t>(c.link_b)].inverse() * c.point, force);
   }
+  last_contact_time_ = newest;
 }
 
 void SkinPlugin::step(NodeContext& ctx) {

@@ -46,6 +46,7 @@ class SkinPlugin : public Plugin {
   std::vector<Eigen::Isometry3d> rest_poses_;    // link poses at q = 0 (before any input)
   bool draw_figure_ = true;
   double keep_events_s_ = 2.0;
+  double last_contact_time_ = -1e300;  // newest contact of Contacts::recent already applied [s]
   std::uint64_t next_event_id_ = 1;
 
   const LinkPoses* link_poses_ = nullptr;

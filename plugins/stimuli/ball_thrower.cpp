@@ -43,12 +43,20 @@ PluginSpec BallThrower::spec() {
   s.add_double("ball_mass").unit_is("kg").defaults(0.05).range(1e-4, 100).describe("ball mass");
   s.add_double("gravity").unit_is("m/s^2").defaults(-9.81).range(-100, 100).describe(
       "gravity along the root z axis (must match the world)");
+  s.add_double("skin_margin")
+      .unit_is("m")
+      .defaults(0.01)
+      .range(0, 1)
+      .describe(
+          "a contact counts as on the part's skin within this distance of one of its (virtual) "
+          "taxels");
   s.add_double("event_window")
       .unit_is("s")
       .defaults(0.2)
       .range(0, 10)
       .describe("a skin event this close to the first physical touch counts");
   s.input<SkinTaxels>("taxels", "skin taxel poses (root frame)");
+  s.input<LinkPoses>("link_poses", "robot link poses (start points clear of the robot)");
   s.input<ObjectStates>("objects", "object states from the world");
   s.input<Contacts>("contacts", "physical contacts from the world (ground truth)");
   s.input<ContactEvents>("skin_events", "contact events from the skin");
@@ -64,7 +72,6 @@ void BallThrower::configure(NodeContext& ctx) {
   std::vector<std::string> known;
   for (const auto& patch : model_->skin_patches()) {
     known.push_back(patch.body_part);
-    skin_links_.push_back(patch.link);
   }
   for (const auto& p : parts_)
     if (std::find(known.begin(), known.end(), p) == known.end())
@@ -79,7 +86,9 @@ void BallThrower::configure(NodeContext& ctx) {
   mass_ = ctx.param<double>("ball_mass");
   gravity_ = ctx.param<double>("gravity");
   event_window_ = ctx.param<double>("event_window");
+  skin_margin_ = ctx.param<double>("skin_margin");
   skin_ = &ctx.input<SkinTaxels>("taxels");
+  link_poses_ = &ctx.input<LinkPoses>("link_poses");
   objects_ = &ctx.input<ObjectStates>("objects");
   contacts_ = &ctx.input<Contacts>("contacts");
   events_ = &ctx.input<ContactEvents>("skin_events");
@@ -100,12 +109,19 @@ void BallThrower::launch(NodeContext& ctx) {
   const Eigen::Vector3d n = sp->normals[k].normalized();
   // Aim the ball's centre one radius above the taxel, start within the cone around the normal.
   const Eigen::Vector3d target = sp->positions[k] + radius_ * n;
-  const double cos_t = 1.0 - unit(ctx.rng()) * (1.0 - std::cos(cone_rad_));
-  const double sin_t = std::sqrt(std::max(0.0, 1.0 - cos_t * cos_t));
-  const double phi = 2.0 * M_PI * unit(ctx.rng());
   const Eigen::Vector3d u = n.unitOrthogonal(), v = n.cross(u);
-  const Eigen::Vector3d dir = cos_t * n + sin_t * (std::cos(phi) * u + std::sin(phi) * v);
-  const Eigen::Vector3d start = target + distance_ * dir;
+  Eigen::Vector3d start;
+  for (int attempt = 0;; ++attempt) {
+    const double cos_t = 1.0 - unit(ctx.rng()) * (1.0 - std::cos(cone_rad_));
+    const double sin_t = std::sqrt(std::max(0.0, 1.0 - cos_t * cos_t));
+    const double phi = 2.0 * M_PI * unit(ctx.rng());
+    const Eigen::Vector3d dir = cos_t * n + sin_t * (std::cos(phi) * u + std::sin(phi) * v);
+    start = target + distance_ * dir;
+    if (clear_of_robot(start)) break;
+    if (attempt == 100)
+      throw RunError("no start point clear of the robot for a ball aimed at '" + part +
+                     "' (lower 'distance' or 'cone')");
+  }
   const Eigen::Vector3d g(0, 0, gravity_);
   const double t = flight_time_;
   ObjectSpawn spawn;
@@ -131,19 +147,32 @@ void BallThrower::launch(NodeContext& ctx) {
   ++per_part_thrown_[part];
 }
 
-void BallThrower::observe(double now) {
+void BallThrower::observe() {
   int ball = -1;
   for (std::size_t i = 0; i < objects_->names.size(); ++i)
     if (objects_->names[i] == current_.name) ball = static_cast<int>(i);
+  // Every contact since the last step (the world keeps a short history), not just the last one.
+  const bool use_history = !contacts_->recent.empty();
+  const std::vector<Contact>& points = use_history ? contacts_->recent : contacts_->points;
+  double newest = last_contact_time_;
   if (ball >= 0)
-    for (const auto& c : contacts_->points) {
+    for (const auto& c : points) {
+      if (use_history && c.time_s <= last_contact_time_) continue;
+      newest = std::max(newest, c.time_s);
       const int link = c.object_a == ball ? c.link_b : (c.object_b == ball ? c.link_a : -1);
-      if (link < 0) continue;
-      if (current_.first_touch < 0) current_.first_touch = now;
-      if (link == current_.part_link) current_.touched_part = true;
-      if (std::find(skin_links_.begin(), skin_links_.end(), link) != skin_links_.end())
-        current_.touched_skin_link = true;
+      // A touch presses: points within the contact distance but without force are near misses.
+      if (link < 0 || !(c.normal_force > 0.0)) continue;
+      if (current_.first_touch < 0) current_.first_touch = c.time_s;
+      for (const auto& part : skin_->parts)
+        if (model_->link_index(part.link) == link && near_skin(part.name, c.point))
+          current_.touched_skin = true;
+      if (link == current_.part_link) {
+        current_.touched_part = true;
+        current_.max_force = std::max(current_.max_force, c.normal_force);
+        if (near_skin(current_.part, c.point)) current_.touched_part_skin = true;
+      }
     }
+  last_contact_time_ = newest;
   for (const auto& e : events_->recent) {
     if (e.id <= last_event_id_) continue;
     last_event_id_ = e.id;
@@ -155,10 +184,39 @@ void BallThrower::observe(double now) {
   }
 }
 
-void BallThrower::close_throw() {
+// Conservative: every collision shape is bounded by a sphere around its origin.
+bool BallThrower::clear_of_robot(const Eigen::Vector3d& point) const {
+  const auto& poses = link_poses_->poses;
+  if (poses.size() != static_cast<std::size_t>(model_->num_links())) return true;
+  for (int l = 0; l < model_->num_links(); ++l)
+    for (const auto& g : model_->link(l).collision) {
+      double bound = g.radius;
+      if (g.type == robot::GeometryType::Box) bound = 0.5 * g.size.norm();
+      if (g.type == robot::GeometryType::Cylinder) bound = std::hypot(g.radius, 0.5 * g.length);
+      if (g.type == robot::GeometryType::Capsule) bound = g.radius + 0.5 * g.length;
+      const Eigen::Vector3d centre = poses[static_cast<std::size_t>(l)] * g.origin.translation();
+      if ((point - centre).norm() < bound + radius_ + 0.01) return false;
+    }
+  return true;
+}
+
+bool BallThrower::near_skin(const std::string& part, const Eigen::Vector3d& point) const {
+  for (const auto& p : skin_->parts)
+    if (p.name == part)
+      for (const auto& x : p.positions)
+        if ((x - point).norm() <= skin_margin_) return true;
+  return false;
+}
+
+void BallThrower::close_throw(NodeContext& ctx) {
   active_ = false;
-  if (current_.touched_skin_link) ++hit_skin_;
-  if (current_.touched_part) {
+  ctx.log().debug(
+      "{} at {}: first touch {:.3f} s, part link {}, part skin {}, event {}, max force {:.3f} N",
+      current_.name, current_.part, current_.first_touch, current_.touched_part,
+      current_.touched_part_skin, current_.event_on_part, current_.max_force);
+  if (current_.touched_skin) ++hit_skin_;
+  if (current_.touched_part) ++touched_expected_link_;
+  if (current_.touched_part_skin) {
     ++touched_expected_;
     if (current_.event_on_part) {
       ++hits_on_expected_;
@@ -170,10 +228,10 @@ void BallThrower::close_throw() {
 void BallThrower::step(NodeContext& ctx) {
   const double now = ctx.time_s();
   if (active_) {
-    observe(now);
+    observe();
     // Wait for the world to remove the ball (plus the event window) before the next throw.
     if (now - current_.t_spawn < lifetime_ + event_window_) return;
-    close_throw();
+    close_throw(ctx);
   }
   if (thrown_ >= throws_) {
     ctx.request_stop(std::to_string(thrown_) + " balls thrown");
@@ -183,9 +241,10 @@ void BallThrower::step(NodeContext& ctx) {
 }
 
 void BallThrower::finish(NodeContext& ctx) {
-  if (active_) close_throw();
+  if (active_) close_throw(ctx);
   ctx.report_metric("balls_thrown", thrown_);
   ctx.report_metric("balls_hit_skin", hit_skin_);
+  ctx.report_metric("balls_touched_expected_link", touched_expected_link_);
   ctx.report_metric("balls_touched_expected_part", touched_expected_);
   ctx.report_metric("hits_on_expected_part", hits_on_expected_);
   ctx.report_metric("hits_without_event", touched_expected_ - hits_on_expected_);

@@ -29,28 +29,35 @@ class BallThrower : public Plugin {
     std::string name, part;
     int part_link = -1;
     double t_spawn = 0.0;
-    bool touched_part = false, touched_skin_link = false, event_on_part = false;
+    bool touched_part = false;       // touched the aimed part's link
+    bool touched_part_skin = false;  // ... on its skin (near one of its taxels)
+    bool touched_skin = false;       // touched the skin of any part
+    bool event_on_part = false;
     double first_touch = -1.0;
+    double max_force = 0.0;  // largest normal force on the aimed part's link [N]
   };
   void launch(NodeContext& ctx);
-  void observe(double now);
-  void close_throw();
+  void observe();
+  bool clear_of_robot(const Eigen::Vector3d& point_root) const;
+  bool near_skin(const std::string& part, const Eigen::Vector3d& point_root) const;
+  void close_throw(NodeContext& ctx);
 
   std::shared_ptr<const robot::RobotModel> model_;
   std::vector<std::string> parts_;
   int throws_ = 0;
   double distance_ = 0, cone_rad_ = 0, flight_time_ = 0, lifetime_ = 0, radius_ = 0, mass_ = 0;
-  double gravity_ = -9.81, event_window_ = 0.2;
+  double gravity_ = -9.81, event_window_ = 0.2, skin_margin_ = 0.02;
+  double last_contact_time_ = -1e300;
   const SkinTaxels* skin_ = nullptr;
+  const LinkPoses* link_poses_ = nullptr;
   const ObjectStates* objects_ = nullptr;
   const Contacts* contacts_ = nullptr;
   const ContactEvents* events_ = nullptr;
   ObjectSpawns* spawns_ = nullptr;
-  std::vector<int> skin_links_;  // links carrying skin (any part)
   Throw current_;
   bool active_ = false;
-  int thrown_ = 0, hit_skin_ = 0, touched_expected_ = 0, hits_on_expected_ = 0,
-      wrong_part_events_ = 0;
+  int thrown_ = 0, hit_skin_ = 0, touched_expected_link_ = 0, touched_expected_ = 0;
+  int hits_on_expected_ = 0, wrong_part_events_ = 0;
   std::uint64_t last_event_id_ = 0, next_spawn_id_ = 1;
   std::map<std::string, int> per_part_thrown_, per_part_hits_;
 };
