@@ -1,0 +1,30 @@
+// configs/ball_on_forearm.yaml, shortened: every ball that touches a part's skin (physics
+// ground truth) yields a skin contact event on that part, and on no other part.
+#include <gtest/gtest.h>
+
+#include "experiment_runner.hpp"
+
+using somasim::testing::run_config;
+
+TEST(BallOnForearm, EveryBallTouchingASkinPartYieldsAnEventOnThatPart) {
+  const auto run = run_config("ball_on_forearm", {{"nodes.thrower.params.throws", "8"}});
+  ASSERT_EQ(run.metrics["status"], "completed") << run.metrics["error"];
+  EXPECT_EQ(run.metrics["balls_thrown"], 8);
+  const int touched = run.metrics["balls_touched_expected_part"].get<int>();
+  EXPECT_GE(touched, 2);  // most throws reach the aimed skin (some are blocked by the thumb)
+  EXPECT_EQ(run.metrics["hits_on_expected_part"].get<int>(), touched);
+  EXPECT_EQ(run.metrics["events_on_other_parts"], 0);
+  EXPECT_TRUE(std::filesystem::exists(run.dir / "figures/skin_layout.png"));
+  EXPECT_GT(run.metrics["real_time_factor"].get<double>(), 0.0);
+}
+
+TEST(BallOnForearm, SameSeedSameMetrics) {
+  const std::vector<somasim::Override> shorter = {{"nodes.thrower.params.throws", "3"}};
+  auto a = run_config("ball_on_forearm", shorter, "a").metrics;
+  auto b = run_config("ball_on_forearm", shorter, "b").metrics;
+  for (auto* m : {&a, &b}) {
+    m->erase("wall_time_s");
+    m->erase("real_time_factor");
+  }
+  EXPECT_EQ(a, b);
+}
