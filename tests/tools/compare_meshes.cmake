@@ -1,0 +1,16 @@
+execute_process(COMMAND ${GENERATOR} ${OUT} RESULT_VARIABLE rc OUTPUT_QUIET)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "generate_meshes failed (${rc})")
+endif()
+file(GLOB generated RELATIVE ${OUT} ${OUT}/*.obj)
+if(NOT generated)
+  message(FATAL_ERROR "generate_meshes wrote no .obj file")
+endif()
+foreach(f ${generated})
+  execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files ${OUT}/${f} ${COMMITTED}/${f}
+    RESULT_VARIABLE diff)
+  if(NOT diff EQUAL 0)
+    message(FATAL_ERROR "assets/robots/meshes/${f} differs from the generator's output: rerun "
+                        "build/bin/generate_meshes assets/robots/meshes")
+  endif()
+endforeach()
