@@ -24,6 +24,12 @@ PluginSpec BulletWorld::spec() {
       .describe(
           "initial joint values held by the motors, 'joint: value, ...' in degrees (prismatic: "
           "m); unlisted joints start at 0 clamped into their limits");
+  s.add_string("locked_joints")
+      .defaults(std::string(""))
+      .describe(
+          "joints fixed at their initial value (space- or comma-separated names, or 'all'): "
+          "folded into rigid bodies, no dynamics and no motor; a command on them stops the run. "
+          "With 'all' the robot is static collision geometry (fastest; contacts still reported)");
   s.add_list("gravity")
       .size(3)
       .unit_is("m/s^2")
@@ -76,8 +82,9 @@ PluginSpec BulletWorld::spec() {
       .unit_is("s")
       .defaults(0.1)
       .range(0, 10)
-      .describe("contacts of this recent past are kept in the output's `recent` list, so that "
-                "slower nodes (a 50 Hz skin) see brief impacts");
+      .describe(
+          "contacts of this recent past are kept in the output's `recent` list, so that "
+          "slower nodes (a 50 Hz skin) see brief impacts");
   s.add_double("spawn_tolerance")
       .unit_is("m")
       .defaults(0.001)
@@ -128,6 +135,12 @@ void BulletWorld::configure(NodeContext& ctx) {
   } catch (const InputError& e) {
     ctx.param_error("initial_posture_deg", e.what());
   }
+  std::vector<bool> locked;
+  try {
+    locked = parse_locked_joints(ctx.param<std::string>("locked_joints"), *model_);
+  } catch (const InputError& e) {
+    ctx.param_error("locked_joints", e.what());
+  }
   dt_ = ctx.period_s();
   contact_distance_ = ctx.param<double>("contact_distance");
   contact_history_ = ctx.param<double>("contact_history");
@@ -142,11 +155,11 @@ void BulletWorld::configure(NodeContext& ctx) {
 
   physics_ = std::make_unique<PhysicsWorld>(Eigen::Vector3d(g[0], g[1], g[2]),
                                             ctx.param<int>("solver_iterations"));
-  filter_ = std::make_unique<SelfCollisionFilter>(*model_);
+  filter_ = std::make_unique<SelfCollisionFilter>(*model_, locked);
   physics_->set_pair_filter(filter_.get());
   shapes_ = std::make_unique<ShapeStore>();
   robot_ = std::make_unique<RobotMultiBody>(model_, physics_->world(), *shapes_, q0,
-                                            LinkMaterial{friction, 0.0, restitution});
+                                            LinkMaterial{friction, 0.0, restitution}, locked);
   const MotorGains gains{ctx.param<double>("position_gain"), ctx.param<double>("velocity_gain"),
                          ctx.param<double>("max_torque")};
   motors_ = std::make_unique<JointMotors>(*robot_, physics_->world(), gains, dt_, q0);
@@ -163,7 +176,8 @@ void BulletWorld::configure(NodeContext& ctx) {
     }
     for (const SceneObject& so : objects) {
       const int i = objects_->add(so.spawn, 0.0);
-      const RobotOverlap overlap = deepest_robot_overlap(physics_->world(), objects_->body(i));
+      const RobotOverlap overlap =
+          deepest_robot_overlap(physics_->world(), *robot_, objects_->body(i));
       if (overlap.link >= 0 && overlap.depth > spawn_tolerance_)
         throw InputError(
             fmt::format("{}: object '{}' starts inside the robot: it overlaps link "
@@ -201,7 +215,8 @@ void BulletWorld::spawn_from_port(NodeContext& ctx, double t) {
     } catch (const InputError& e) {
       throw RunError(what + ": " + e.what());
     }
-    const RobotOverlap overlap = deepest_robot_overlap(physics_->world(), objects_->body(i));
+    const RobotOverlap overlap =
+        deepest_robot_overlap(physics_->world(), *robot_, objects_->body(i));
     if (overlap.link >= 0 && overlap.depth > spawn_tolerance_)
       throw RunError(fmt::format("{} starts inside the robot: it overlaps link '{}' by {:.1f} mm",
                                  what, model_->link(overlap.link).name, overlap.depth * 1e3));
@@ -215,6 +230,7 @@ void BulletWorld::step(NodeContext& ctx) {
   if (spawns_) spawn_from_port(ctx, t);
   objects_->remove_expired(t);
   objects_->move_kinematic(t + dt_);
+  motors_->update_limits();
   physics_->step(dt_);
   ++steps_;
   publish(t + dt_);
@@ -223,7 +239,7 @@ void BulletWorld::step(NodeContext& ctx) {
 void BulletWorld::publish(double t) {
   robot_->read_joint_state(*joint_state_);
   robot_->link_poses(link_poses_->poses);
-  const Penetration deepest = extract_contacts(physics_->dispatcher(), link_poses_->poses,
+  const Penetration deepest = extract_contacts(physics_->dispatcher(), *robot_, link_poses_->poses,
                                                *objects_, dt_, contact_distance_, *contacts_);
   record_contact_history(*contacts_, t, contact_history_);
   max_penetration_ = std::max(max_penetration_, deepest.depth);

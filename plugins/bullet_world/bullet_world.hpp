@@ -10,6 +10,10 @@
 /// Motors (see joint_motors.hpp): a position step settles within 2 % in 4/position_gain
 /// (0.1 s at the default 40 /s) while the torque bound is not reached; documented settling time
 /// at the default gains: 0.15 s for steps up to 0.5 rad of any arm joint (tested).
+///
+/// `locked_joints` fixes joints at their initial value: they are folded into rigid bodies (no
+/// dynamics, no motor; commands on them are a RunError); with `all` the robot is static
+/// collision geometry that still reports link poses, a constant joint state and contacts.
 #include <memory>
 #include <set>
 #include <vector>

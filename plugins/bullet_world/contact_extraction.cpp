@@ -33,9 +33,15 @@ void set_side(Contact& c, bool a_side, const BodyTag& tag) {
   int& object = a_side ? c.object_a : c.object_b;
   (tag.kind == BodyKind::kLink ? link : object) = tag.index;
 }
+
+// The tag of a manifold body with a link resolved to the model link of compound child `child`.
+BodyTag resolved(BodyTag tag, const RobotMultiBody& robot, int child) {
+  if (tag.kind == BodyKind::kLink) tag.index = robot.model_link(tag.index, child);
+  return tag;
+}
 }  // namespace
 
-Penetration extract_contacts(btDispatcher& dispatcher,
+Penetration extract_contacts(btDispatcher& dispatcher, const RobotMultiBody& robot,
                              const std::vector<Eigen::Isometry3d>& link_poses,
                              const ObjectManager& objects, double dt, double max_distance,
                              Contacts& out) {
@@ -44,14 +50,16 @@ Penetration extract_contacts(btDispatcher& dispatcher,
   const int num_manifolds = dispatcher.getNumManifolds();
   for (int m = 0; m < num_manifolds; ++m) {
     const btPersistentManifold* manifold = dispatcher.getManifoldByIndexInternal(m);
-    const BodyTag t0 = tag_of(*manifold->getBody0()), t1 = tag_of(*manifold->getBody1());
-    const bool swap = !goes_first(t0, t1);
-    const BodyTag& ta = swap ? t1 : t0;
-    const BodyTag& tb = swap ? t0 : t1;
+    const BodyTag body0 = tag_of(*manifold->getBody0()), body1 = tag_of(*manifold->getBody1());
     for (int p = 0; p < manifold->getNumContacts(); ++p) {
       const btManifoldPoint& pt = manifold->getContactPoint(p);
       const double distance = pt.getDistance();
       if (distance >= max_distance) continue;
+      const BodyTag t0 = resolved(body0, robot, pt.m_index0);
+      const BodyTag t1 = resolved(body1, robot, pt.m_index1);
+      const bool swap = !goes_first(t0, t1);
+      const BodyTag& ta = swap ? t1 : t0;
+      const BodyTag& tb = swap ? t0 : t1;
       if (-distance > deepest.depth) deepest = {-distance, ta, tb};
       Contact c;
       set_side(c, true, ta);
@@ -71,14 +79,17 @@ Penetration extract_contacts(btDispatcher& dispatcher,
 
 namespace {
 struct DeepestLinkCallback : btCollisionWorld::ContactResultCallback {
+  explicit DeepestLinkCallback(const RobotMultiBody& r) : robot(r) {}
+  const RobotMultiBody& robot;
   RobotOverlap result;
   bool needsCollision(btBroadphaseProxy* proxy) const override {
     return tag_of(*static_cast<const btCollisionObject*>(proxy->m_clientObject)).kind ==
            BodyKind::kLink;
   }
-  btScalar addSingleResult(btManifoldPoint& pt, const btCollisionObjectWrapper* w0, int, int,
-                           const btCollisionObjectWrapper* w1, int, int) override {
-    const BodyTag t0 = tag_of(*w0->getCollisionObject()), t1 = tag_of(*w1->getCollisionObject());
+  btScalar addSingleResult(btManifoldPoint& pt, const btCollisionObjectWrapper* w0, int, int index0,
+                           const btCollisionObjectWrapper* w1, int, int index1) override {
+    const BodyTag t0 = resolved(tag_of(*w0->getCollisionObject()), robot, index0);
+    const BodyTag t1 = resolved(tag_of(*w1->getCollisionObject()), robot, index1);
     const BodyTag& link = t0.kind == BodyKind::kLink ? t0 : t1;
     if (link.kind == BodyKind::kLink && -pt.getDistance() > result.depth)
       result = {link.index, -pt.getDistance()};
@@ -87,8 +98,9 @@ struct DeepestLinkCallback : btCollisionWorld::ContactResultCallback {
 };
 }  // namespace
 
-RobotOverlap deepest_robot_overlap(btCollisionWorld& world, btCollisionObject& object) {
-  DeepestLinkCallback callback;
+RobotOverlap deepest_robot_overlap(btCollisionWorld& world, const RobotMultiBody& robot,
+                                   btCollisionObject& object) {
+  DeepestLinkCallback callback(robot);
   callback.m_closestDistanceThreshold = 0;
   world.contactTest(&object, callback);
   return callback.result;

@@ -26,9 +26,10 @@ std::string body_name(const BodyTag& tag, const robot::RobotModel& model,
 
 /// Fills `out` with the manifold points closer than `max_distance` [m] (touching or
 /// penetrating). A link is always side a when one body is a link; otherwise the lower index is.
-/// normal_force = applied impulse / dt [N]. `link_poses`: model link poses of this step.
+/// normal_force = applied impulse / dt [N]. `link_poses`: model link poses of this step. Links
+/// folded into a rigid group are named through the compound child index of the point.
 /// Returns the deepest penetration among all points.
-Penetration extract_contacts(btDispatcher& dispatcher,
+Penetration extract_contacts(btDispatcher& dispatcher, const RobotMultiBody& robot,
                              const std::vector<Eigen::Isometry3d>& link_poses,
                              const ObjectManager& objects, double dt, double max_distance,
                              Contacts& out);
@@ -38,6 +39,7 @@ struct RobotOverlap {
   int link = -1;       ///< -1: no overlap
   double depth = 0.0;  ///< [m]
 };
-RobotOverlap deepest_robot_overlap(btCollisionWorld& world, btCollisionObject& object);
+RobotOverlap deepest_robot_overlap(btCollisionWorld& world, const RobotMultiBody& robot,
+                                   btCollisionObject& object);
 
 }  // namespace somasim::bullet_world

@@ -16,27 +16,50 @@ JointMotors::JointMotors(RobotMultiBody& robot, btMultiBodyDynamicsWorld& world,
   const int n = m.num_dofs();
   mode_.assign(n, JointCommandMode::kPosition);
   position_.assign(n, 0.0);
+  motors_.resize(n);
   for (int d = 0; d < n; ++d) {
     const int link = robot.dof_link(d);
+    if (link < 0) {  // locked
+      mode_[d] = JointCommandMode::kNone;
+      position_[d] = hold[d];
+      continue;
+    }
     auto motor = std::make_unique<btMultiBodyJointMotor>(&robot.multibody(), link, 0.0,
                                                          gains_.max_torque * dt_);
     motor->setErp(1.0);
     world_.addMultiBodyConstraint(motor.get());
-    motors_.push_back(std::move(motor));
+    motors_[d] = std::move(motor);
     const double lo = m.lower_limits()[d], hi = m.upper_limits()[d];
     if (lo < hi) {
       auto limit =
           std::make_unique<btMultiBodyJointLimitConstraint>(&robot.multibody(), link, lo, hi);
-      world_.addMultiBodyConstraint(limit.get());
-      limits_.push_back(std::move(limit));
+      limits_.push_back({d, std::move(limit), false});
     }
     set_position(d, hold[d], 0.0);
+  }
+  update_limits();
+}
+
+void JointMotors::update_limits() {
+  const robot::RobotModel& m = robot_.model();
+  for (Limit& l : limits_) {
+    const double q = robot_.position(l.dof);
+    const double margin = kLimitMargin + 4.0 * std::abs(robot_.velocity(l.dof)) * dt_;
+    const bool near = q - m.lower_limits()[l.dof] < margin || m.upper_limits()[l.dof] - q < margin;
+    if (near == l.active) continue;
+    if (near)
+      world_.addMultiBodyConstraint(l.constraint.get());
+    else
+      world_.removeMultiBodyConstraint(l.constraint.get());
+    l.active = near;
   }
 }
 
 JointMotors::~JointMotors() {
-  for (auto& l : limits_) world_.removeMultiBodyConstraint(l.get());
-  for (auto& m : motors_) world_.removeMultiBodyConstraint(m.get());
+  for (auto& l : limits_)
+    if (l.active) world_.removeMultiBodyConstraint(l.constraint.get());
+  for (auto& m : motors_)
+    if (m) world_.removeMultiBodyConstraint(m.get());
 }
 
 void JointMotors::set_position(int dof, double q, double v_feed_forward) {
@@ -80,6 +103,11 @@ void JointMotors::apply(const JointCommand& c, double t) {
                                  m.joint(m.dof_joint(dof)).name, what, v));
     };
     const double v = has_velocity ? c.velocity[dof] : 0.0;
+    if (c.mode[d] != JointCommandMode::kNone && robot_.locked(dof))
+      throw RunError(fmt::format(
+          "t = {:.3f} s: joint command for '{}': the joint is locked (param locked_joints); "
+          "send kNone for it",
+          t, m.joint(m.dof_joint(dof)).name));
     switch (c.mode[d]) {
       case JointCommandMode::kNone:
         break;

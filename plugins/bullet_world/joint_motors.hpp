@@ -10,7 +10,13 @@
 /// position_gain = 40 /s the error falls below 2 % after 4/40 = 0.1 s (the documented settling
 /// time is 0.15 s, which also covers the saturated start of large steps; see bullet_world.hpp).
 /// Position targets are clamped into the joint limits; the limits themselves are Bullet
-/// btMultiBodyJointLimitConstraints.
+/// btMultiBodyJointLimitConstraints, in the world only while their joint is near a limit (within
+/// kLimitMargin + 4·|v|·dt): far from it their (speculative) rows apply no impulse and would only
+/// cost solver time.
+///
+/// Locked joints (`locked_joints`, folded into rigid bodies) have no motor: any command on them
+/// other than kNone is a RunError naming the joint, so that a controller believing it moves a
+/// locked joint fails loudly instead of silently doing nothing.
 #include <memory>
 #include <vector>
 
@@ -21,6 +27,9 @@
 #include "somasim/robot_ports.hpp"
 
 namespace somasim::bullet_world {
+
+/// Distance to a joint limit [rad] (prismatic: [m]) below which its constraint is active.
+inline constexpr double kLimitMargin = 0.05;
 
 struct MotorGains {
   double position_gain = 40.0;  ///< [1/s]
@@ -37,9 +46,13 @@ class JointMotors {
   JointMotors(const JointMotors&) = delete;
   JointMotors& operator=(const JointMotors&) = delete;
 
+  /// Adds the limit constraints of joints near a limit to the world and removes the others;
+  /// call before each step.
+  void update_limits();
+
   /// Applies a command. Dofs with mode kNone keep their previous target; an empty command (no
   /// modes yet) changes nothing. RunError (naming `t` [s] and the joint) for non-finite values
-  /// or vectors of the wrong size.
+  /// or vectors of the wrong size, and for commands on locked joints.
   void apply(const JointCommand& command, double t);
 
   JointCommandMode mode(int dof) const { return mode_[dof]; }
@@ -54,7 +67,12 @@ class JointMotors {
   MotorGains gains_;
   double dt_;
   std::vector<std::unique_ptr<btMultiBodyJointMotor>> motors_;
-  std::vector<std::unique_ptr<btMultiBodyJointLimitConstraint>> limits_;
+  struct Limit {
+    int dof = -1;
+    std::unique_ptr<btMultiBodyJointLimitConstraint> constraint;
+    bool active = false;  ///< in the world
+  };
+  std::vector<Limit> limits_;
   std::vector<JointCommandMode> mode_;
   std::vector<double> position_;
 };

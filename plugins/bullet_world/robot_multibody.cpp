@@ -9,10 +9,32 @@ namespace somasim::bullet_world {
 namespace {
 
 struct BodyFrame {
-  Eigen::Isometry3d in_link = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d in_rep = Eigen::Isometry3d::Identity();
   double mass = kFrameLinkMass;
   Eigen::Vector3d principal_inertia = Eigen::Vector3d::Constant(kMinPrincipalInertia);
 };
+
+// Mass, centre of mass and inertia (about it) of a group's links, in the representative's frame.
+robot::Inertial group_inertial(const robot::RobotModel& model, const RigidGroups& groups, int rep) {
+  robot::Inertial sum;
+  for (int i = rep; i < model.num_links(); ++i) {
+    const robot::Inertial& in = model.link(i).inertial;
+    if (groups.rep[i] != rep || in.mass <= 0.0) continue;
+    sum.com += in.mass * (groups.in_rep[i] * in.com);
+    sum.mass += in.mass;
+  }
+  if (sum.mass <= 0.0) return sum;
+  sum.com /= sum.mass;
+  for (int i = rep; i < model.num_links(); ++i) {
+    const robot::Inertial& in = model.link(i).inertial;
+    if (groups.rep[i] != rep || in.mass <= 0.0) continue;
+    const Eigen::Matrix3d r = groups.in_rep[i].linear();
+    const Eigen::Vector3d d = groups.in_rep[i] * in.com - sum.com;
+    sum.inertia += r * in.inertia * r.transpose() +
+                   in.mass * (d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose());
+  }
+  return sum;
+}
 
 // Centre of mass with principal axes (a proper rotation), the diagonal inertia and the mass.
 BodyFrame body_frame(const robot::Inertial& inertial) {
@@ -22,8 +44,8 @@ BodyFrame body_frame(const robot::Inertial& inertial) {
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(inertial.inertia);
   Eigen::Matrix3d axes = eig.eigenvectors();
   if (axes.determinant() < 0) axes.col(2) = -axes.col(2);
-  f.in_link.linear() = axes;
-  f.in_link.translation() = inertial.com;
+  f.in_rep.linear() = axes;
+  f.in_rep.translation() = inertial.com;
   f.principal_inertia = eig.eigenvalues().cwiseMax(kMinPrincipalInertia);
   return f;
 }
@@ -39,111 +61,139 @@ robot::Geometry frame_link_placeholder() {
 
 RobotMultiBody::RobotMultiBody(std::shared_ptr<const robot::RobotModel> model,
                                btMultiBodyDynamicsWorld& world, ShapeStore& shapes,
-                               const Eigen::VectorXd& q, const LinkMaterial& material)
-    : model_(std::move(model)), world_(world) {
+                               const Eigen::VectorXd& q, const LinkMaterial& material,
+                               const std::vector<bool>& locked)
+    : model_(std::move(model)), world_(world), groups_(*model_, locked, q), q_locked_(q) {
   const robot::RobotModel& m = *model_;
-  const int n = m.num_links();
-  std::vector<BodyFrame> frames(n);
-  for (int i = 0; i < n; ++i) frames[i] = body_frame(m.link(i).inertial);
-  body_in_link_.resize(n);
-  for (int i = 0; i < n; ++i) body_in_link_[i] = frames[i].in_link;
-
-  multibody_ =
-      std::make_unique<btMultiBody>(n - 1, frames[0].mass, to_bt(frames[0].principal_inertia),
-                                    /*fixedBase=*/true, /*canSleep=*/false);
-  const Eigen::Isometry3d& base = frames[0].in_link;
-  multibody_->setBasePos(to_bt(Eigen::Vector3d(base.translation())));
-  multibody_->setWorldToBaseRot(to_bt_quat(base.linear().transpose()));
+  const std::vector<int>& reps = groups_.representatives;
+  const int nb = static_cast<int>(reps.size());
+  std::vector<BodyFrame> frames(nb);
+  body_in_rep_.resize(nb);
+  for (int b = 0; b < nb; ++b) {
+    frames[b] = body_frame(group_inertial(m, groups_, reps[b]));
+    body_in_rep_[b] = frames[b].in_rep;
+  }
 
   dof_link_.assign(m.num_dofs(), -1);
-  for (int i = 1; i < n; ++i) {
-    const robot::Link& link = m.link(i);
-    const robot::Joint& j = m.joint(link.parent_joint);
-    const Eigen::Isometry3d& cp = frames[link.parent_link].in_link;
-    const Eigen::Isometry3d& cc = frames[i].in_link;
-    // Child body frame in the frame after `pre · M(q)`, and its rotation.
-    const Eigen::Matrix3d rot_post_body = j.post.linear() * cc.linear();
-    const Eigen::Vector3d pivot_to_com =
-        rot_post_body.transpose() * (j.post.translation() + j.post.linear() * cc.translation());
-    const Eigen::Vector3d axis = rot_post_body.transpose() * j.axis;
-    Eigen::Matrix3d pre_rot = j.pre.linear();
-    Eigen::Vector3d pivot = j.pre.translation();
-    if (j.type == robot::JointType::Revolute)
-      pre_rot = pre_rot * Eigen::AngleAxisd(j.offset, j.axis).toRotationMatrix();
-    else if (j.type == robot::JointType::Prismatic)
-      pivot += j.pre.linear() * (j.offset * j.axis);
-    // Orientation of the child body frame in the parent body frame at q = 0.
-    const Eigen::Matrix3d child_in_parent = cp.linear().transpose() * pre_rot * rot_post_body;
-    const btQuaternion parent_to_this = to_bt_quat(child_in_parent.transpose());
-    const btVector3 com_to_pivot =
-        to_bt(Eigen::Vector3d(cp.linear().transpose() * (pivot - cp.translation())));
-    const btVector3 inertia = to_bt(frames[i].principal_inertia);
-    const int parent = link.parent_link - 1;
-    switch (j.type) {
-      case robot::JointType::Revolute:
-        multibody_->setupRevolute(i - 1, frames[i].mass, inertia, parent, parent_to_this,
+  if (nb > 1) {
+    multibody_ =
+        std::make_unique<btMultiBody>(nb - 1, frames[0].mass, to_bt(frames[0].principal_inertia),
+                                      /*fixedBase=*/true, /*canSleep=*/false);
+    const Eigen::Isometry3d& base = frames[0].in_rep;
+    multibody_->setBasePos(to_bt(Eigen::Vector3d(base.translation())));
+    multibody_->setWorldToBaseRot(to_bt_quat(base.linear().transpose()));
+    for (int b = 1; b < nb; ++b) {
+      const robot::Link& link = m.link(reps[b]);
+      const robot::Joint& j = m.joint(link.parent_joint);
+      // The joint's parent link may be folded: express `pre` in the parent representative frame.
+      const int parent_rep = groups_.rep[link.parent_link];
+      const int parent_body = groups_.body_of_rep[parent_rep];
+      const Eigen::Isometry3d pre = groups_.in_rep[link.parent_link] * j.pre;
+      const Eigen::Isometry3d& cp = frames[parent_body].in_rep;
+      const Eigen::Isometry3d& cc = frames[b].in_rep;
+      // Child body frame in the frame after `pre · M(q)`, and its rotation.
+      const Eigen::Matrix3d rot_post_body = j.post.linear() * cc.linear();
+      const Eigen::Vector3d pivot_to_com =
+          rot_post_body.transpose() * (j.post.translation() + j.post.linear() * cc.translation());
+      const Eigen::Vector3d axis = rot_post_body.transpose() * j.axis;
+      Eigen::Matrix3d pre_rot = pre.linear();
+      Eigen::Vector3d pivot = pre.translation();
+      if (j.type == robot::JointType::Revolute)
+        pre_rot = pre_rot * Eigen::AngleAxisd(j.offset, j.axis).toRotationMatrix();
+      else if (j.type == robot::JointType::Prismatic)
+        pivot += pre.linear() * (j.offset * j.axis);
+      // Orientation of the child body frame in the parent body frame at q = 0.
+      const Eigen::Matrix3d child_in_parent = cp.linear().transpose() * pre_rot * rot_post_body;
+      const btQuaternion parent_to_this = to_bt_quat(child_in_parent.transpose());
+      const btVector3 com_to_pivot =
+          to_bt(Eigen::Vector3d(cp.linear().transpose() * (pivot - cp.translation())));
+      const btVector3 inertia = to_bt(frames[b].principal_inertia);
+      if (j.type == robot::JointType::Revolute)
+        multibody_->setupRevolute(b - 1, frames[b].mass, inertia, parent_body - 1, parent_to_this,
                                   to_bt(axis), com_to_pivot, to_bt(pivot_to_com), false);
-        break;
-      case robot::JointType::Prismatic:
-        multibody_->setupPrismatic(i - 1, frames[i].mass, inertia, parent, parent_to_this,
+      else  // representatives are only reached through unlocked movable joints
+        multibody_->setupPrismatic(b - 1, frames[b].mass, inertia, parent_body - 1, parent_to_this,
                                    to_bt(axis), com_to_pivot, to_bt(pivot_to_com), false);
-        break;
-      case robot::JointType::Fixed:
-        multibody_->setupFixed(i - 1, frames[i].mass, inertia, parent, parent_to_this, com_to_pivot,
-                               to_bt(pivot_to_com), false);
-        break;
+      dof_link_[j.dof] = b - 1;
     }
-    if (j.dof >= 0) dof_link_[j.dof] = i - 1;
+    multibody_->finalizeMultiDof();
+    multibody_->setHasSelfCollision(true);  // pairs are filtered by SelfCollisionFilter
+    multibody_->setLinearDamping(0.0);
+    multibody_->setAngularDamping(0.0);
+    multibody_->setUseGyroTerm(true);
+    for (int d = 0; d < m.num_dofs(); ++d) {
+      if (dof_link_[d] < 0) continue;
+      multibody_->setJointPos(dof_link_[d], q[d]);
+      multibody_->setJointVel(dof_link_[d], 0.0);
+    }
+    world_.addMultiBody(multibody_.get());
   }
-  multibody_->finalizeMultiDof();
-  multibody_->setHasSelfCollision(true);  // pairs are filtered by SelfCollisionFilter
-  multibody_->setLinearDamping(0.0);
-  multibody_->setAngularDamping(0.0);
-  multibody_->setUseGyroTerm(true);
-  for (int d = 0; d < m.num_dofs(); ++d) {
-    multibody_->setJointPos(dof_link_[d], q[d]);
-    multibody_->setJointVel(dof_link_[d], 0.0);
-  }
-  world_.addMultiBody(multibody_.get());
 
-  colliders_.resize(n);
-  for (int i = 0; i < n; ++i) {
-    auto col = std::make_unique<btMultiBodyLinkCollider>(multibody_.get(), i - 1);
-    const bool has_geometry = !m.link(i).collision.empty();
+  child_link_.resize(m.num_links());
+  colliders_.resize(nb);
+  for (int b = 0; b < nb; ++b) {
+    const int r = reps[b];
+    // The group's geometry in the representative's frame; child k belongs to child_link_[r][k].
+    std::vector<robot::Geometry> geometry;
+    for (int i = r; i < m.num_links(); ++i) {
+      if (groups_.rep[i] != r) continue;
+      for (robot::Geometry g : m.link(i).collision) {
+        g.origin = groups_.in_rep[i] * g.origin;
+        geometry.push_back(g);
+        child_link_[r].push_back(i);
+      }
+    }
+    const bool has_geometry = !geometry.empty();
+    std::unique_ptr<btCollisionObject> col;
+    if (multibody_)
+      col = std::make_unique<btMultiBodyLinkCollider>(multibody_.get(), b - 1);
+    else
+      col = std::make_unique<btCollisionObject>();
     if (has_geometry) {
-      col->setCollisionShape(shapes.make_compound(m.link(i).collision, frames[i].in_link.inverse(),
-                                                  MeshUse::kConvexHull));
-      set_tag(*col, {BodyKind::kLink, i, /*immovable=*/i == 0});
+      col->setCollisionShape(
+          shapes.make_compound(geometry, frames[b].in_rep.inverse(), MeshUse::kConvexHull));
+      set_tag(*col, {BodyKind::kLink, r, /*immovable=*/b == 0});
     } else {
-      // Geometry-less frame links still need a collider that never collides: Bullet assigns a
+      // Geometry-less bodies still need a collider that never collides: Bullet assigns a
       // multibody constraint (a motor) to a simulation island through the colliders of its two
       // links, and a constraint without an island is silently never solved.
       col->setCollisionShape(shapes.make(frame_link_placeholder(), MeshUse::kConvexHull));
-      set_tag(*col, {BodyKind::kNone, i, false});
+      set_tag(*col, {BodyKind::kNone, r, false});
     }
     col->setFriction(material.friction);
     col->setRollingFriction(material.rolling_friction);
     col->setRestitution(material.restitution);
+    if (!multibody_) {
+      // The whole robot as static geometry at its (constant) pose.
+      col->setCollisionFlags(col->getCollisionFlags() | btCollisionObject::CF_STATIC_OBJECT);
+      col->setWorldTransform(to_bt(frames[0].in_rep));
+    }
     if (has_geometry)
       world_.addCollisionObject(col.get(), btBroadphaseProxy::DefaultFilter,
                                 btBroadphaseProxy::AllFilter);
     else
       world_.addCollisionObject(col.get(), /*group=*/0, /*mask=*/0);
-    if (i == 0)
-      multibody_->setBaseCollider(col.get());
-    else
-      multibody_->getLink(i - 1).m_collider = col.get();
-    colliders_[i] = std::move(col);
+    if (multibody_) {
+      auto* link_col = static_cast<btMultiBodyLinkCollider*>(col.get());
+      if (b == 0)
+        multibody_->setBaseCollider(link_col);
+      else
+        multibody_->getLink(b - 1).m_collider = link_col;
+    }
+    colliders_[b] = std::move(col);
   }
-  btAlignedObjectArray<btQuaternion> world_to_local;
-  btAlignedObjectArray<btVector3> local_origin;
-  multibody_->updateCollisionObjectWorldTransforms(world_to_local, local_origin);
+  if (multibody_) {
+    btAlignedObjectArray<btQuaternion> world_to_local;
+    btAlignedObjectArray<btVector3> local_origin;
+    multibody_->updateCollisionObjectWorldTransforms(world_to_local, local_origin);
+  }
+  rep_pose_.assign(nb, Eigen::Isometry3d::Identity());
 }
 
 RobotMultiBody::~RobotMultiBody() {
   for (auto& col : colliders_)
     if (col) world_.removeCollisionObject(col.get());
-  world_.removeMultiBody(multibody_.get());
+  if (multibody_) world_.removeMultiBody(multibody_.get());
 }
 
 void RobotMultiBody::read_joint_state(JointState& state) const {
@@ -151,28 +201,37 @@ void RobotMultiBody::read_joint_state(JointState& state) const {
   state.position.resize(n);
   state.velocity.resize(n);
   for (int d = 0; d < n; ++d) {
-    state.position[d] = multibody_->getJointPos(dof_link_[d]);
-    state.velocity[d] = multibody_->getJointVel(dof_link_[d]);
+    state.position[d] = position(d);
+    state.velocity[d] = velocity(d);
   }
 }
 
 void RobotMultiBody::link_poses(std::vector<Eigen::Isometry3d>& poses) const {
-  // Same recursion as btMultiBody::updateCollisionObjectWorldTransforms.
-  const int nl = multibody_->getNumLinks();
-  world_to_local_.resize(nl + 1);
-  local_origin_.resize(nl + 1);
-  world_to_local_[0] = multibody_->getWorldToBaseRot();
-  local_origin_[0] = multibody_->getBasePos();
-  for (int k = 0; k < nl; ++k) {
-    const int parent = multibody_->getParent(k);
-    world_to_local_[k + 1] = multibody_->getParentToLocalRot(k) * world_to_local_[parent + 1];
-    local_origin_[k + 1] = local_origin_[parent + 1] +
-                           quatRotate(world_to_local_[k + 1].inverse(), multibody_->getRVector(k));
-  }
-  poses.resize(nl + 1);
-  for (int i = 0; i <= nl; ++i) {
-    const btTransform body(world_to_local_[i].inverse(), local_origin_[i]);
-    poses[i] = to_eigen(body) * body_in_link_[i].inverse();
+  if (multibody_) {
+    // Same recursion as btMultiBody::updateCollisionObjectWorldTransforms.
+    const int nl = multibody_->getNumLinks();
+    world_to_local_.resize(nl + 1);
+    local_origin_.resize(nl + 1);
+    world_to_local_[0] = multibody_->getWorldToBaseRot();
+    local_origin_[0] = multibody_->getBasePos();
+    for (int k = 0; k < nl; ++k) {
+      const int parent = multibody_->getParent(k);
+      world_to_local_[k + 1] = multibody_->getParentToLocalRot(k) * world_to_local_[parent + 1];
+      local_origin_[k + 1] =
+          local_origin_[parent + 1] +
+          quatRotate(world_to_local_[k + 1].inverse(), multibody_->getRVector(k));
+    }
+    for (int b = 0; b <= nl; ++b) {
+      const btTransform body(world_to_local_[b].inverse(), local_origin_[b]);
+      rep_pose_[b] = to_eigen(body) * body_in_rep_[b].inverse();
+    }
+  }  // else: static robot, the root group at the identity
+  const int n = model_->num_links();
+  poses.resize(n);
+  for (int i = 0; i < n; ++i) {
+    const int r = groups_.rep[i];
+    const Eigen::Isometry3d& rep_pose = rep_pose_[groups_.body_of_rep[r]];
+    poses[i] = r == i ? rep_pose : rep_pose * groups_.in_rep[i];
   }
 }
 

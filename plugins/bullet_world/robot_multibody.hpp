@@ -1,14 +1,20 @@
 #pragma once
 /// @file
-/// The robot model as a Bullet btMultiBody with a fixed base: one Bullet link per model link
-/// (model link i ↔ Bullet link i − 1; the root is the base), joint types, axes, offsets and
-/// origins taken from the model, collision shapes from each link's collision geometry, masses and
-/// inertias from the model.
+/// The robot model in Bullet: a btMultiBody with a fixed base and one Bullet link per unlocked
+/// dof. Links joined by fixed joints, and by joints locked at their initial value
+/// (`locked_joints`), are folded into the body of their rigid group (rigid_groups.hpp): masses
+/// and inertias are combined, collision shapes go into the group's btCompoundShape at their
+/// fixed transforms. With every dof locked (or none in the model) there is no multibody at all:
+/// the robot is one static collision object.
 ///
-/// Frames: each Bullet link frame sits at the link's centre of mass with its principal axes of
-/// inertia (Bullet needs a diagonal inertia); `body_in_link` keeps that frame relative to the
-/// model's link frame, so link poses are reported in the model's convention. The world frame is
-/// the model's root frame.
+/// Frames: each Bullet body frame sits at its group's centre of mass with its principal axes of
+/// inertia (Bullet needs a diagonal inertia); `body_in_rep` keeps that frame relative to the
+/// group representative's link frame, so link poses are reported in the model's convention
+/// (folded links: representative pose × constant transform). The world frame is the model's
+/// root frame.
+///
+/// Collision objects carry a BodyTag{kLink, representative link}; contacts name the model link
+/// through the compound child index (model_link()).
 #include <memory>
 #include <vector>
 
@@ -19,6 +25,7 @@
 #include <Eigen/Geometry>
 
 #include "collision_shapes.hpp"
+#include "rigid_groups.hpp"
 #include "somasim/robot/robot_model.hpp"
 #include "somasim/robot_ports.hpp"
 
@@ -31,45 +38,65 @@ struct LinkMaterial {
   double restitution = 0.0;
 };
 
-/// Mass and inertia given to massless frame links (Featherstone needs positive values).
+/// Mass and inertia given to massless bodies (Featherstone needs positive values).
 inline constexpr double kFrameLinkMass = 0.02;        ///< [kg]
 inline constexpr double kMinPrincipalInertia = 1e-5;  ///< [kg·m²]
 
 class RobotMultiBody {
  public:
-  /// Builds the multibody at joint values `q` (model dof order) and adds it to `world`.
+  /// Builds the robot at joint values `q` (model dof order) and adds it to `world`. `locked`:
+  /// per dof, true = fixed at q (empty: none locked).
   RobotMultiBody(std::shared_ptr<const robot::RobotModel> model, btMultiBodyDynamicsWorld& world,
-                 ShapeStore& shapes, const Eigen::VectorXd& q, const LinkMaterial& material);
+                 ShapeStore& shapes, const Eigen::VectorXd& q, const LinkMaterial& material,
+                 const std::vector<bool>& locked = {});
   ~RobotMultiBody();
   RobotMultiBody(const RobotMultiBody&) = delete;
   RobotMultiBody& operator=(const RobotMultiBody&) = delete;
 
   const robot::RobotModel& model() const { return *model_; }
+  const RigidGroups& groups() const { return groups_; }
+  /// False when every dof is locked: no multibody, the robot is static geometry.
+  bool has_multibody() const { return multibody_ != nullptr; }
   btMultiBody& multibody() { return *multibody_; }
   const btMultiBody& multibody() const { return *multibody_; }
-  /// Bullet link index of a dof.
+  /// Bullet link index of a dof; -1 for locked dofs.
   int dof_link(int dof) const { return dof_link_[dof]; }
+  bool locked(int dof) const { return dof_link_[dof] < 0; }
 
-  /// Joint values/velocities (model dof order) [rad], [rad/s].
-  double position(int dof) const { return multibody_->getJointPos(dof_link_[dof]); }
-  double velocity(int dof) const { return multibody_->getJointVel(dof_link_[dof]); }
+  /// Joint values/velocities (model dof order) [rad], [rad/s]; locked dofs: their fixed value, 0.
+  double position(int dof) const {
+    return dof_link_[dof] < 0 ? q_locked_[dof] : multibody_->getJointPos(dof_link_[dof]);
+  }
+  double velocity(int dof) const {
+    return dof_link_[dof] < 0 ? 0.0 : multibody_->getJointVel(dof_link_[dof]);
+  }
   void read_joint_state(JointState& state) const;
 
   /// Poses of all model links in the root frame (model link frames), in link order.
   void link_poses(std::vector<Eigen::Isometry3d>& poses) const;
 
-  /// Centre-of-mass frame of a model link, relative to the link frame.
-  const Eigen::Isometry3d& body_in_link(int link) const { return body_in_link_[link]; }
+  /// The model link of child `child_index` of the collision compound of the group represented by
+  /// `rep_link` (a BodyTag index); `rep_link` itself when the index is out of range.
+  int model_link(int rep_link, int child_index) const {
+    const std::vector<int>& children = child_link_[rep_link];
+    return child_index >= 0 && child_index < static_cast<int>(children.size())
+               ? children[child_index]
+               : rep_link;
+  }
 
  private:
   std::shared_ptr<const robot::RobotModel> model_;
   btMultiBodyDynamicsWorld& world_;
-  std::vector<Eigen::Isometry3d> body_in_link_;
+  RigidGroups groups_;
+  Eigen::VectorXd q_locked_;
+  std::vector<Eigen::Isometry3d> body_in_rep_;  ///< per body (groups_.representatives order)
   std::vector<int> dof_link_;
+  std::vector<std::vector<int>> child_link_;  ///< per model link (representatives only)
   std::unique_ptr<btMultiBody> multibody_;
-  std::vector<std::unique_ptr<btMultiBodyLinkCollider>> colliders_;  ///< per model link
+  std::vector<std::unique_ptr<btCollisionObject>> colliders_;  ///< per body
   mutable std::vector<btQuaternion> world_to_local_;
   mutable std::vector<btVector3> local_origin_;
+  mutable std::vector<Eigen::Isometry3d> rep_pose_;  ///< per body
 };
 
 }  // namespace somasim::bullet_world

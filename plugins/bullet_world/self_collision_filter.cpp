@@ -6,15 +6,21 @@
 
 namespace somasim::bullet_world {
 
-SelfCollisionFilter::SelfCollisionFilter(const robot::RobotModel& model) {
+SelfCollisionFilter::SelfCollisionFilter(const robot::RobotModel& model,
+                                         const std::vector<bool>& locked) {
   const int n = model.num_links();
-  // Rigid group of each link: the link reached by walking up through fixed joints.
+  // Rigid group of each link: the link reached by walking up through fixed or locked joints
+  // (the representative of rigid_groups.hpp).
+  auto rigid = [&](int link) {
+    const int j = model.link(link).parent_joint;
+    if (j < 0) return false;
+    const int dof = model.joint(j).dof;
+    return dof < 0 || (!locked.empty() && locked[dof]);
+  };
   std::vector<int> group(n);
   for (int i = 0; i < n; ++i) {
     int g = i;
-    while (model.link(g).parent_joint >= 0 &&
-           model.joint(model.link(g).parent_joint).type == robot::JointType::Fixed)
-      g = model.link(g).parent_link;
+    while (rigid(g)) g = model.link(g).parent_link;
     group[i] = g;
   }
   std::vector<bool> group_has_geometry(n, false);

@@ -4,11 +4,11 @@
 /// except adjacent ones; immovable bodies (fixed base, static and kinematic objects) never
 /// collide with each other.
 ///
-/// Adjacent links: links joined by fixed joints form one rigid group (never tested against each
-/// other); a group is adjacent to its nearest ancestor group that has collision geometry (joints
-/// through geometry-less frame links, e.g. the DH chains' intermediate links, do not separate
-/// them). So the forearm and the upper arm touching at the elbow are filtered, while the two
-/// arms, or a hand and the chest, collide.
+/// Adjacent links: links joined by fixed (or locked) joints form one rigid group (never tested
+/// against each other); a group is adjacent to its nearest ancestor group that has collision
+/// geometry (joints through geometry-less frame links, e.g. the DH chains' intermediate links, do
+/// not separate them). So the forearm and the upper arm touching at the elbow are filtered, while
+/// the two arms, or a hand and the chest, collide.
 #include <vector>
 
 #include <BulletCollision/BroadphaseCollision/btOverlappingPairCache.h>
@@ -19,7 +19,9 @@ namespace somasim::bullet_world {
 
 class SelfCollisionFilter : public btOverlapFilterCallback {
  public:
-  explicit SelfCollisionFilter(const robot::RobotModel& model);
+  /// `locked`: per dof, joints locked at their initial value (empty: none).
+  explicit SelfCollisionFilter(const robot::RobotModel& model,
+                               const std::vector<bool>& locked = {});
 
   /// True when links `a` and `b` (model indices) are never tested against each other.
   bool adjacent(int a, int b) const { return adjacent_[a][b]; }

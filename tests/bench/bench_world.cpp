@@ -1,93 +1,120 @@
-// bullet_world at 1 kHz: the iCub holding its posture, a static table with four balls resting on
-// it and one on the robot's right forearm (double-precision Bullet).
-//   BM_WorldPlugin: one scheduler tick of the plugin (commands, physics, joint state, link poses,
-//                   contacts, object states, blow-up checks) through the harness.
-//   BM_RawBulletStep (baseline): btMultiBodyDynamicsWorld::stepSimulation of the same scene
-//                   (same robot, motors, filter and objects), nothing else.
-// items_per_second = physics steps per second; real time factor = steps/s / 1000.
+// bullet_world at 1 kHz, the ball_on_forearm scene: the iCub holding a posture while one ball at a
+// time (0.4 s lifetime, a new one every 0.4 s) is thrown at its left forearm (double-precision
+// Bullet).
+//   BM_WorldPlugin/L: one scheduler tick of the plugin (commands, physics, joint state, link
+//                     poses, contacts, object states, blow-up checks) through the harness.
+//   BM_RawBulletStep/L (baseline): the same scene (same robot, motors, filter and ball) stepped
+//                     with btMultiBodyDynamicsWorld::stepSimulation, the ball spawns and the
+//                     limit-constraint switching only.
+// L = 0: every joint held by its motor; L = 1: `locked_joints: all` (the robot as static
+// geometry). items_per_second = physics steps per second; real time factor = steps/s / 1000.
+// Define SOMASIM_BENCH_NO_LOCKED to build the L = 0 cases against a version without locking.
 #include <benchmark/benchmark.h>
-#include <unistd.h>
-
-#include <filesystem>
-#include <fstream>
 
 #include "bullet_world.hpp"
 #include "posture_param.hpp"
+#include "somasim/robot/kinematics.hpp"
 #include "somasim/robot/robot_cache.hpp"
 #include "somasim/testing/harness.hpp"
 
 namespace {
-namespace fs = std::filesystem;
 using namespace somasim::bullet_world;
 
 const std::string kRobot = SOMASIM_SOURCE_DIR "/assets/robots/icub_v1.yaml";
-const std::string kPosture = "r_shoulder_roll: 20, l_shoulder_roll: 20, r_elbow: 20, l_elbow: 20";
+// The posture of configs/ball_on_forearm.yaml.
+const std::string kPosture =
+    "l_shoulder_pitch: -40, l_shoulder_roll: 40, l_shoulder_yaw: 10, l_elbow: 60, "
+    "r_shoulder_pitch: -40, r_shoulder_roll: 40, r_shoulder_yaw: 10, r_elbow: 60";
+constexpr int kThrowPeriod = 400;  // [steps]
+constexpr double kFlightTime = 0.3;
 
-std::vector<somasim::ObjectSpawn> scene_objects() {
-  std::vector<somasim::ObjectSpawn> objects;
-  somasim::ObjectSpawn table;
-  table.name = "table";
-  table.shape = somasim::ObjectShape::kBox;
-  table.size = Eigen::Vector3d(0.15, 0.3, 0.02);
-  table.motion = somasim::ObjectMotion::kStatic;
-  table.pose.translation() = Eigen::Vector3d(-0.45, 0, -0.1);
-  objects.push_back(table);
-  for (int i = 0; i < 4; ++i) {
-    somasim::ObjectSpawn ball;
-    ball.id = i + 1;
-    ball.name = "ball" + std::to_string(i);
-    ball.size.x() = 0.03;
-    ball.mass = 0.05;
-    ball.pose.translation() = Eigen::Vector3d(-0.45, -0.2 + 0.13 * i, -0.05);
-    objects.push_back(ball);
-  }
-  return objects;
-}
-
-fs::path write_scene() {
-  const fs::path file =
-      fs::temp_directory_path() / ("somasim-bench-world-" + std::to_string(::getpid()) + ".yaml");
-  std::ofstream out(file);
-  out << "objects:\n"
-      << "  - {name: table, shape: box, size: [0.3, 0.6, 0.04], motion: static,"
-         " xyz: [-0.45, 0, -0.1]}\n";
-  for (int i = 0; i < 4; ++i)
-    out << "  - {name: ball" << i << ", shape: sphere, radius: 0.03, mass: 0.05, xyz: [-0.45, "
-        << -0.2 + 0.13 * i << ", -0.05]}\n";
-  return file;
+// Ball number k thrown from 25 cm in front of / above the left forearm, hitting it after
+// kFlightTime; removed after one throw period.
+somasim::ObjectSpawn ball(std::uint64_t k, const somasim::robot::RobotModel& model) {
+  const Eigen::VectorXd q = parse_posture(kPosture, model);
+  somasim::robot::RobotData data(model);
+  somasim::robot::forward_kinematics(model, data, q);
+  const Eigen::Vector3d target =
+      data.link_poses[model.link_index("l_forearm")] * Eigen::Vector3d(0, -0.07, 0);
+  const double side = 0.05 * static_cast<double>(k % 3) - 0.05;
+  const Eigen::Vector3d start = target + Eigen::Vector3d(-0.2, side, 0.15);
+  somasim::ObjectSpawn s;
+  s.id = k;
+  s.name = "ball" + std::to_string(k);
+  s.size.x() = 0.02;
+  s.mass = 0.05;
+  s.pose.translation() = start;
+  s.linear_velocity =
+      (target - start) / kFlightTime + Eigen::Vector3d(0, 0, 0.5 * 9.81 * kFlightTime);
+  s.remove_after_s = kThrowPeriod * 1e-3;
+  return s;
 }
 
 void BM_WorldPlugin(benchmark::State& state) {
-  const fs::path scene = write_scene();
+  const bool locked = state.range(0) != 0;
+  const auto model = somasim::robot::shared_robot_model(kRobot);
   somasim::testing::Harness h(
       "base_rate_hz: 1000\nnodes:\n  world: {plugin: bullet_world, "
       "params: {robot: " +
-      kRobot + ", scene: " + scene.string() + ", initial_posture_deg: '" + kPosture + "'}}\n");
-  h.step(500);  // let the balls settle
-  for (auto _ : state) h.step();
+      kRobot + ", initial_posture_deg: '" + kPosture + "'" +
+      (locked ? ", locked_joints: all" : "") + "}, inputs: {spawns: harness.spawns}}\n");
+  auto& spawns = h.input<somasim::ObjectSpawns>("spawns");
+  std::uint64_t step = 0, contacts = 0;
+  for (auto _ : state) {
+    if (step % kThrowPeriod == 0) spawns.recent = {ball(step / kThrowPeriod + 1, *model)};
+    h.step();
+    contacts += h.output<somasim::Contacts>("world.contacts").points.size();
+    ++step;
+  }
   state.SetItemsProcessed(state.iterations());
+  state.counters["contacts/step"] = static_cast<double>(contacts) / static_cast<double>(step);
   h.finish();
-  state.counters["contacts"] = h.output<somasim::Contacts>("world.contacts").points.size();
-  fs::remove(scene);
 }
-BENCHMARK(BM_WorldPlugin)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_WorldPlugin)
+    ->Arg(0)
+#ifndef SOMASIM_BENCH_NO_LOCKED
+    ->Arg(1)
+#endif
+    ->Unit(benchmark::kMicrosecond);
 
 void BM_RawBulletStep(benchmark::State& state) {
+  const bool locked = state.range(0) != 0;
   const auto model = somasim::robot::shared_robot_model(kRobot);
   const Eigen::VectorXd q0 = parse_posture(kPosture, *model);
   const double dt = 1e-3;
-  PhysicsWorld physics(Eigen::Vector3d(0, 0, -9.81), static_cast<int>(state.range(0)));
+  PhysicsWorld physics(Eigen::Vector3d(0, 0, -9.81), 30);
+#ifdef SOMASIM_BENCH_NO_LOCKED
   SelfCollisionFilter filter(*model);
   physics.set_pair_filter(&filter);
   ShapeStore shapes;
   RobotMultiBody robot(model, physics.world(), shapes, q0, LinkMaterial{});
+#else
+  const std::vector<bool> lock(model->num_dofs(), locked);
+  SelfCollisionFilter filter(*model, lock);
+  physics.set_pair_filter(&filter);
+  ShapeStore shapes;
+  RobotMultiBody robot(model, physics.world(), shapes, q0, LinkMaterial{}, lock);
+#endif
   JointMotors motors(robot, physics.world(), MotorGains{}, dt, q0);
   ObjectManager objects(physics.world(), shapes, ObjectMaterial{0.8, 0.0005, 0.0});
-  for (const auto& o : scene_objects()) objects.add(o, 0.0);
-  for (int i = 0; i < 500; ++i) physics.step(dt);
-  for (auto _ : state) physics.step(dt);
+  std::uint64_t step = 0;
+  for (auto _ : state) {
+    const double t = static_cast<double>(step) * dt;
+    if (step % kThrowPeriod == 0) objects.add(ball(step / kThrowPeriod + 1, *model), t);
+    objects.remove_expired(t);
+#ifndef SOMASIM_BENCH_NO_LOCKED
+    motors.update_limits();
+#endif
+    physics.step(dt);
+    ++step;
+  }
   state.SetItemsProcessed(state.iterations());
 }
-BENCHMARK(BM_RawBulletStep)->Arg(30)->Arg(10)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_RawBulletStep)
+    ->Arg(0)
+#ifndef SOMASIM_BENCH_NO_LOCKED
+    ->Arg(1)
+#endif
+    ->Unit(benchmark::kMicrosecond);
 
 }  // namespace
