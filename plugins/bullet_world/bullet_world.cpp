@@ -52,9 +52,11 @@ PluginSpec BulletWorld::spec() {
       .range(0, 1e4)
       .describe("largest motor torque per joint (prismatic joints: N)");
   s.add_int("solver_iterations")
-      .defaults(std::int64_t{30})
+      .defaults(std::int64_t{20})
       .range(1, 1000)
-      .describe("iterations of Bullet's constraint solver per step");
+      .describe(
+          "iterations of Bullet's constraint solver per step (the solver is most of a step's "
+          "cost; below about 15 the motors no longer hold a ball's weight firmly)");
   s.add_string("scene")
       .defaults(std::string(""))
       .describe(

@@ -27,6 +27,11 @@ const std::string kPosture =
     "r_shoulder_pitch: -40, r_shoulder_roll: 40, r_shoulder_yaw: 10, r_elbow: 60";
 constexpr int kThrowPeriod = 400;  // [steps]
 constexpr double kFlightTime = 0.3;
+#ifdef SOMASIM_BENCH_NO_LOCKED
+constexpr int kSolverIterations = 30;  // the default of the version without locking
+#else
+constexpr int kSolverIterations = 20;  // the plugin's default
+#endif
 
 // Ball number k thrown from 25 cm in front of / above the left forearm, hitting it after
 // kFlightTime; removed after one throw period.
@@ -82,7 +87,7 @@ void BM_RawBulletStep(benchmark::State& state) {
   const auto model = somasim::robot::shared_robot_model(kRobot);
   const Eigen::VectorXd q0 = parse_posture(kPosture, *model);
   const double dt = 1e-3;
-  PhysicsWorld physics(Eigen::Vector3d(0, 0, -9.81), 30);
+  PhysicsWorld physics(Eigen::Vector3d(0, 0, -9.81), kSolverIterations);
 #ifdef SOMASIM_BENCH_NO_LOCKED
   SelfCollisionFilter filter(*model);
   physics.set_pair_filter(&filter);

@@ -340,3 +340,92 @@ TEST(BulletWorld, SameInputsGiveIdenticalOutputs) {
   ASSERT_EQ(a.size(), b.size());
   EXPECT_TRUE(a == b);
 }
+
+// ---- Locked joints (folded into rigid bodies) ----
+
+TEST(BulletWorldLocked, ContactsOnAFoldedLinkNameItAndPosesMatchTheKinematics) {
+  // The wrist locked: r_hand (palm and fingers) is folded into the r_forearm body. A ball
+  // dropped on the palm still touches link 'r_hand', which carries its weight.
+  const auto model = icub();
+  const Eigen::VectorXd q = palm_up_posture(*model);
+  somasim::robot::RobotData data(*model);
+  somasim::robot::forward_kinematics(*model, data, q);
+  const auto palm = model->frame_ref("r_palm_skin");
+  const double r = 0.015;
+  const Eigen::Vector3d start =
+      somasim::robot::frame_pose(data, palm).translation() + Eigen::Vector3d(0, 0, r + 0.05);
+  Harness h(world_yaml("initial_posture_deg: " + posture_param(*model, q) +
+                       ", locked_joints: 'r_wrist_pitch, r_wrist_yaw'"));
+  h.step(0);
+  auto [dp, dr] = link_pose_error(*model, q, h.output<LinkPoses>("world.link_poses"));
+  EXPECT_LT(dp, 1e-9);
+  EXPECT_LT(dr, 1e-9);
+  h.input<ObjectSpawns>("spawns").recent = {sphere(1, "ball", r, start)};
+  h.step(1500);
+  const Eigen::VectorXd q_now = h.output<JointState>("world.joint_state").position;
+  for (const char* locked : {"r_wrist_pitch", "r_wrist_yaw"})  // q up to the posture's 1e-12 deg
+    EXPECT_NEAR(q_now[model->dof_index(locked)], q[model->dof_index(locked)], 1e-12);
+  std::tie(dp, dr) = link_pose_error(*model, q_now, h.output<LinkPoses>("world.link_poses"));
+  EXPECT_LT(dp, 1e-9);  // folded links follow their body exactly
+  EXPECT_LT(dr, 1e-9);
+  const int hand = model->link_index("r_hand");
+  double force = 0;
+  int on_hand = 0, on_others = 0;
+  for (const auto& c : h.output<Contacts>("world.contacts").points) {
+    if (c.object_b != 0) continue;
+    (c.link_a == hand ? on_hand : on_others)++;
+    if (c.link_a == hand) force += c.normal_force;
+  }
+  EXPECT_GT(on_hand, 0);
+  EXPECT_EQ(on_others, 0);
+  EXPECT_NEAR(force, 0.05 * 9.81, 0.05);
+}
+
+TEST(BulletWorldLocked, AllLockedRobotIsStaticGeometryThatCarriesABallOnTheForearm) {
+  const auto model = icub();
+  // The left forearm held horizontal (its axis is the link's y axis): search the elbow.
+  Eigen::VectorXd q = with_joints_deg(*model, rest_posture(*model),
+                                      {{"l_shoulder_pitch", -40}, {"l_shoulder_roll", 40}});
+  const int l_forearm = model->link_index("l_forearm"), elbow = model->dof_index("l_elbow");
+  somasim::robot::RobotData data(*model);
+  double best = 1e9, best_elbow = 0;
+  for (double e = model->lower_limits()[elbow]; e <= model->upper_limits()[elbow]; e += 1e-4) {
+    q[elbow] = e;
+    somasim::robot::forward_kinematics(*model, data, q);
+    const double tilt = std::abs(data.link_poses[l_forearm].linear()(2, 1));
+    if (tilt < best) best = tilt, best_elbow = e;
+  }
+  q[elbow] = best_elbow;
+  ASSERT_LT(best, 1e-3);
+  somasim::robot::forward_kinematics(*model, data, q);
+  // Drop a ball on top of the forearm, from above a point of its axis.
+  const Eigen::Vector3d axis_point = data.link_poses[l_forearm] * Eigen::Vector3d(0, -0.07, 0);
+  const double r = 0.015;
+  Harness h(
+      world_yaml("initial_posture_deg: " + posture_param(*model, q) + ", locked_joints: all"));
+  h.input<ObjectSpawns>("spawns").recent = {
+      sphere(1, "ball", r, axis_point + Eigen::Vector3d(0, 0, 0.08))};
+  const auto& contacts = h.output<Contacts>("world.contacts");
+  h.step(1500);
+  double force = 0;
+  int on_forearm = 0;
+  for (const auto& c : contacts.points) {
+    EXPECT_EQ(c.object_b, 0);
+    EXPECT_EQ(c.link_a, l_forearm);
+    if (c.link_a != l_forearm) continue;
+    ++on_forearm;
+    force += c.normal_force;
+    EXPECT_NEAR(c.normal.z(), -1.0, 1e-2);
+  }
+  EXPECT_GT(on_forearm, 0);
+  EXPECT_NEAR(force, 0.05 * 9.81, 0.02);
+  const auto& objects = h.output<ObjectStates>("world.objects");
+  EXPECT_LT(objects.linear_velocity[0].norm(), 1e-3);
+  // Constant joint state and poses equal to the kinematics.
+  const auto& js = h.output<JointState>("world.joint_state");
+  EXPECT_LT((js.position - q).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_EQ(js.velocity.norm(), 0.0);
+  const auto [dp, dr] = link_pose_error(*model, q, h.output<LinkPoses>("world.link_poses"));
+  EXPECT_LT(dp, 1e-9);
+  EXPECT_LT(dr, 1e-9);
+}

@@ -124,3 +124,32 @@ TEST(BulletWorldErrors, BadSpawnRequest) {
   EXPECT_EQ(message_of<RunError>([&] { h.step(); }),
             "t = 0.000 s: spawned object 'flat' (id 3): sphere radius must be > 0 m, got 0");
 }
+
+TEST(BulletWorldErrors, CommandOnALockedJoint) {
+  const auto model = icub();
+  Harness h(world_yaml("locked_joints: 'l_elbow r_elbow'"));
+  JointCommand cmd = hold(rest_posture(*model));
+  h.step(3);
+  h.input<JointCommand>("cmd") = cmd;
+  EXPECT_EQ(message_of<RunError>([&] { h.step(); }),
+            "t = 0.003 s: joint command for 'r_elbow': the joint is locked (param "
+            "locked_joints); send kNone for it");
+  // kNone on the locked joints is fine.
+  Harness h2(world_yaml("locked_joints: 'l_elbow r_elbow'"));
+  cmd.mode[model->dof_index("l_elbow")] = somasim::JointCommandMode::kNone;
+  cmd.mode[model->dof_index("r_elbow")] = somasim::JointCommandMode::kNone;
+  h2.input<JointCommand>("cmd") = cmd;
+  EXPECT_NO_THROW(h2.step(10));
+}
+
+TEST(BulletWorldErrors, UnknownOrFixedLockedJoint) {
+  const std::string where = "<inline>:5:" + std::to_string(38 + kRobot.size()) +
+                            ": node 'world', key 'params.locked_joints': ";
+  EXPECT_EQ(message_of<InputError>([&] { Harness h(world_yaml("locked_joints: 'l_elbw'")); }),
+            where + "robot 'icub_v1': unknown joint 'l_elbw' (did you mean 'l_elbow'?)");
+  EXPECT_EQ(message_of<InputError>(
+                [&] { Harness h(world_yaml("locked_joints: 'all, left_arm_2_fixed'")); }),
+            where +
+                "robot 'icub_v1': joint 'left_arm_2_fixed' is fixed; expected a revolute or "
+                "prismatic joint");
+}
