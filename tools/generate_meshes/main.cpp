@@ -54,7 +54,8 @@ void write_obj(const Mesh& m, const std::filesystem::path& file, const std::stri
     std::snprintf(line, sizeof line, "v %.6f %.6f %.6f\n", v[0], v[1], v[2]);
     out << line;
   }
-  for (const auto& f : m.faces) out << "f " << f[0] + 1 << " " << f[1] + 1 << " " << f[2] + 1 << "\n";
+  for (const auto& f : m.faces)
+    out << "f " << f[0] + 1 << " " << f[1] + 1 << " " << f[2] + 1 << "\n";
 }
 
 }  // namespace

@@ -23,11 +23,11 @@ struct Stimulus {
 
 /// Skin taxels of one body part, posed in the root frame at the current instant.
 struct SkinPart {
-  std::string name;                        ///< body part, e.g. "left_forearm"
-  std::string link;                        ///< the link the skin is attached to
-  std::vector<int> taxel_ids;              ///< ids as in the skin layout
-  std::vector<Eigen::Vector3d> positions;  ///< taxel centres [m], root frame
-  std::vector<Eigen::Vector3d> normals;    ///< outward unit normals, root frame
+  std::string name;                             ///< body part, e.g. "left_forearm"
+  std::string link;                             ///< the link the skin is attached to
+  std::vector<int> taxel_ids;                   ///< ids as in the skin layout
+  std::vector<Eigen::Vector3d> positions;       ///< taxel centres [m], root frame
+  std::vector<Eigen::Vector3d> normals;         ///< outward unit normals, root frame
   std::vector<Eigen::Vector3d> positions_link;  ///< taxel centres [m], link frame (fixed)
   std::vector<Eigen::Vector3d> normals_link;    ///< outward unit normals, link frame (fixed)
 };
