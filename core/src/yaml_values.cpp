@@ -6,15 +6,7 @@
 
 #include <fmt/format.h>
 
-namespace somasim::detail {
-
-SourceLocation LocationMap::of(const YAML::Node& node) const {
-  for (const auto& [n, text] : overrides_)
-    if (n.is(node)) return {"--set " + text, 0, 0};
-  const YAML::Mark mark = node.Mark();
-  if (mark.is_null()) return {file_, 0, 0};
-  return {file_, mark.line + 1, mark.column + 1};
-}
+namespace somasim {
 
 std::string describe_yaml(const YAML::Node& node) {
   switch (node.Type()) {
@@ -57,6 +49,18 @@ std::optional<bool> parse_bool(const std::string& text) {
   if (text == "true" || text == "True" || text == "TRUE") return true;
   if (text == "false" || text == "False" || text == "FALSE") return false;
   return std::nullopt;
+}
+
+}  // namespace somasim
+
+namespace somasim::detail {
+
+SourceLocation LocationMap::of(const YAML::Node& node) const {
+  for (const auto& [n, text] : overrides_)
+    if (n.is(node)) return {"--set " + text, 0, 0};
+  const YAML::Mark mark = node.Mark();
+  if (mark.is_null()) return {file_, 0, 0};
+  return {file_, mark.line + 1, mark.column + 1};
 }
 
 std::string expectation(const ParamSpec& spec) {

@@ -8,6 +8,7 @@
 
 #include "somasim/param.hpp"
 #include "somasim/source_location.hpp"
+#include "somasim/yaml_text.hpp"
 
 namespace somasim::detail {
 
@@ -26,8 +27,10 @@ class LocationMap {
   std::vector<std::pair<YAML::Node, std::string>> overrides_;
 };
 
-/// A YAML scalar rendered back for messages ("'abc'", "a list", "a map").
-std::string describe_yaml(const YAML::Node& node);
+using somasim::describe_yaml;
+using somasim::parse_bool;
+using somasim::parse_double;
+using somasim::parse_int;
 
 /// Converts `node` to a value of `spec`'s type and checks range/choices/size. Returns the
 /// problem ("expected ..., got ...") on failure.
@@ -36,10 +39,5 @@ std::optional<ParamValue> to_param_value(const YAML::Node& node, const ParamSpec
 
 /// "a number [m] in [0, 1]" — what a parameter expects, for messages.
 std::string expectation(const ParamSpec& spec);
-
-/// Strict number parsing of a scalar (no trailing text). NaN/inf are parsed (and rejected later).
-std::optional<double> parse_double(const std::string& text);
-std::optional<std::int64_t> parse_int(const std::string& text);
-std::optional<bool> parse_bool(const std::string& text);
 
 }  // namespace somasim::detail

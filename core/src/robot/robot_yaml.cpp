@@ -1,4 +1,5 @@
 #include "robot_yaml.hpp"
+#include "somasim/yaml_text.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -43,27 +44,12 @@ const std::filesystem::path& NodeOrigins::directory(const YAML::Node& node) cons
 }
 
 std::string describe(const YAML::Node& node) {
-  switch (node.Type()) {
-    case YAML::NodeType::Scalar:
-      return "'" + node.Scalar() + "'";
-    case YAML::NodeType::Sequence:
-      return "a list";
-    case YAML::NodeType::Map:
-      return "a map";
-    case YAML::NodeType::Null:
-      return "nothing";
-    default:
-      return "an undefined value";
-  }
+  return describe_yaml(node);
 }
 
 std::optional<double> parse_number(const std::string& text) {
-  if (text.empty()) return std::nullopt;
-  char* end = nullptr;
-  errno = 0;
-  const double v = std::strtod(text.c_str(), &end);
-  if (end != text.c_str() + text.size() || !std::isfinite(v)) return std::nullopt;
-  return v;
+  const auto v = parse_double(text);
+  return v && std::isfinite(*v) ? v : std::nullopt;
 }
 
 Eigen::Matrix3d rpy_rotation(const Eigen::Vector3d& rpy) {

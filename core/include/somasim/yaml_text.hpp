@@ -1,0 +1,25 @@
+#pragma once
+/// @file
+/// Small helpers shared by somasim's YAML readers (experiments, robot descriptions): strict
+/// scalar parsing and how a YAML value is shown in error messages.
+#include <cstdint>
+#include <optional>
+#include <string>
+
+namespace YAML {
+class Node;
+}
+
+namespace somasim {
+
+/// A YAML value as shown in messages: "'abc'" for scalars, "a list", "a map", "nothing".
+std::string describe_yaml(const YAML::Node& node);
+
+/// Strict number parsing of a whole scalar (no trailing text). YAML's .nan/.inf spellings are
+/// parsed (callers reject them with a precise message).
+std::optional<double> parse_double(const std::string& text);
+std::optional<std::int64_t> parse_int(const std::string& text);
+/// true/True/TRUE/false/False/FALSE.
+std::optional<bool> parse_bool(const std::string& text);
+
+}  // namespace somasim
