@@ -1,0 +1,62 @@
+#pragma once
+// pps_controller: exploitation of a learned peripersonal space (PAPERS.md A, issue 4). Taxels
+// of one body part whose activation exceeds `threshold` vote a point P and a normal N
+// (activation-weighted, root frame); control::CartesianVelocityController moves that point of
+// the arm at `speed` along −N (avoid) or +N (reach). Keeps moving `persistence` s after the last
+// above-threshold tick, returns to the start posture (joint space) `return_after` s after it,
+// and never carries the controlled point farther than `workspace_radius` from its home position.
+#include <memory>
+#include <string>
+
+#include "somasim/control/cartesian_velocity.hpp"
+#include "somasim/plugin.hpp"
+#include "somasim/port_types.hpp"
+#include "somasim/robot/kinematics.hpp"
+#include "somasim/robot_ports.hpp"
+
+namespace somasim::plugins {
+
+class PpsController : public Plugin {
+ public:
+  static PluginSpec spec();
+  void configure(NodeContext& ctx) override;
+  void step(NodeContext& ctx) override;
+  void finish(NodeContext& ctx) override;
+
+ private:
+  const SkinPart& find_part(NodeContext& ctx);
+  void hold(const Eigen::VectorXd& q);
+  void move(NodeContext& ctx, const Eigen::VectorXd& q);
+  void return_home(const Eigen::VectorXd& q);
+
+  std::shared_ptr<const robot::RobotModel> model_;
+  std::unique_ptr<control::CartesianVelocityController> controller_;
+  std::unique_ptr<robot::RobotData> data_, home_data_;  ///< at q; at the start posture
+  std::string body_part_;
+  bool reach_ = false;
+  double threshold_ = 0.4, speed_ = 0.1, persistence_ = 0.3, return_after_ = 1.0;
+  double radius_ = 0.2, return_gain_ = 2.0, return_tolerance_ = 0.0;
+  Eigen::VectorXd max_joint_velocity_;  ///< per chain dof [rad/s]
+
+  const SkinTaxels* taxels_ = nullptr;
+  const TaxelValues* activations_ = nullptr;
+  const JointState* state_ = nullptr;
+  JointCommand* command_ = nullptr;
+  Eigen::Vector3d* point_ = nullptr;
+  Eigen::Vector3d* velocity_ = nullptr;
+  double* triggered_ = nullptr;
+
+  int link_ = -1;  ///< the link of the body part's skin
+  bool have_home_ = false;
+  Eigen::VectorXd home_q_;
+  bool have_target_ = false;  ///< a voted point/direction to move (until persistence ends)
+  Eigen::Vector3d point_link_ = Eigen::Vector3d::Zero(), direction_ = Eigen::Vector3d::Zero();
+  double last_trigger_s_ = 0.0;
+  bool was_triggered_ = false;
+  bool away_from_home_ = false;  ///< moved since the last return home
+
+  long triggers_ = 0, triggered_ticks_ = 0;
+  double max_distance_ = 0.0;
+};
+
+}  // namespace somasim::plugins

@@ -1,0 +1,295 @@
+// pps_controller: above-threshold forearm taxels vote a point P and normal N; integrating the
+// command moves that point of the arm along -N (avoid) / +N (reach) at 0.10 m/s (checked with
+// forward kinematics); below the threshold nothing moves; persistence, then return home; the
+// workspace radius; bad thresholds and a body part outside the chain.
+#include <cmath>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "kinematic_world.hpp"
+#include "somasim/port_types.hpp"
+#include "somasim/robot/kinematics.hpp"
+#include "somasim/testing/harness.hpp"
+
+using somasim::JointCommand;
+using somasim::JointState;
+using somasim::SkinPart;
+using somasim::SkinTaxels;
+using somasim::TaxelValues;
+using somasim::testing::Harness;
+using somasim::testing::KinematicWorld;
+
+namespace {
+
+constexpr double kRate = 100.0;
+constexpr double kDt = 1.0 / kRate;
+
+std::string graph(const std::string& params) {
+  return "base_rate_hz: 100\nnodes:\n  pc: {plugin: pps_controller, params: {robot: " +
+         somasim::testing::icub_path() + ", chain: left_arm, body_part: left_forearm, " + params +
+         "}, inputs: {taxels: harness.taxels, activations: harness.act, state: "
+         "harness.state}}\n";
+}
+
+std::string error_of(const std::string& yaml, int ticks = 1) {
+  try {
+    KinematicWorld world(kDt);
+    Harness h(yaml);
+    for (int k = 0; k < ticks; ++k) {
+      h.input<JointState>("state") = world.state;
+      h.input<TaxelValues>("act").values.assign(4, 0.0);
+      h.step();
+    }
+    return "no error";
+  } catch (const somasim::InputError& e) {
+    const std::string m = e.what();
+    return m.substr(m.find("node"));
+  }
+}
+
+// A patch of four taxels on a forearm link, posed from the world's joints each tick.
+struct Skin {
+  explicit Skin(const std::string& link_name = "l_forearm") {
+    part.name = "left_forearm";
+    part.link = link_name;
+    part.taxel_ids = {0, 1, 2, 3};
+    part.positions_link = {
+        {0.02, 0.0, -0.05}, {0.0, 0.02, -0.06}, {-0.02, 0.0, -0.07}, {0, 0, -0.08}};
+    const Eigen::Vector3d n0 = Eigen::Vector3d(1.0, 0.3, 0.0).normalized();
+    const Eigen::Vector3d n1 = Eigen::Vector3d(0.8, 0.6, 0.1).normalized();
+    part.normals_link = {n0, n1, n0, n1};
+  }
+  void pose(const KinematicWorld& w) {
+    somasim::robot::RobotData data(*w.model);
+    somasim::robot::forward_kinematics(*w.model, data, w.state.position);
+    const auto& t = data.link_poses[w.model->link_index(part.link)];
+    part.positions.clear();
+    part.normals.clear();
+    for (std::size_t i = 0; i < part.taxel_ids.size(); ++i) {
+      part.positions.push_back(t * part.positions_link[i]);
+      part.normals.push_back(t.linear() * part.normals_link[i]);
+    }
+  }
+  SkinPart part;
+};
+
+Eigen::Vector3d point_at(const KinematicWorld& w, const Eigen::Vector3d& p_link) {
+  somasim::robot::RobotData data(*w.model);
+  somasim::robot::forward_kinematics(*w.model, data, w.state.position);
+  return data.link_poses[w.model->link_index("l_forearm")] * p_link;
+}
+
+// One control tick with the kinematic world in the loop.
+void tick(Harness& h, KinematicWorld& world, Skin& skin, const std::vector<double>& act) {
+  skin.pose(world);
+  h.input<SkinTaxels>("taxels").parts = {skin.part};
+  h.input<TaxelValues>("act").values = act;
+  h.input<JointState>("state") = world.state;
+  ASSERT_TRUE(h.step());
+  world.apply(h.output<JointCommand>("pc.command"));
+}
+
+// The voted point P and normal N (root frame) for `act` at the world's posture.
+void vote(const Skin& skin, const std::vector<double>& act, double threshold, Eigen::Vector3d& p,
+          Eigen::Vector3d& n) {
+  double sum = 0;
+  p.setZero();
+  n.setZero();
+  for (std::size_t i = 0; i < act.size(); ++i) {
+    if (act[i] <= threshold) continue;
+    sum += act[i];
+    p += act[i] * skin.part.positions[i];
+    n += act[i] * skin.part.normals[i];
+  }
+  p /= sum;
+  n.normalize();
+}
+
+void expect_moves_voted_point(const std::string& mode, double sign) {
+  KinematicWorld world(kDt);
+  Skin skin;
+  Harness h(graph("mode: " + mode));
+  const std::vector<double> act = {0.9, 0.5, 0.3, 0.7};  // taxel 2 is below the threshold
+  skin.pose(world);
+  Eigen::Vector3d p0, n0;
+  vote(skin, act, 0.4, p0, n0);
+  // The material point of the forearm at P (fixed in the link frame: activations are constant).
+  somasim::robot::RobotData data(*world.model);
+  somasim::robot::forward_kinematics(*world.model, data, world.state.position);
+  const Eigen::Vector3d p_link =
+      data.link_poses[world.model->link_index("l_forearm")].inverse() * p0;
+  const Eigen::Vector3d start = p0;
+  double along = 0.0;
+  for (int k = 0; k < 100; ++k) {
+    Eigen::Vector3d p, n;
+    skin.pose(world);
+    vote(skin, act, 0.4, p, n);
+    const Eigen::Vector3d before = point_at(world, p_link);
+    ASSERT_NEAR((before - p).norm(), 0.0, 1e-9) << k;
+    tick(h, world, skin, act);
+    EXPECT_EQ(h.output<double>("pc.triggered"), 1.0);
+    EXPECT_NEAR((h.output<Eigen::Vector3d>("pc.point") - p).norm(), 0.0, 1e-12) << k;
+    EXPECT_NEAR((h.output<Eigen::Vector3d>("pc.velocity") - sign * 0.10 * n).norm(), 0.0, 1e-12);
+    const Eigen::Vector3d moved = point_at(world, p_link) - before;
+    const Eigen::Vector3d dir = sign * n;
+    EXPECT_NEAR(moved.dot(dir), 0.10 * kDt, 2e-5) << k;           // speed
+    EXPECT_LT((moved - moved.dot(dir) * dir).norm(), 2e-5) << k;  // direction
+    along += moved.dot(dir);
+  }
+  EXPECT_NEAR(along, 0.10, 0.002);
+  // Overall it went mostly along the initial ±N (the normal turns a little with the forearm).
+  EXPECT_GT((point_at(world, p_link) - start).dot(sign * n0), 0.09);
+  EXPECT_EQ(h.finish(), "");
+  EXPECT_EQ(h.metric("pc", "triggers").get<long>(), 1);
+  EXPECT_NEAR(h.metric("pc", "triggered_time_s").get<double>(), 1.0, 1e-9);
+  EXPECT_NEAR(h.metric("pc", "max_distance_from_home_m").get<double>(),
+              (point_at(world, p_link) - start).norm(), 0.002);
+}
+
+}  // namespace
+
+TEST(PpsController, AvoidMovesTheVotedPointAlongMinusN) {
+  expect_moves_voted_point("avoid", -1.0);
+}
+
+TEST(PpsController, ReachMovesTheVotedPointAlongPlusN) {
+  expect_moves_voted_point("reach", 1.0);
+}
+
+TEST(PpsController, BelowTheThresholdNothingMoves) {
+  KinematicWorld world(kDt);
+  Skin skin;
+  Harness h(graph("threshold: 0.4"));
+  const Eigen::VectorXd q0 = world.state.position;
+  for (int k = 0; k < 50; ++k) {
+    tick(h, world, skin, {0.4, 0.39, 0.0, 0.2});  // equal to the threshold does not vote
+    EXPECT_EQ(h.output<double>("pc.triggered"), 0.0);
+    EXPECT_EQ(h.output<Eigen::Vector3d>("pc.velocity").norm(), 0.0);
+  }
+  EXPECT_EQ((world.state.position - q0).norm(), 0.0);
+  EXPECT_EQ(h.finish(), "");
+  EXPECT_EQ(h.metric("pc", "triggers").get<long>(), 0);
+  EXPECT_EQ(h.metric("pc", "max_distance_from_home_m").get<double>(), 0.0);
+}
+
+TEST(PpsController, KeepsMovingForThePersistenceThenReturnsHome) {
+  KinematicWorld world(kDt);
+  Skin skin;
+  Harness h(graph("persistence: 0.3, return_after: 1.0"));
+  const Eigen::VectorXd home = world.state.position;
+  const std::vector<double> on = {0.8, 0.8, 0.8, 0.8}, off = {0.1, 0.1, 0.1, 0.1};
+  for (int k = 0; k < 20; ++k) tick(h, world, skin, on);  // last trigger at tick 19
+  // Ticks 20..48 are within 0.3 s of the last trigger: still moving at 0.10 m/s.
+  for (int k = 20; k < 49; ++k) {
+    tick(h, world, skin, off);
+    EXPECT_EQ(h.output<double>("pc.triggered"), 0.0);
+    EXPECT_NEAR(h.output<Eigen::Vector3d>("pc.velocity").norm(), 0.10, 1e-12) << k;
+  }
+  // Then it holds still until 1 s after the last trigger.
+  for (int k = 49; k < 119; ++k) {
+    const Eigen::VectorXd q = world.state.position;
+    tick(h, world, skin, off);
+    EXPECT_EQ(h.output<Eigen::Vector3d>("pc.velocity").norm(), 0.0) << k;
+    ASSERT_EQ((world.state.position - q).norm(), 0.0) << k;
+  }
+  const double away = (world.state.position - home).norm();
+  EXPECT_GT(away, 0.01);
+  // Then back to the start posture (joint space).
+  tick(h, world, skin, off);
+  EXPECT_LT((world.state.position - home).norm(), away);
+  for (int k = 0; k < 500; ++k) tick(h, world, skin, off);
+  EXPECT_LT((world.state.position - home).cwiseAbs().maxCoeff(), 0.1 * M_PI / 180.0);
+  EXPECT_EQ(h.finish(), "");
+  EXPECT_NEAR(h.metric("pc", "triggered_time_s").get<double>(), 0.2, 1e-9);
+}
+
+TEST(PpsController, ATriggerDuringTheReturnMovesAgain) {
+  KinematicWorld world(kDt);
+  Skin skin;
+  Harness h(graph("persistence: 0.0, return_after: 0.1"));
+  const std::vector<double> on = {0.8, 0.8, 0.8, 0.8}, off = {0, 0, 0, 0};
+  for (int k = 0; k < 10; ++k) tick(h, world, skin, on);
+  for (int k = 0; k < 30; ++k) tick(h, world, skin, off);
+  EXPECT_EQ(h.output<Eigen::Vector3d>("pc.velocity").norm(), 0.0);  // returning (joint space)
+  tick(h, world, skin, on);
+  EXPECT_NEAR(h.output<Eigen::Vector3d>("pc.velocity").norm(), 0.10, 1e-12);
+  EXPECT_EQ(h.finish(), "");
+  EXPECT_EQ(h.metric("pc", "triggers").get<long>(), 2);
+}
+
+TEST(PpsController, TheControlledPointStaysWithinTheWorkspaceRadius) {
+  KinematicWorld world(kDt);
+  Skin skin;
+  Harness h(graph("workspace_radius: 0.05"));
+  const std::vector<double> act = {0.8, 0.8, 0.8, 0.8};
+  skin.pose(world);
+  Eigen::Vector3d p0, n0;
+  vote(skin, act, 0.4, p0, n0);
+  somasim::robot::RobotData data(*world.model);
+  somasim::robot::forward_kinematics(*world.model, data, world.state.position);
+  const Eigen::Vector3d p_link =
+      data.link_poses[world.model->link_index("l_forearm")].inverse() * p0;
+  double farthest = 0.0;
+  for (int k = 0; k < 200; ++k) {  // 2 s at 0.10 m/s would be 0.2 m
+    tick(h, world, skin, act);
+    farthest = std::max(farthest, (point_at(world, p_link) - p0).norm());
+  }
+  EXPECT_LE(farthest, 0.05 + 1e-4);
+  EXPECT_GT((point_at(world, p_link) - p0).norm(), 0.049);          // it went up to the limit
+  EXPECT_EQ(h.output<Eigen::Vector3d>("pc.velocity").norm(), 0.0);  // and stopped there
+  EXPECT_EQ(h.finish(), "");
+  EXPECT_NEAR(h.metric("pc", "max_distance_from_home_m").get<double>(), 0.05, 1e-4);
+}
+
+TEST(PpsController, ThresholdOutsideZeroOneIsALoadError) {
+  EXPECT_EQ(
+      error_of(graph("threshold: 1.5")),
+      "node 'pc', key 'params.threshold': value 1.5 is out of range; expected a number in [0, 1]");
+  EXPECT_EQ(
+      error_of(graph("threshold: -0.1")),
+      "node 'pc', key 'params.threshold': value -0.1 is out of range; expected a number in [0, 1]");
+}
+
+TEST(PpsController, ABodyPartOnALinkOutsideTheChainIsABadInput) {
+  try {
+    KinematicWorld world(kDt);
+    Skin skin("r_forearm");
+    Harness h(graph(""));
+    tick(h, world, skin, {0, 0, 0, 0});
+    FAIL() << "expected an InputError";
+  } catch (const somasim::InputError& e) {
+    const std::string m = e.what();
+    EXPECT_EQ(m.substr(m.find("node")),
+              "node 'pc', key 'params.body_part': skin part 'left_forearm': link 'r_forearm' is "
+              "not in chain 'left_arm' (links: torso_1, torso_2, chest, left_arm_2, l_shoulder_1, "
+              "l_shoulder_2, l_upper_arm, l_elbow_1, l_forearm, l_wrist_1, l_hand, left_eye_2)");
+  }
+}
+
+TEST(PpsController, AMissingBodyPartOrWrongActivationCountIsReported) {
+  KinematicWorld world(kDt);
+  Skin skin;
+  {
+    Harness h(graph(""));
+    skin.part.name = "left_forarm";
+    try {
+      tick(h, world, skin, {0, 0, 0, 0});
+      FAIL() << "expected an InputError";
+    } catch (const somasim::InputError& e) {
+      const std::string m = e.what();
+      EXPECT_EQ(m.substr(m.find("node")),
+                "node 'pc', key 'params.body_part': no skin part 'left_forearm' in the 'taxels' "
+                "input (did you mean 'left_forarm'?); parts: left_forarm");
+    }
+  }
+  skin.part.name = "left_forearm";
+  Harness h(graph(""));
+  try {
+    tick(h, world, skin, {0, 0, 0});
+    FAIL() << "expected a RunError";
+  } catch (const somasim::RunError& e) {
+    EXPECT_STREQ(e.what(),
+                 "pc: 'activations' has 3 values, but skin part 'left_forearm' has 4 taxels");
+  }
+}
