@@ -63,6 +63,18 @@ void approach_and_touch(Harness& h, std::uint64_t event_id) {
   h.step();
 }
 
+// Learns from one approach-and-touch and keeps the saved map as `file_name` in the temp dir.
+std::filesystem::path learn_one_contact(const std::string& file_name) {
+  const std::filesystem::path saved = std::filesystem::temp_directory_path() / file_name;
+  Harness h(graph());
+  set_patch(h);
+  approach_and_touch(h, 1);
+  h.finish();
+  std::filesystem::copy_file(h.out_dir() / "learned.json", saved,
+                             std::filesystem::copy_options::overwrite_existing);
+  return saved;
+}
+
 }  // namespace
 
 TEST(PpsLearner, LearnsPositivesForTheTouchedTaxelAndNegativesForTheOthers) {
@@ -104,16 +116,7 @@ TEST(PpsLearner, ActivatesForAnApproachLikeTheLearnedOneAndNotForARecedingObject
 }
 
 TEST(PpsLearner, ReloadsItsSavedStateAndEvaluatesWithoutLearning) {
-  std::filesystem::path saved =
-      std::filesystem::temp_directory_path() / "somasim_test_pps_reload.json";
-  {
-    Harness h(graph());
-    set_patch(h);
-    approach_and_touch(h, 1);
-    h.finish();
-    std::filesystem::copy_file(h.out_dir() / "learned.json", saved,
-                               std::filesystem::copy_options::overwrite_existing);
-  }
+  const std::filesystem::path saved = learn_one_contact("somasim_test_pps_reload.json");
   Harness h(graph("learn: false, load: " + saved.string()));
   set_patch(h);
   approach_and_touch(h, 1);
@@ -143,16 +146,7 @@ TEST(PpsLearner, UnknownBodyPartIsABadInputNamingTheParts) {
 }
 
 TEST(PpsLearner, ALearnedFileForAnotherBodyPartIsRejected) {
-  std::filesystem::path saved =
-      std::filesystem::temp_directory_path() / "somasim_test_pps_other.json";
-  {
-    Harness h(graph());
-    set_patch(h);
-    approach_and_touch(h, 1);
-    h.finish();
-    std::filesystem::copy_file(h.out_dir() / "learned.json", saved,
-                               std::filesystem::copy_options::overwrite_existing);
-  }
+  const std::filesystem::path saved = learn_one_contact("somasim_test_pps_other.json");
   std::string g = graph("load: " + saved.string());
   g.replace(g.find("body_part: patch"), 16, "body_part: palm");
   try {
