@@ -124,16 +124,18 @@ void PpsLearner::step(NodeContext& ctx) {
         have_new_event = true;
         first_event_time = std::min(first_event_time, e.time_s);
       }
-  if (stimulus_->present && (!have_new_event || now <= first_event_time))
+  const bool sample_after_contact = have_new_event && now > first_event_time;
+  const auto push_current = [&] {
     learner_->push_stimulus({now, {stimulus_->position, stimulus_->velocity, stimulus_->radius}});
-  if (contacts_) learn_from_events(ctx, *part, now);
-  if (stimulus_->present && have_new_event && now > first_event_time)
-    learner_->push_stimulus({now, {stimulus_->position, stimulus_->velocity, stimulus_->radius}});
+  };
+  if (stimulus_->present && !sample_after_contact) push_current();
+  if (contacts_) learn_from_events(ctx);
+  if (stimulus_->present && sample_after_contact) push_current();
   if (!stimulus_->present) learner_->buffer().update(now);
-  update_activations(*part);
+  update_activations();
 }
 
-void PpsLearner::learn_from_events(NodeContext& ctx, const SkinPart& part, double) {
+void PpsLearner::learn_from_events(NodeContext& ctx) {
   for (const auto& e : contacts_->recent) {
     if (e.id <= last_event_id_) continue;
     last_event_id_ = e.id;
@@ -144,11 +146,10 @@ void PpsLearner::learn_from_events(NodeContext& ctx, const SkinPart& part, doubl
     if (std::find(snapshot_after_.begin(), snapshot_after_.end(), events_) != snapshot_after_.end())
       draw_landscapes(ctx, *learner_, figure_taxels_,
                       "after_" + std::to_string(events_) + "_events");
-    (void)part;
   }
 }
 
-void PpsLearner::update_activations(const SkinPart&) {
+void PpsLearner::update_activations() {
   double max_a = 0.0;
   const pps::Stimulus s{stimulus_->position, stimulus_->velocity, stimulus_->radius};
   for (std::size_t k = 0; k < poses_.size(); ++k) {

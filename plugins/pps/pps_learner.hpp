@@ -19,8 +19,8 @@ class PpsLearner : public Plugin {
  private:
   const SkinPart* find_part(NodeContext& ctx) const;
   void create_learner(NodeContext& ctx, const SkinPart& part);
-  void learn_from_events(NodeContext& ctx, const SkinPart& part, double before_time);
-  void update_activations(const SkinPart& part);
+  void learn_from_events(NodeContext& ctx);
+  void update_activations();
   void report(NodeContext& ctx);
 
   pps::LearnerParams params_;
