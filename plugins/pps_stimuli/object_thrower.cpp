@@ -7,6 +7,7 @@
 #include <Eigen/Geometry>
 
 #include "somasim/diagnostics.hpp"
+#include "somasim/robot/clearance.hpp"
 #include "somasim/robot/robot_cache.hpp"
 
 namespace somasim::plugins {
@@ -86,6 +87,8 @@ PluginSpec ObjectThrower::spec() {
   s.input<SkinTaxels>("taxels", "skin taxel poses (root frame, true kinematics)");
   s.input<JointState>("state", "true joint values (for the believed kinematics)");
   s.input<ObjectStates>("objects", "object states from the world (ground truth)");
+  s.input<LinkPoses>("link_poses", "robot link poses: start points are drawn clear of the robot",
+                     /*optional=*/true);
   s.output<ObjectSpawns>("spawns", "objects to add to the world");
   s.output<Stimulus>("stimulus", "the object as the robot perceives it (root frame)");
   s.output<Stimulus>("truth", "the object's true centre and velocity (root frame)");
@@ -172,6 +175,7 @@ void ObjectThrower::configure(NodeContext& ctx) {
   skin_ = &ctx.input<SkinTaxels>("taxels");
   state_ = &ctx.input<JointState>("state");
   objects_ = &ctx.input<ObjectStates>("objects");
+  link_poses_ = ctx.is_wired("link_poses") ? &ctx.input<LinkPoses>("link_poses") : nullptr;
   spawns_ = &ctx.output<ObjectSpawns>("spawns");
   stimulus_ = &ctx.output<Stimulus>("stimulus");
   truth_ = &ctx.output<Stimulus>("truth");
@@ -195,11 +199,22 @@ void ObjectThrower::launch(NodeContext& ctx) {
   // The centre's path ends one `size` above the taxel along its normal: the surface touches it.
   const Eigen::Vector3d target = sp->positions[k] + size_ * n;
   const Eigen::Vector3d u = n.unitOrthogonal(), w = n.cross(u);
-  const double cos_t = 1.0 - unit(rng) * (1.0 - std::cos(cone_rad_));
-  const double sin_t = std::sqrt(std::max(0.0, 1.0 - cos_t * cos_t));
-  const double phi = 2.0 * M_PI * unit(rng);
-  const Eigen::Vector3d dir = cos_t * n + sin_t * (std::cos(phi) * u + std::sin(phi) * w);
-  const double distance = distance_min_ + unit(rng) * (distance_max_ - distance_min_);
+  Eigen::Vector3d dir;
+  double distance = 0.0;
+  for (int attempt = 0;; ++attempt) {
+    const double cos_t = 1.0 - unit(rng) * (1.0 - std::cos(cone_rad_));
+    const double sin_t = std::sqrt(std::max(0.0, 1.0 - cos_t * cos_t));
+    const double phi = 2.0 * M_PI * unit(rng);
+    dir = cos_t * n + sin_t * (std::cos(phi) * u + std::sin(phi) * w);
+    distance = distance_min_ + unit(rng) * (distance_max_ - distance_min_);
+    // Start outside the robot (when its pose is known): redraw otherwise.
+    if (!link_poses_ || robot::point_clear_of_robot(*model_, link_poses_->poses,
+                                                    target + distance * dir, 2.0 * size_ + 0.01))
+      break;
+    if (attempt == 100)
+      throw RunError("no start point clear of the robot for an object aimed at '" + part +
+                     "' (lower 'distance_max' or 'cone')");
+  }
   const double speed = speed_min_ + unit(rng) * (speed_max_ - speed_min_);
 
   ObjectSpawn spawn;

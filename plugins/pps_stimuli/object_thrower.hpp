@@ -52,6 +52,7 @@ class ObjectThrower : public Plugin {
   const SkinTaxels* skin_ = nullptr;
   const JointState* state_ = nullptr;
   const ObjectStates* objects_ = nullptr;
+  const LinkPoses* link_poses_ = nullptr;  // optional
   ObjectSpawns* spawns_ = nullptr;
   Stimulus* stimulus_ = nullptr;
   Stimulus* truth_ = nullptr;

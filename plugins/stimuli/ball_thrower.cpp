@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 
 #include "somasim/diagnostics.hpp"
+#include "somasim/robot/clearance.hpp"
 #include "somasim/robot/robot_cache.hpp"
 
 namespace somasim::plugins {
@@ -117,7 +118,7 @@ void BallThrower::launch(NodeContext& ctx) {
     const double phi = 2.0 * M_PI * unit(ctx.rng());
     const Eigen::Vector3d dir = cos_t * n + sin_t * (std::cos(phi) * u + std::sin(phi) * v);
     start = target + distance_ * dir;
-    if (clear_of_robot(start)) break;
+    if (robot::point_clear_of_robot(*model_, link_poses_->poses, start, radius_ + 0.01)) break;
     if (attempt == 100)
       throw RunError("no start point clear of the robot for a ball aimed at '" + part +
                      "' (lower 'distance' or 'cone')");
@@ -182,22 +183,6 @@ void BallThrower::observe() {
     else
       ++wrong_part_events_;
   }
-}
-
-// Conservative: every collision shape is bounded by a sphere around its origin.
-bool BallThrower::clear_of_robot(const Eigen::Vector3d& point) const {
-  const auto& poses = link_poses_->poses;
-  if (poses.size() != static_cast<std::size_t>(model_->num_links())) return true;
-  for (int l = 0; l < model_->num_links(); ++l)
-    for (const auto& g : model_->link(l).collision) {
-      double bound = g.radius;
-      if (g.type == robot::GeometryType::Box) bound = 0.5 * g.size.norm();
-      if (g.type == robot::GeometryType::Cylinder) bound = std::hypot(g.radius, 0.5 * g.length);
-      if (g.type == robot::GeometryType::Capsule) bound = g.radius + 0.5 * g.length;
-      const Eigen::Vector3d centre = poses[static_cast<std::size_t>(l)] * g.origin.translation();
-      if ((point - centre).norm() < bound + radius_ + 0.01) return false;
-    }
-  return true;
 }
 
 bool BallThrower::near_skin(const std::string& part, const Eigen::Vector3d& point) const {

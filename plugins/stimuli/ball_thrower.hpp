@@ -38,7 +38,6 @@ class BallThrower : public Plugin {
   };
   void launch(NodeContext& ctx);
   void observe();
-  bool clear_of_robot(const Eigen::Vector3d& point_root) const;
   bool near_skin(const std::string& part, const Eigen::Vector3d& point_root) const;
   void close_throw(NodeContext& ctx);
 
