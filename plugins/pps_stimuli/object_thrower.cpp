@@ -7,6 +7,7 @@
 #include <Eigen/Geometry>
 
 #include "somasim/diagnostics.hpp"
+#include "somasim/random_directions.hpp"
 #include "somasim/robot/clearance.hpp"
 #include "somasim/robot/robot_cache.hpp"
 
@@ -198,14 +199,10 @@ void ObjectThrower::launch(NodeContext& ctx) {
   const Eigen::Vector3d n = sp->normals[k].normalized();
   // The centre's path ends one `size` above the taxel along its normal: the surface touches it.
   const Eigen::Vector3d target = sp->positions[k] + size_ * n;
-  const Eigen::Vector3d u = n.unitOrthogonal(), w = n.cross(u);
   Eigen::Vector3d dir;
   double distance = 0.0;
   for (int attempt = 0;; ++attempt) {
-    const double cos_t = 1.0 - unit(rng) * (1.0 - std::cos(cone_rad_));
-    const double sin_t = std::sqrt(std::max(0.0, 1.0 - cos_t * cos_t));
-    const double phi = 2.0 * M_PI * unit(rng);
-    dir = cos_t * n + sin_t * (std::cos(phi) * u + std::sin(phi) * w);
+    dir = sample_direction_in_cone(n, cone_rad_, rng);
     distance = distance_min_ + unit(rng) * (distance_max_ - distance_min_);
     // Start outside the robot (when its pose is known): redraw otherwise.
     if (!link_poses_ || robot::point_clear_of_robot(*model_, link_poses_->poses,

@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 
 #include "somasim/diagnostics.hpp"
+#include "somasim/random_directions.hpp"
 #include "somasim/robot/clearance.hpp"
 #include "somasim/robot/robot_cache.hpp"
 
@@ -105,19 +106,13 @@ void BallThrower::launch(NodeContext& ctx) {
     throw RunError("skin part '" + part +
                    "' is not in the 'taxels' input (is the skin node wired?)");
   std::uniform_int_distribution<std::size_t> pick(0, sp->taxel_ids.size() - 1);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
   const std::size_t k = pick(ctx.rng());
   const Eigen::Vector3d n = sp->normals[k].normalized();
   // Aim the ball's centre one radius above the taxel, start within the cone around the normal.
   const Eigen::Vector3d target = sp->positions[k] + radius_ * n;
-  const Eigen::Vector3d u = n.unitOrthogonal(), v = n.cross(u);
   Eigen::Vector3d start;
   for (int attempt = 0;; ++attempt) {
-    const double cos_t = 1.0 - unit(ctx.rng()) * (1.0 - std::cos(cone_rad_));
-    const double sin_t = std::sqrt(std::max(0.0, 1.0 - cos_t * cos_t));
-    const double phi = 2.0 * M_PI * unit(ctx.rng());
-    const Eigen::Vector3d dir = cos_t * n + sin_t * (std::cos(phi) * u + std::sin(phi) * v);
-    start = target + distance_ * dir;
+    start = target + distance_ * sample_direction_in_cone(n, cone_rad_, ctx.rng());
     if (robot::point_clear_of_robot(*model_, link_poses_->poses, start, radius_ + 0.01)) break;
     if (attempt == 100)
       throw RunError("no start point clear of the robot for a ball aimed at '" + part +

@@ -1,4 +1,5 @@
 #include "taxel_thrower.hpp"
+#include "somasim/random_directions.hpp"
 
 #include <cmath>
 
@@ -128,12 +129,7 @@ TaxelThrower::Throw TaxelThrower::draw_throw(std::mt19937_64& rng, double t0) {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   std::normal_distribution<double> gauss(0.0, 1.0);
   Throw th;
-  // Direction uniform over the spherical cap of half-angle start_cone around the normal.
-  const double cos_theta = 1.0 - unit(rng) * (1.0 - std::cos(start_cone_rad_));
-  const double sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
-  const double phi = 2.0 * M_PI * unit(rng);
-  const Eigen::Vector3d dir = cos_theta * taxel_normal_ +
-                              sin_theta * (std::cos(phi) * tangent_u_ + std::sin(phi) * tangent_v_);
+  const Eigen::Vector3d dir = sample_direction_in_cone(taxel_normal_, start_cone_rad_, rng);
   const double dist = start_distance_min_ + unit(rng) * (start_distance_max_ - start_distance_min_);
   const Eigen::Vector2d land(landing_sigma_ * gauss(rng), landing_sigma_ * gauss(rng));
   const double speed = speed_min_ + unit(rng) * (speed_max_ - speed_min_);
