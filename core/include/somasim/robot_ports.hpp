@@ -91,6 +91,23 @@ struct ObjectStates {
   std::vector<double> radius;                     ///< bounding-sphere radius [m]
 };
 
+/// How a presented object moves relative to the skin taxel it is placed at (PPS evaluation):
+/// toward it until it reaches the skin, held still, or moving away from it.
+enum class PresentationMotion : std::uint8_t { kApproach, kStatic, kReceding };
+
+/// The object a stimulus source is presenting now (one at a time), for evaluators.
+struct Presentation {
+  std::uint64_t id = 0;  ///< 1, 2, ... per producer; 0: nothing presented yet
+  bool active = false;   ///< the object is in the world now
+  PresentationMotion motion = PresentationMotion::kApproach;
+  std::string object;                                     ///< object name in ObjectStates
+  std::string body_part;                                  ///< skin part aimed at
+  int taxel_id = -1;                                      ///< taxel aimed at (layout id)
+  Eigen::Vector3d aimed_point = Eigen::Vector3d::Zero();  ///< taxel at presentation [m], root
+  double start_time_s = 0.0;                              ///< sim time it appeared [s]
+  double speed = 0.0;                                     ///< [m/s] (0 for static)
+};
+
 template <>
 struct PortTraits<JointState> {
   static constexpr const char* name = "joint_state";
@@ -124,6 +141,20 @@ struct PortTraits<ObjectSpawns> {
 template <>
 struct PortTraits<ObjectStates> {
   static constexpr const char* name = "object_states";
+};
+template <>
+struct PortTraits<Presentation> {
+  static constexpr const char* name = "presentation";
+  static std::vector<std::string> csv_columns(const Presentation&) {
+    return {"id", "active", "motion (0 approach, 1 static, 2 receding)", "taxel_id", "speed [m/s]"};
+  }
+  static void csv_write(const Presentation& p, std::string& row) {
+    csv_append(row, static_cast<double>(p.id));
+    csv_append(row, p.active ? 1.0 : 0.0);
+    csv_append(row, static_cast<double>(p.motion));
+    csv_append(row, static_cast<double>(p.taxel_id));
+    csv_append(row, p.speed);
+  }
 };
 
 }  // namespace somasim
