@@ -22,6 +22,11 @@ PluginSpec PpsController::spec() {
       "robot description file (relative to the experiment file), e.g. "
       "../assets/robots/icub_v1.yaml; the same file as the world's");
   s.add_string("chain").describe("the named chain that moves (e.g. left_arm)");
+  s.add_string("base")
+      .defaults(std::string(""))
+      .describe(
+          "optional base link: only the joints of `chain` beyond it move (e.g. chest: the arm "
+          "without the torso, so that two arm controllers do not share joints); '' = whole chain");
   s.add_string("mode")
       .defaults(std::string("avoid"))
       .one_of({"avoid", "reach"})
@@ -74,7 +79,9 @@ PluginSpec PpsController::spec() {
       .describe("joints stop this far from their limits");
   s.input<SkinTaxels>("taxels", "taxel poses in the root frame");
   s.input<TaxelValues>("activations",
-                       "activation of each taxel of the body part, in the order of `taxels`");
+                       "taxel activations: labelled 'part/id' (one or several parts; the "
+                       "body part's taxels are picked by label), or unlabelled with one value "
+                       "per taxel of the body part in the order of `taxels`");
   s.input<JointState>("state", "measured joint state");
   s.output<JointCommand>("command", "velocity commands on the chain dofs (kNone elsewhere)");
   s.output<Eigen::Vector3d>("point", "the last voted point P [m], root frame");
@@ -94,6 +101,14 @@ void PpsController::configure(NodeContext& ctx) {
     chain = control::select_chain(*model_, ctx.param<std::string>("chain"));
   } catch (const InputError& e) {
     ctx.param_error("chain", e.what());
+  }
+  if (const auto base = ctx.param<std::string>("base"); !base.empty()) {
+    try {
+      chain = control::select_chain(
+          *model_, model_->find_chain(ctx.param<std::string>("chain"))->tip_frame, base);
+    } catch (const InputError& e) {
+      ctx.param_error("base", e.what());
+    }
   }
   body_part_ = ctx.param<std::string>("body_part");
   reach_ = ctx.param<std::string>("mode") == "reach";
@@ -217,11 +232,7 @@ void PpsController::step(NodeContext& ctx) {
                    model_->name() + "')");
   if (!q.allFinite()) throw RunError(ctx.node_name() + ": joint state holds non-finite positions");
   const SkinPart& part = find_part(ctx);
-  const auto& a = activations_->values;
-  if (!a.empty() && a.size() != part.taxel_ids.size())
-    throw RunError(ctx.node_name() + ": 'activations' has " + std::to_string(a.size()) +
-                   " values, but skin part '" + body_part_ + "' has " +
-                   std::to_string(part.taxel_ids.size()) + " taxels");
+  const std::span<const double> a = part_activations_.select(*activations_, part, ctx.node_name());
   if (part.positions.size() != part.taxel_ids.size() ||
       part.normals.size() != part.taxel_ids.size())
     throw RunError(ctx.node_name() + ": skin part '" + body_part_ +

@@ -1,6 +1,7 @@
 #pragma once
 // pps_controller: exploitation of a learned peripersonal space (PAPERS.md A, issue 4). Taxels
-// of one body part whose activation exceeds `threshold` vote a point P and a normal N
+// of one body part (picked by label from a possibly multi-part activations input) whose
+// activation exceeds `threshold` vote a point P and a normal N
 // (activation-weighted, root frame); control::CartesianVelocityController moves that point of
 // the arm at `speed` along −N (avoid) or +N (reach). Keeps moving `persistence` s after the last
 // above-threshold tick, returns to the start posture (joint space) `return_after` s after it,
@@ -8,6 +9,7 @@
 #include <memory>
 #include <string>
 
+#include "part_activations.hpp"
 #include "somasim/control/cartesian_velocity.hpp"
 #include "somasim/plugin.hpp"
 #include "somasim/port_types.hpp"
@@ -40,6 +42,7 @@ class PpsController : public Plugin {
 
   const SkinTaxels* taxels_ = nullptr;
   const TaxelValues* activations_ = nullptr;
+  PartActivations part_activations_;
   const JointState* state_ = nullptr;
   JointCommand* command_ = nullptr;
   Eigen::Vector3d* point_ = nullptr;

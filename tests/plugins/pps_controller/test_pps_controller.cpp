@@ -293,3 +293,80 @@ TEST(PpsController, AMissingBodyPartOrWrongActivationCountIsReported) {
                  "pc: 'activations' has 3 values, but skin part 'left_forearm' has 4 taxels");
   }
 }
+
+// Contract 5: a multi-part activations input (labels "part/id", parts concatenated, e.g. one
+// pps_learner for several parts): the controller picks its own part's taxels by label.
+TEST(PpsController, PicksItsBodyPartFromAMultiPartActivationsInput) {
+  KinematicWorld world(kDt);
+  Skin skin;
+  Harness h(graph(""));
+  const std::vector<double> act = {0.9, 0.5, 0.3, 0.7};  // in the order of the part's taxels
+  for (int k = 0; k < 5; ++k) {
+    skin.pose(world);
+    Eigen::Vector3d p, n;
+    vote(skin, act, 0.4, p, n);
+    h.input<SkinTaxels>("taxels").parts = {skin.part};
+    auto& in = h.input<TaxelValues>("act");
+    // Another part first (all far above the threshold), then the forearm's taxels out of order.
+    in.labels = {"right_palm/0",   "right_palm/1",   "left_forearm/2",
+                 "left_forearm/0", "left_forearm/3", "left_forearm/1"};
+    in.values = {1.0, 1.0, act[2], act[0], act[3], act[1]};
+    h.input<JointState>("state") = world.state;
+    ASSERT_TRUE(h.step());
+    world.apply(h.output<JointCommand>("pc.command"));
+    EXPECT_EQ(h.output<double>("pc.triggered"), 1.0);
+    EXPECT_NEAR((h.output<Eigen::Vector3d>("pc.point") - p).norm(), 0.0, 1e-12) << k;
+    EXPECT_NEAR((h.output<Eigen::Vector3d>("pc.velocity") + 0.10 * n).norm(), 0.0, 1e-12) << k;
+  }
+  // Only the other part above the threshold: nothing moves.
+  auto& in = h.input<TaxelValues>("act");
+  in.values = {1.0, 1.0, 0.0, 0.0, 0.0, 0.0};
+  h.input<JointState>("state") = world.state;
+  ASSERT_TRUE(h.step());
+  EXPECT_EQ(h.output<double>("pc.triggered"), 0.0);
+  EXPECT_EQ(h.finish(), "");
+  EXPECT_EQ(h.metric("pc", "triggers").get<long>(), 1);
+}
+
+TEST(PpsController, ALabelledInputWithoutTheBodyPartIsReported) {
+  KinematicWorld world(kDt);
+  Skin skin;
+  const auto run = [&](std::vector<std::string> labels) {
+    Harness h(graph(""));
+    skin.pose(world);
+    h.input<SkinTaxels>("taxels").parts = {skin.part};
+    auto& in = h.input<TaxelValues>("act");
+    in.values.assign(labels.size(), 0.5);
+    in.labels = std::move(labels);
+    h.input<JointState>("state") = world.state;
+    try {
+      h.step();
+    } catch (const somasim::RunError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(run({"right_palm/0", "right_palm/1", "torso/4"}),
+            "pc: 'activations' has no values for skin part 'left_forearm' (labels 'part/id' of "
+            "right_palm, torso)");
+  EXPECT_EQ(run({"left_forearm/0", "left_forearm/1", "left_forearm/3", "right_palm/2"}),
+            "pc: 'activations' has no value labelled 'left_forearm/2' (skin part 'left_forearm' "
+            "has 4 taxels)");
+}
+
+// `base: chest`: the arm moves without the torso, so two arm controllers share no joint.
+TEST(PpsController, ABaseLinkLeavesTheJointsBeforeItAlone) {
+  KinematicWorld world(kDt);
+  Skin skin;
+  Harness h(graph("base: chest"));
+  tick(h, world, skin, {0.9, 0.9, 0.9, 0.9});
+  const auto& c = h.output<JointCommand>("pc.command");
+  for (const char* j : {"torso_pitch", "torso_roll", "torso_yaw"})
+    EXPECT_EQ(c.mode[static_cast<std::size_t>(world.dof(j))], somasim::JointCommandMode::kNone)
+        << j;
+  for (const char* j : {"l_shoulder_pitch", "l_elbow", "l_wrist_yaw"})
+    EXPECT_EQ(c.mode[static_cast<std::size_t>(world.dof(j))], somasim::JointCommandMode::kVelocity)
+        << j;
+  EXPECT_NEAR(h.output<Eigen::Vector3d>("pc.velocity").norm(), 0.10, 1e-12);
+  EXPECT_EQ(h.finish(), "");
+}
