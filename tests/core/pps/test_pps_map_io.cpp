@@ -1,3 +1,4 @@
+#include <fstream>
 #include <functional>
 #include <string>
 
@@ -33,6 +34,16 @@ LearnedState sample_state() {
   return s;
 }
 
+// Two body parts: the sample's forearm and a one-taxel palm with other counts.
+std::vector<LearnedState> two_parts() {
+  LearnedState palm = sample_state();
+  palm.body_part = "r_palm";
+  palm.taxels.resize(1);
+  palm.taxels[0].id = 7;
+  palm.taxels[0].pos.assign(32, 2);
+  return {sample_state(), palm};
+}
+
 std::string load_error(const TempDir& dir, const std::string& text,
                        const LoadExpectations& ex = {}) {
   const std::string p = dir.file("bad.json", text);
@@ -51,6 +62,27 @@ std::string mutated(const std::function<void(json&)>& f) {
   json j = to_json(sample_state());
   f(j);
   return j.dump();
+}
+
+std::string mutated_parts(const std::function<void(json&)>& f) {
+  json j = to_json(two_parts());
+  f(j);
+  return j.dump();
+}
+
+// The message of load_learned_parts() on `text`, without the "<file>: " prefix.
+std::string parts_error(const TempDir& dir, const std::string& text,
+                        const PartsExpectations& ex = {}) {
+  const std::string p = dir.file("bad_parts.json", text);
+  try {
+    load_learned_parts(p, ex);
+  } catch (const somasim::InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_EQ(msg.rfind(p + ": ", 0), 0u) << msg;
+    return msg.substr(p.size() + 2);
+  }
+  ADD_FAILURE() << "no InputError";
+  return {};
 }
 
 }  // namespace
@@ -84,8 +116,8 @@ TEST(PpsMapIo, CorruptedFiles) {
   EXPECT_EQ(load_error(dir, "[1, 2]"), "top level is array, expected a JSON object");
   EXPECT_EQ(load_error(dir, mutated([](json& j) { j["format"] = "other"; })),
             "'format' is \"other\", expected \"somasim-pps-map\"");
-  EXPECT_EQ(load_error(dir, mutated([](json& j) { j["version"] = 3; })),
-            "'version' is 3, expected 1 or 2");
+  EXPECT_EQ(load_error(dir, mutated([](json& j) { j["version"] = 4; })),
+            "'version' is 4, expected 1, 2 or 3");
   EXPECT_EQ(load_error(dir, mutated([](json& j) { j["version"] = 2; })), "missing key 'model'");
   EXPECT_EQ(load_error(dir, mutated([](json& j) {
                          j["version"] = 2;
@@ -128,4 +160,95 @@ TEST(PpsMapIo, MissingFile) {
   } catch (const somasim::InputError& e) {
     EXPECT_EQ(std::string(e.what()), p + ": cannot open for reading");
   }
+}
+
+TEST(PpsMapIo, SeveralBodyPartsRoundTripAsVersion3) {
+  TempDir dir;
+  const std::vector<LearnedState> parts = two_parts();
+  const std::string p = dir.path("parts.json");
+  save_learned_parts(parts, p);
+  std::ifstream in(p);
+  const json j = json::parse(in);
+  EXPECT_EQ(j["version"], 3);
+  ASSERT_EQ(j["parts"].size(), 2u);
+  EXPECT_EQ(j["parts"][1]["body_part"], "r_palm");
+  EXPECT_EQ(j["parts"][1]["model"], "d_ttc");
+  // All parts in file order, or the wanted ones in the wanted order.
+  const auto all = load_learned_parts(p);
+  ASSERT_EQ(all.size(), 2u);
+  EXPECT_EQ(all[0].body_part, "l_forearm");
+  EXPECT_EQ(all[0].taxels[1].neg, parts[0].taxels[1].neg);
+  EXPECT_EQ(all[1].grid, parts[1].grid);
+  const auto wanted = load_learned_parts(p, PartsExpectations{{"r_palm", "l_forearm"}, {}});
+  ASSERT_EQ(wanted.size(), 2u);
+  EXPECT_EQ(wanted[0].body_part, "r_palm");
+  EXPECT_EQ(wanted[0].taxels[0].pos, parts[1].taxels[0].pos);
+  EXPECT_EQ(load_learned_parts(p, PartsExpectations{{"r_palm"}, {}}).size(), 1u);
+  // One part of a version-3 file, by name.
+  const LearnedState palm = load_learned_state(p, LoadExpectations{"r_palm", 1, PpsModel::kDTtc});
+  EXPECT_EQ(palm.taxels[0].id, 7);
+  // One part is still written as version 1.
+  EXPECT_EQ(to_json(std::vector<LearnedState>{sample_state()})["version"], 1);
+}
+
+TEST(PpsMapIo, Version1And2FilesLoadAsOneBodyPart) {
+  TempDir dir;
+  const std::string p = dir.path("one.json");
+  save_learned_state(sample_state(), p);
+  const auto parts = load_learned_parts(p, PartsExpectations{{"l_forearm"}, PpsModel::kDTtc});
+  ASSERT_EQ(parts.size(), 1u);
+  EXPECT_EQ(parts[0].taxels[0].pos, sample_state().taxels[0].pos);
+  json j = to_json(sample_state());
+  j["version"] = 2;
+  j["model"] = "distance_only";
+  j["grid"].erase("ttc_bins");
+  for (auto& t : j["taxels"]) {
+    t["pos"] = std::vector<int>(8, 1);
+    t["neg"] = std::vector<int>(8, 0);
+  }
+  EXPECT_EQ(load_learned_parts(dir.file("v2.json", j.dump()))[0].model, PpsModel::kDistanceOnly);
+}
+
+TEST(PpsMapIo, SeveralBodyPartsErrors) {
+  TempDir dir;
+  const std::string text = to_json(two_parts()).dump();
+  EXPECT_EQ(parts_error(dir, text, PartsExpectations{{"l_forearm", "l_hand"}, {}}),
+            "has no body part \"l_hand\" (it has: l_forearm r_palm), expected every body part "
+            "of \"l_forearm l_hand\"");
+  // A one-part file missing one of several wanted parts.
+  EXPECT_EQ(parts_error(dir, to_json(sample_state()).dump(),
+                        PartsExpectations{{"l_forearm", "r_palm"}, {}}),
+            "has no body part \"r_palm\" (it has: l_forearm), expected every body part of "
+            "\"l_forearm r_palm\"");
+  // One part wanted from a one-part file: the single-part message.
+  EXPECT_EQ(parts_error(dir, to_json(sample_state()).dump(), PartsExpectations{{"r_palm"}, {}}),
+            "body part is \"l_forearm\", expected \"r_palm\"");
+  EXPECT_EQ(parts_error(dir, text, PartsExpectations{{}, PpsModel::kDistanceOnly}),
+            "body part \"l_forearm\": model is \"d_ttc\", expected \"distance_only\"");
+  EXPECT_EQ(
+      parts_error(dir, mutated_parts([](json& j) { j["parts"][1]["body_part"] = "l_forearm"; })),
+      "'parts[1].body_part' is \"l_forearm\", which parts[0] already uses; expected unique "
+      "body parts");
+  EXPECT_EQ(parts_error(dir, mutated_parts([](json& j) { j["parts"] = json::array(); })),
+            "'parts' is empty, expected at least one body part");
+  EXPECT_EQ(parts_error(dir, mutated_parts([](json& j) { j["parts"] = 3; })),
+            "'parts' is number, expected an array of body parts");
+  EXPECT_EQ(parts_error(dir, mutated_parts([](json& j) { j["parts"][1].erase("model"); })),
+            "missing key 'parts[1].model'");
+  EXPECT_EQ(parts_error(dir, mutated_parts([](json& j) { j["parts"][1]["grid"]["d_bins"] = 8.5; })),
+            "'parts[1].grid.d_bins' is 8.5, expected an integer");
+  EXPECT_EQ(
+      parts_error(dir, mutated_parts([](json& j) { j["parts"][0]["taxels"][1]["pos"].erase(0); })),
+      "'parts[0].taxels[1].pos' has 31 entries, expected 32 (8 D bins x 4 TTC bins)");
+  EXPECT_EQ(parts_error(dir, mutated_parts([](json& j) { j["parts"][0]["taxels"][1]["id"] = 3; })),
+            "'parts[0].taxels[1].id' is 3, which parts[0].taxels[0] already uses; expected unique "
+            "ids");
+  // load_learned_state on a version-3 file.
+  EXPECT_EQ(load_error(dir, text),
+            "has 2 body parts (l_forearm r_palm), expected one (name the "
+            "body part to load)");
+  EXPECT_EQ(load_error(dir, text, LoadExpectations{"l_hand", {}, {}}),
+            "has no body part \"l_hand\" (it has: l_forearm r_palm), expected \"l_hand\"");
+  EXPECT_EQ(load_error(dir, text, LoadExpectations{"r_palm", 3, {}}),
+            "body part \"r_palm\" has 1 taxels, expected 3");
 }
