@@ -1,0 +1,24 @@
+#pragma once
+/// @file
+/// Joint offsets written as text, "joint: value, joint: value, ...": revolute joints in degrees,
+/// prismatic joints in metres. Shared by every plugin that takes such a parameter (believed
+/// kinematics, injected errors), so the syntax and the error messages are the same everywhere.
+#include <string>
+
+#include <Eigen/Core>
+
+#include "somasim/robot/robot_model.hpp"
+
+namespace somasim::robot {
+
+/// Per-dof offsets (model dof order) [rad] (prismatic: [m]) from "joint: value, ..." text;
+/// joints not named are 0, an empty text gives all zeros. Throws InputError, with a message
+/// meant to be prefixed by where the text came from, for:
+///   - an entry without a colon: "expected 'joint: value', got 'x' (entries separated by ',')"
+///   - an unknown joint: "unknown joint 'l_elbw' (did you mean 'l_elbow'?) (movable joints of
+///     the robot)"
+///   - a bad value: "joint 'l_elbow': expected a number [deg], got 'abc'" ([m] for prismatic)
+///   - a joint named twice: "joint 'l_elbow' is given twice"
+Eigen::VectorXd parse_joint_offsets(const RobotModel& model, const std::string& text);
+
+}  // namespace somasim::robot
