@@ -1,0 +1,270 @@
+#include "pps_evaluator.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "evaluation_report.hpp"
+#include "somasim/diagnostics.hpp"
+
+namespace somasim::plugins {
+
+namespace {
+
+const char* shape_name(ObjectShape s) {
+  switch (s) {
+    case ObjectShape::kSphere:
+      return "sphere";
+    case ObjectShape::kBox:
+      return "box";
+    case ObjectShape::kCylinder:
+      return "cylinder";
+    case ObjectShape::kMesh:
+      break;
+  }
+  return "unknown";
+}
+
+std::string velocity_port(int i) {
+  return "velocity_" + std::to_string(i + 1);
+}
+
+}  // namespace
+
+PluginSpec PpsEvaluator::spec() {
+  PluginSpec s("pps_evaluator",
+               "Scores PPS avoidance / reaching against the ground truth: per presented object, "
+               "whether the aimed skin part's activations crossed the threshold, the true "
+               "object-to-skin distances at the trigger and at the closest, skin and object "
+               "contacts; rates, distance summaries, a CSV row per presentation and figures.");
+  s.add_double("threshold")
+      .defaults(0.4)
+      .range(0, 1)
+      .describe("activation threshold of a trigger (the controllers' threshold)");
+  s.add_string("velocity_parts")
+      .defaults(std::string(""))
+      .describe(
+          "space-separated skin parts, the i-th is the part whose controller's velocity is "
+          "wired to velocity_i (e.g. 'left_forearm right_palm'); '-' skips an input");
+  s.add_list("figure_presentations")
+      .defaults(std::vector<double>{1, 2, 3, 4})
+      .at_least(1)
+      .describe("ids of the presentations drawn as Fig 10/11-style figures");
+  s.add_int("figure_taxels")
+      .defaults(std::int64_t{3})
+      .range(1, 20)
+      .describe("the most activated taxels drawn per figure");
+  s.add_string("csv")
+      .defaults(std::string("presentations.csv"))
+      .describe("per-presentation table written into the run folder ('' = none)");
+  s.input<Presentation>("presentation", "the object presented now (e.g. object_thrower)");
+  s.input<ObjectStates>("objects", "object states from the world (ground truth)");
+  s.input<SkinTaxels>("taxels", "true taxel poses (root frame), e.g. skin.taxels");
+  s.input<ContactEvents>("contacts", "skin contact events");
+  s.input<TaxelValues>("activations",
+                       "PPS activations, labelled 'part/id' (one or several parts); "
+                       "unlabelled: the values of the aimed part only");
+  s.input<Contacts>("world_contacts", "the world's contacts: object-robot contact anywhere",
+                    /*optional=*/true);
+  s.input<ObjectSpawns>("spawns",
+                        "the stimulus source's spawn requests: object shapes and sizes for "
+                        "exact distances (unwired: bounding spheres, a lower bound)",
+                        /*optional=*/true);
+  for (int i = 0; i < kVelocityInputs; ++i)
+    s.input<Eigen::Vector3d>(velocity_port(i),
+                             "commanded velocity of a controller [m/s] (see velocity_parts)",
+                             /*optional=*/true);
+  return s;
+}
+
+void PpsEvaluator::configure(NodeContext& ctx) {
+  threshold_ = ctx.param<double>("threshold");
+  figure_ids_ = ctx.param<std::vector<double>>("figure_presentations");
+  figure_taxels_ = ctx.param<int>("figure_taxels");
+  csv_name_ = ctx.param<std::string>("csv");
+  std::istringstream in(ctx.param<std::string>("velocity_parts"));
+  for (std::string p; in >> p;) velocity_parts_.push_back(p == "-" ? "" : p);
+  if (velocity_parts_.size() > static_cast<std::size_t>(kVelocityInputs))
+    ctx.param_error("velocity_parts",
+                    fmt::format("{} parts named, but there are only {} velocity "
+                                "inputs (velocity_1 .. velocity_{})",
+                                velocity_parts_.size(), kVelocityInputs, kVelocityInputs));
+  velocity_parts_.resize(kVelocityInputs);
+  for (int i = 0; i < kVelocityInputs; ++i) {
+    const bool wired = ctx.is_wired(velocity_port(i));
+    const auto& part = velocity_parts_[static_cast<std::size_t>(i)];
+    if (wired && part.empty())
+      ctx.param_error("velocity_parts",
+                      "input '" + velocity_port(i) + "' is wired, but no part is named for it");
+    if (!wired && !part.empty())
+      ctx.param_error("velocity_parts", "part '" + part + "' is named for input '" +
+                                            velocity_port(i) + "', which is not wired");
+    velocities_.push_back(wired ? &ctx.input<Eigen::Vector3d>(velocity_port(i)) : nullptr);
+  }
+  presentation_ = &ctx.input<Presentation>("presentation");
+  objects_ = &ctx.input<ObjectStates>("objects");
+  taxels_ = &ctx.input<SkinTaxels>("taxels");
+  contacts_ = &ctx.input<ContactEvents>("contacts");
+  activations_ = &ctx.input<TaxelValues>("activations");
+  world_contacts_ =
+      ctx.is_wired("world_contacts") ? &ctx.input<Contacts>("world_contacts") : nullptr;
+  spawns_ = ctx.is_wired("spawns") ? &ctx.input<ObjectSpawns>("spawns") : nullptr;
+}
+
+const SkinPart* PpsEvaluator::find_part(NodeContext& ctx, const std::string& name) const {
+  for (const auto& p : taxels_->parts)
+    if (p.name == name) return &p;
+  if (taxels_->parts.empty()) return nullptr;  // the skin has not reported yet
+  std::vector<std::string> names;
+  for (const auto& p : taxels_->parts) names.push_back(p.name);
+  throw RunError(ctx.node_name() + ": presentation " + std::to_string(presentation_->id) +
+                 " aims at skin part '" + name + "', which is not in the 'taxels' input" +
+                 did_you_mean(name, names) + "; parts: " + join_names(names));
+}
+
+ObjectGeometry PpsEvaluator::geometry_of(const std::string& object, std::size_t index) const {
+  ObjectGeometry g;
+  if (const auto it = geometries_.find(object); it != geometries_.end()) g = it->second;
+  if (index < objects_->radius.size()) g.bounding_radius = objects_->radius[index];
+  return g;
+}
+
+PresentationRecord* PpsEvaluator::record_at(double t) {
+  for (auto it = records_.rbegin(); it != records_.rend(); ++it)
+    if (it->covers(t)) return &*it;
+  return nullptr;
+}
+
+void PpsEvaluator::follow_presentation(NodeContext& ctx) {
+  const Presentation& p = *presentation_;
+  const double now = ctx.time_s();
+  if (!records_.empty() && records_.back().open() && (p.id != records_.back().id || !p.active))
+    records_.back().end_s = now;
+  if (p.id == 0 || !p.active || (!records_.empty() && records_.back().id == p.id)) return;
+  PresentationRecord r;
+  r.id = p.id;
+  r.motion = p.motion;
+  r.object = p.object;
+  r.body_part = p.body_part;
+  r.taxel_id = p.taxel_id;
+  r.speed = p.speed;
+  r.start_s = p.start_time_s;
+  record_of_object_[r.object] = records_.size();
+  records_.push_back(std::move(r));
+  if (std::find(figure_ids_.begin(), figure_ids_.end(), static_cast<double>(p.id)) !=
+      figure_ids_.end())
+    traces_[p.id].id = p.id;
+}
+
+void PpsEvaluator::observe(NodeContext& ctx, PresentationRecord& r) {
+  const SkinPart* part = find_part(ctx, r.body_part);
+  if (!part) return;
+  // The object in the world (indices are stable: removed objects keep their slot).
+  std::size_t at = objects_->names.size();
+  for (std::size_t i = 0; i < objects_->names.size(); ++i)
+    if (objects_->names[i] == r.object) at = i;
+  const bool present =
+      at < objects_->present.size() && objects_->present[at] && at < objects_->poses.size();
+  distances_.assign(part->positions.size(), PresentationRecord::kNaN);
+  double nearest = PresentationRecord::kNaN;
+  if (present) {
+    const ObjectGeometry g = geometry_of(r.object, at);
+    const Eigen::Isometry3d& pose = objects_->poses[at];
+    if (!r.seen) r.shape = shape_name(g.shape);
+    r.seen = true;
+    for (std::size_t k = 0; k < part->positions.size(); ++k) {
+      distances_[k] = surface_distance(g, pose, part->positions[k]);
+      if (!(distances_[k] >= nearest)) nearest = distances_[k];
+    }
+    double any = nearest;
+    for (const auto& other : taxels_->parts) {
+      if (&other == part) continue;
+      for (const auto& x : other.positions) any = std::min(any, surface_distance(g, pose, x));
+    }
+    if (!(r.min_distance_m <= nearest)) r.min_distance_m = nearest;
+    if (!(r.min_distance_any_part_m <= any)) r.min_distance_any_part_m = any;
+  }
+
+  // Activations of the aimed part, and whether another part's crossed the threshold.
+  const auto a = part_activations_[r.body_part].select(*activations_, *part, ctx.node_name());
+  double peak = 0.0;
+  for (double x : a) peak = std::max(peak, x);
+  r.max_activation = std::max(r.max_activation, peak);
+  if (present && peak > threshold_ && !r.triggered) {
+    r.triggered = true;
+    r.trigger_time_s = ctx.time_s();
+    r.trigger_distance_m = nearest;
+  }
+  const std::string prefix = r.body_part + "/";
+  for (std::size_t i = 0; present && i < activations_->labels.size(); ++i)
+    if (activations_->values[i] > threshold_ && !activations_->labels[i].starts_with(prefix))
+      r.triggered_other_part = true;
+
+  double speed = PresentationRecord::kNaN;
+  for (std::size_t i = 0; i < velocities_.size(); ++i)
+    if (velocities_[i] && velocity_parts_[i] == r.body_part) speed = velocities_[i]->norm();
+  if (std::isfinite(speed)) r.max_speed = std::max(r.max_speed, speed);
+
+  if (const auto it = traces_.find(r.id); it != traces_.end()) {
+    PresentationTrace& t = it->second;
+    if (t.taxel_ids.empty()) t.taxel_ids = part->taxel_ids;
+    std::vector<double> act(a.begin(), a.end());
+    act.resize(part->taxel_ids.size(), 0.0);  // nothing computed yet: zeros
+    t.add_sample(ctx.time_s(), distances_, act, speed);
+  }
+}
+
+void PpsEvaluator::attribute_contacts() {
+  for (const auto& e : contacts_->recent) {
+    if (e.id <= last_event_id_) continue;
+    last_event_id_ = e.id;
+    PresentationRecord* r = record_at(e.time_s);
+    if (!r) continue;
+    r->skin_contact_any = true;
+    if (e.body_part == r->body_part && !r->skin_contact) {
+      r->skin_contact = true;
+      r->contact_time_s = e.time_s;
+    }
+  }
+  if (!world_contacts_) return;
+  double newest = last_world_contact_s_;
+  for (const auto& c : world_contacts_->recent) {
+    if (c.time_s <= last_world_contact_s_) continue;
+    newest = std::max(newest, c.time_s);
+    const int object = c.object_a >= 0 ? c.object_a : c.object_b;
+    const int link = c.object_a >= 0 ? c.link_b : c.link_a;
+    if (object < 0 || link < 0 || static_cast<std::size_t>(object) >= objects_->names.size())
+      continue;
+    const auto it = record_of_object_.find(objects_->names[static_cast<std::size_t>(object)]);
+    if (it != record_of_object_.end()) records_[it->second].object_contact = true;
+  }
+  last_world_contact_s_ = newest;
+}
+
+void PpsEvaluator::step(NodeContext& ctx) {
+  if (spawns_)
+    for (const auto& s : spawns_->recent)
+      if (!geometries_.contains(s.name)) geometries_[s.name] = ObjectGeometry{s.shape, s.size, 0};
+  follow_presentation(ctx);
+  if (!records_.empty() && records_.back().open()) observe(ctx, records_.back());
+  attribute_contacts();
+}
+
+void PpsEvaluator::finish(NodeContext& ctx) {
+  const nlohmann::json metrics = evaluation_metrics(records_);
+  for (const auto& [key, value] : metrics.items()) ctx.report_metric(key, value);
+  ctx.report_metric("threshold", threshold_);
+  if (!csv_name_.empty()) write_presentations_csv(ctx.output_path(csv_name_), records_);
+  for (const auto& [id, trace] : traces_) {
+    if (trace.time_s.empty()) continue;
+    const auto it = std::find_if(records_.begin(), records_.end(),
+                                 [&](const PresentationRecord& r) { return r.id == id; });
+    draw_presentation_figure(trace, *it, threshold_, figure_taxels_,
+                             ctx.figure_path(fmt::format("presentation_{}_{}_{}.png", id,
+                                                         motion_name(it->motion), it->body_part)));
+  }
+}
+
+}  // namespace somasim::plugins

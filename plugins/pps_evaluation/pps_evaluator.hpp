@@ -1,0 +1,67 @@
+#pragma once
+// pps_evaluator: scores PPS avoidance and reaching (issue 4, PAPERS.md A "Exploitation") with the
+// simulation's ground truth. For every object a stimulus source presents (`presentation`) it
+// records whether a taxel of the aimed skin part went above `threshold` while the object was in
+// the world (a trigger; for static and receding objects a false one), the true distance from the
+// object's surface to the part's nearest taxel at the first trigger and its minimum over the
+// presentation (exact for spheres, boxes and cylinders; see surface_distance.hpp), skin contact
+// events on the aimed part and on any part, and object-robot contacts reported by the world.
+// finish() reports the metrics (evaluation_report.hpp), writes one CSV row per presentation and
+// draws Fig 10/11-style figures of chosen presentations.
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "../pps_controller/part_activations.hpp"
+#include "presentation_record.hpp"
+#include "presentation_trace.hpp"
+#include "somasim/plugin.hpp"
+#include "somasim/port_types.hpp"
+#include "somasim/robot_ports.hpp"
+#include "surface_distance.hpp"
+
+namespace somasim::plugins {
+
+class PpsEvaluator : public Plugin {
+ public:
+  static constexpr int kVelocityInputs = 4;  ///< velocity_1 .. velocity_4
+  static PluginSpec spec();
+  void configure(NodeContext& ctx) override;
+  void step(NodeContext& ctx) override;
+  void finish(NodeContext& ctx) override;
+
+ private:
+  void follow_presentation(NodeContext& ctx);
+  void observe(NodeContext& ctx, PresentationRecord& r);
+  void attribute_contacts();
+  PresentationRecord* record_at(double t);
+  const SkinPart* find_part(NodeContext& ctx, const std::string& name) const;
+  ObjectGeometry geometry_of(const std::string& object, std::size_t index) const;
+
+  double threshold_ = 0.4;
+  std::vector<std::string> velocity_parts_;  ///< part controlled by velocity_i ("" = none)
+  std::vector<double> figure_ids_;
+  int figure_taxels_ = 3;
+  std::string csv_name_;
+
+  const Presentation* presentation_ = nullptr;
+  const ObjectStates* objects_ = nullptr;
+  const SkinTaxels* taxels_ = nullptr;
+  const ContactEvents* contacts_ = nullptr;
+  const Contacts* world_contacts_ = nullptr;  // optional
+  const ObjectSpawns* spawns_ = nullptr;      // optional
+  const TaxelValues* activations_ = nullptr;
+  std::vector<const Eigen::Vector3d*> velocities_;  // per velocity input; null = unwired
+
+  std::vector<PresentationRecord> records_;
+  std::map<std::string, std::size_t> record_of_object_;
+  std::map<std::string, ObjectGeometry> geometries_;  ///< by object name, from `spawns`
+  std::map<std::uint64_t, PresentationTrace> traces_;
+  std::map<std::string, PartActivations> part_activations_;  ///< by aimed part
+  std::uint64_t last_event_id_ = 0;
+  double last_world_contact_s_ = -1.0;
+  std::vector<double> distances_;  ///< scratch: per taxel of the aimed part
+};
+
+}  // namespace somasim::plugins
