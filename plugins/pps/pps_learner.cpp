@@ -1,15 +1,14 @@
 #include "pps_learner.hpp"
 
 #include <algorithm>
-#include <cmath>
+#include <sstream>
 
 #include "landscape_figure.hpp"
 #include "learner_params.hpp"
+#include "learner_report.hpp"
 #include "somasim/diagnostics.hpp"
 #include "somasim/pps/learned_state.hpp"
 #include "somasim/pps/map_io.hpp"
-#include "somasim/pps/offset_estimate.hpp"
-#include "somasim/pps/offset_ridge.hpp"
 
 namespace somasim::plugins {
 
@@ -19,21 +18,31 @@ PluginSpec PpsLearner::spec() {
                "learned from buffered stimuli at skin contacts; Parzen-smoothed activations.");
   s.add_string("body_part")
       .defaults(std::string("taxel"))
-      .describe("the skin part (a name in the 'taxels' input) whose taxels learn");
+      .describe(
+          "the skin part(s) whose taxels learn: one or several space-separated names in the "
+          "'taxels' input, e.g. \"left_forearm right_palm\" (one learner per part)");
   declare_learner_params(s);
   s.add_bool("learn").defaults(true).describe("learn from contact events (false: only evaluate)");
   s.add_string("load")
       .defaults(std::string(""))
-      .describe("learned-state file to start from (somasim JSON); relative to the experiment");
+      .describe(
+          "learned-state file to start from (somasim JSON, holding every body part); relative "
+          "to the experiment");
   s.add_string("save")
       .defaults(std::string("pps_map.json"))
-      .describe("file name of the learned state written into the run folder ('' = none)");
+      .describe(
+          "file name of the learned state written into the run folder, all parts in one file "
+          "('' = none)");
   s.add_list("figure_taxels")
       .defaults(std::vector<double>{})
-      .describe("taxel ids whose landscapes are drawn (empty: the first four)");
+      .describe(
+          "taxel ids whose landscapes are drawn, in every part that has them (empty: the first "
+          "four of each part)");
   s.add_list("snapshot_events")
       .defaults(std::vector<double>{})
-      .describe("also draw the landscapes after these many events (e.g. [1, 4] as in Fig 9)");
+      .describe(
+          "also draw a part's landscapes after it learned from these many events (e.g. [1, 4] "
+          "as in Fig 9)");
   s.add_int("min_samples")
       .defaults(std::int64_t{50})
       .at_least(0)
@@ -41,14 +50,20 @@ PluginSpec PpsLearner::spec() {
   s.input<Stimulus>("stimulus", "perceived stimulus (root frame), sampled at this node's rate");
   s.input<SkinTaxels>("taxels", "taxel poses in the root frame");
   s.input<ContactEvents>("contacts", "skin contact events (unwired: no learning)", true);
-  s.output<TaxelValues>("activations", "activation in [0, 1] of each taxel of the part");
-  s.output<double>("max_activation", "largest activation of the part");
+  s.input<TaxelValues>("true_offsets",
+                       "the offset [m] each taxel should show, by label \"part/id\" (NaN: "
+                       "unknown), for the offset_error_* metrics",
+                       true);
+  s.output<TaxelValues>("activations",
+                        "activation in [0, 1] of each taxel, parts concatenated in the order of "
+                        "body_part, labels \"part/id\"");
+  s.output<double>("max_activation", "largest activation over all parts");
   return s;
 }
 
 void PpsLearner::configure(NodeContext& ctx) {
   params_ = read_learner_params(ctx);
-  body_part_ = ctx.param<std::string>("body_part");
+  parse_body_parts(ctx);
   learn_ = ctx.param<bool>("learn");
   save_name_ = ctx.param<std::string>("save");
   min_samples_ = ctx.param<int>("min_samples");
@@ -58,80 +73,150 @@ void PpsLearner::configure(NodeContext& ctx) {
   stimulus_ = &ctx.input<Stimulus>("stimulus");
   skin_ = &ctx.input<SkinTaxels>("taxels");
   contacts_ = ctx.is_wired("contacts") ? &ctx.input<ContactEvents>("contacts") : nullptr;
+  true_offsets_ = ctx.is_wired("true_offsets") ? &ctx.input<TaxelValues>("true_offsets") : nullptr;
   activations_ = &ctx.output<TaxelValues>("activations");
   max_activation_ = &ctx.output<double>("max_activation");
-  if (const std::string load = ctx.param<std::string>("load"); !load.empty()) {
-    load_path_ = ctx.resolve_input_path(load).string();
-    pps::LoadExpectations expect;
-    expect.body_part = body_part_;
-    expect.model = params_.model;
-    const pps::LearnedState state = pps::load_learned_state(load_path_, expect);
-    learner_ = std::make_unique<pps::BodyPartLearner>(pps::make_learner(state, params_));
-  }
+  if (const std::string load = ctx.param<std::string>("load"); !load.empty()) this->load(ctx, load);
 }
 
-const SkinPart* PpsLearner::find_part(NodeContext& ctx) const {
-  for (const auto& p : skin_->parts)
-    if (p.name == body_part_) return &p;
-  std::vector<std::string> names;
-  for (const auto& p : skin_->parts) names.push_back(p.name);
-  ctx.param_error("body_part", "no skin part '" + body_part_ + "' in the 'taxels' input" +
-                                   did_you_mean(body_part_, names) +
-                                   "; parts: " + join_names(names));
+void PpsLearner::parse_body_parts(NodeContext& ctx) {
+  std::istringstream in(ctx.param<std::string>("body_part"));
+  for (std::string name; in >> name;) {
+    for (const LearnerPart& p : parts_)
+      if (p.name == name) ctx.param_error("body_part", "lists '" + name + "' twice");
+    parts_.emplace_back().name = name;
+  }
+  if (parts_.empty()) ctx.param_error("body_part", "is empty, expected one or more skin parts");
 }
 
-void PpsLearner::create_learner(NodeContext& ctx, const SkinPart& part) {
-  if (learner_) {
-    if (learner_->taxels().size() != part.taxel_ids.size())
-      throw InputError(load_path_ + ": " + std::to_string(learner_->taxels().size()) +
-                       " taxels, but body part '" + body_part_ + "' has " +
-                       std::to_string(part.taxel_ids.size()) + " on the skin");
-  } else {
-    std::vector<pps::TaxelInfo> taxels;
-    for (std::size_t k = 0; k < part.taxel_ids.size(); ++k) {
-      pps::TaxelInfo t;
-      t.id = part.taxel_ids[k];
-      const bool has_link = part.positions_link.size() == part.taxel_ids.size();
-      t.pose_link.position = has_link ? part.positions_link[k] : part.positions[k];
-      t.pose_link.normal = has_link ? part.normals_link[k] : part.normals[k];
-      taxels.push_back(t);
-    }
-    learner_ = std::make_unique<pps::BodyPartLearner>(body_part_, std::move(taxels), params_);
-  }
+void PpsLearner::load(NodeContext& ctx, const std::string& file) {
+  load_path_ = ctx.resolve_input_path(file).string();
+  pps::PartsExpectations expect;
+  for (const LearnerPart& p : parts_) expect.body_parts.push_back(p.name);
+  expect.model = params_.model;
+  const std::vector<pps::LearnedState> states = pps::load_learned_parts(load_path_, expect);
+  for (std::size_t i = 0; i < parts_.size(); ++i)
+    parts_[i].learner =
+        std::make_unique<pps::BodyPartLearner>(pps::make_learner(states[i], params_));
+}
+
+// First step: finds each part in the 'taxels' input, checks a loaded learner against it (or
+// creates the learner from its taxels), and lays out the activations output.
+void PpsLearner::bind_parts(NodeContext& ctx) {
   activations_->labels.clear();
-  for (int id : part.taxel_ids)
-    activations_->labels.push_back(body_part_ + "/" + std::to_string(id));
-  activations_->values.assign(part.taxel_ids.size(), 0.0);
-  poses_.resize(part.taxel_ids.size());
-  ctx.log().info("{} taxels on '{}'", part.taxel_ids.size(), body_part_);
+  std::size_t total = 0;
+  for (LearnerPart& p : parts_) {
+    const SkinPart& part = input_part(ctx, p);
+    const std::size_t n = part.taxel_ids.size();
+    if (p.learner) {
+      const auto& taxels = p.learner->taxels();
+      if (taxels.size() != n)
+        throw InputError(load_path_ + ": body part \"" + p.name + "\" has " +
+                         std::to_string(taxels.size()) + " taxels, expected " + std::to_string(n) +
+                         " (the 'taxels' input's count)");
+      for (std::size_t k = 0; k < n; ++k)
+        if (taxels[k].id != part.taxel_ids[k])
+          throw InputError(load_path_ + ": body part \"" + p.name + "\": taxel " +
+                           std::to_string(k) + " has id " + std::to_string(taxels[k].id) +
+                           ", expected " + std::to_string(part.taxel_ids[k]) +
+                           " (the 'taxels' input's order)");
+    } else {
+      const bool has_link = part.positions_link.size() == n && part.normals_link.size() == n;
+      std::vector<pps::TaxelInfo> taxels(n);
+      for (std::size_t k = 0; k < n; ++k) {
+        taxels[k].id = part.taxel_ids[k];
+        taxels[k].pose_link.position = has_link ? part.positions_link[k] : part.positions[k];
+        taxels[k].pose_link.normal = has_link ? part.normals_link[k] : part.normals[k];
+      }
+      p.learner = std::make_unique<pps::BodyPartLearner>(p.name, std::move(taxels), params_);
+    }
+    p.first = total;
+    total += n;
+    p.poses.resize(n);
+    for (int id : part.taxel_ids) activations_->labels.push_back(p.name + "/" + std::to_string(id));
+    ctx.log().info("{} taxels on '{}'", n, p.name);
+  }
+  activations_->values.assign(total, 0.0);
+  check_figure_taxels(ctx);
+  bound_ = true;
+}
+
+void PpsLearner::check_figure_taxels(NodeContext& ctx) const {
+  for (double id : figure_taxels_) {
+    bool found = false;
+    for (const LearnerPart& p : parts_)
+      found = found || p.learner->index_of(static_cast<int>(id)) >= 0;
+    if (!found)
+      ctx.param_error("figure_taxels", "taxel id " + std::to_string(static_cast<int>(id)) +
+                                           " is on none of the parts (" +
+                                           ctx.param<std::string>("body_part") + ")");
+  }
+}
+
+// The part's entry in the 'taxels' input: the cached index if it still names the part (no
+// allocation, no search), else found again by name.
+const SkinPart& PpsLearner::input_part(NodeContext& ctx, LearnerPart& p) const {
+  const auto& parts = skin_->parts;
+  if (p.input_index >= parts.size() || parts[p.input_index].name != p.name) {
+    p.input_index = parts.size();
+    for (std::size_t i = 0; i < parts.size(); ++i)
+      if (parts[i].name == p.name) p.input_index = i;
+    if (p.input_index == parts.size()) {
+      std::vector<std::string> names;
+      for (const auto& q : parts) names.push_back(q.name);
+      ctx.param_error("body_part", "no skin part '" + p.name + "' in the 'taxels' input" +
+                                       did_you_mean(p.name, names) +
+                                       "; parts: " + join_names(names));
+    }
+  }
+  const SkinPart& part = parts[p.input_index];
+  if (bound_) {
+    const std::size_t n = p.poses.size();
+    if (part.positions.size() != n || part.normals.size() != n)
+      throw RunError("pps_learner: skin part '" + p.name + "' now has " +
+                     std::to_string(part.positions.size()) + " taxel positions and " +
+                     std::to_string(part.normals.size()) + " normals, expected " +
+                     std::to_string(n));
+  } else if (part.positions.size() != part.taxel_ids.size() ||
+             part.normals.size() != part.taxel_ids.size()) {
+    throw RunError("pps_learner: skin part '" + p.name + "' has " +
+                   std::to_string(part.taxel_ids.size()) + " taxel ids but " +
+                   std::to_string(part.positions.size()) + " positions and " +
+                   std::to_string(part.normals.size()) + " normals");
+  }
+  return part;
 }
 
 void PpsLearner::step(NodeContext& ctx) {
-  const SkinPart* part = find_part(ctx);
-  if (!learner_ || poses_.empty()) create_learner(ctx, *part);
-  for (std::size_t k = 0; k < poses_.size(); ++k) {
-    poses_[k].position = part->positions[k];
-    poses_[k].normal = part->normals[k];
+  if (!bound_) bind_parts(ctx);
+  for (LearnerPart& p : parts_) {
+    const SkinPart& part = input_part(ctx, p);
+    for (std::size_t k = 0; k < p.poses.size(); ++k) {
+      p.poses[k].position = part.positions[k];
+      p.poses[k].normal = part.normals[k];
+    }
+    p.event_before_now = false;
   }
   const double now = ctx.time_s();
   // Contacts first, with the samples buffered up to them; the current sample belongs to the
-  // approach that ended with the contact only if it is not later than the contact.
-  bool have_new_event = false;
-  double first_event_time = now;
+  // approach that ended with a part's contact only if it is not later than the contact.
   if (contacts_)
     for (const auto& e : contacts_->recent)
-      if (e.id > last_event_id_ && e.body_part == body_part_) {
-        have_new_event = true;
-        first_event_time = std::min(first_event_time, e.time_s);
-      }
-  const bool sample_after_contact = have_new_event && now > first_event_time;
-  const auto push_current = [&] {
-    learner_->push_stimulus({now, {stimulus_->position, stimulus_->velocity, stimulus_->radius}});
-  };
-  if (stimulus_->present && !sample_after_contact) push_current();
+      if (e.id > last_event_id_ && e.time_s < now)
+        for (LearnerPart& p : parts_)
+          if (e.body_part == p.name) p.event_before_now = true;
+  const pps::StimulusSample sample{now,
+                                   {stimulus_->position, stimulus_->velocity, stimulus_->radius}};
+  if (stimulus_->present)
+    for (LearnerPart& p : parts_)
+      if (!p.event_before_now) p.learner->push_stimulus(sample);
   if (contacts_) learn_from_events(ctx);
-  if (stimulus_->present && sample_after_contact) push_current();
-  if (!stimulus_->present) learner_->buffer().update(now);
+  for (LearnerPart& p : parts_) {
+    if (!stimulus_->present)
+      p.learner->buffer().update(now);
+    else if (p.event_before_now)
+      p.learner->push_stimulus(sample);
+  }
   update_activations();
 }
 
@@ -139,80 +224,43 @@ void PpsLearner::learn_from_events(NodeContext& ctx) {
   for (const auto& e : contacts_->recent) {
     if (e.id <= last_event_id_) continue;
     last_event_id_ = e.id;
-    if (e.body_part != body_part_ || !learn_) continue;
-    touched_.assign(e.touched_taxels.begin(), e.touched_taxels.end());
-    learner_->on_contact(poses_, touched_);
-    ++events_;
-    if (std::find(snapshot_after_.begin(), snapshot_after_.end(), events_) != snapshot_after_.end())
-      draw_landscapes(ctx, *learner_, figure_taxels_,
-                      "after_" + std::to_string(events_) + "_events");
+    if (!learn_) continue;
+    for (LearnerPart& p : parts_) {
+      if (e.body_part != p.name) continue;
+      p.learner->on_contact(p.poses, e.touched_taxels);
+      ++p.events;
+      if (std::find(snapshot_after_.begin(), snapshot_after_.end(), p.events) !=
+          snapshot_after_.end())
+        draw_landscapes(ctx, *p.learner, figure_taxels_,
+                        "after_" + std::to_string(p.events) + "_events");
+    }
   }
 }
 
 void PpsLearner::update_activations() {
   double max_a = 0.0;
   const pps::Stimulus s{stimulus_->position, stimulus_->velocity, stimulus_->radius};
-  for (std::size_t k = 0; k < poses_.size(); ++k) {
-    const double a =
-        stimulus_->present ? learner_->activation(static_cast<int>(k), poses_[k], s) : 0.0;
-    activations_->values[k] = a;
-    max_a = std::max(max_a, a);
+  double* out = activations_->values.data();
+  for (const LearnerPart& p : parts_) {
+    for (std::size_t k = 0; k < p.poses.size(); ++k) {
+      const double a =
+          stimulus_->present ? p.learner->activation(static_cast<int>(k), p.poses[k], s) : 0.0;
+      out[p.first + k] = a;
+      max_a = std::max(max_a, a);
+    }
   }
   *max_activation_ = max_a;
 }
 
 void PpsLearner::finish(NodeContext& ctx) {
-  if (!learner_) return;
-  report(ctx);
-  if (!save_name_.empty())
-    pps::save_learned_state(pps::learned_state(*learner_), ctx.output_path(save_name_).string());
-  draw_landscapes(ctx, *learner_, figure_taxels_, "");
-}
-
-void PpsLearner::report(NodeContext& ctx) {
-  const pps::LearningStats& t = learner_->totals();
-  const std::size_t counted = t.positives + t.negatives;
-  ctx.report_metric("events", events_);
-  ctx.report_metric("samples", counted);
-  ctx.report_metric("positive_samples", t.positives);
-  ctx.report_metric("negative_samples", t.negatives);
-  ctx.report_metric("negative_d_share",
-                    counted ? static_cast<double>(t.behind_skin) / counted : 0.0);
-  // Offsets per taxel with enough samples: the paper's Fig 8 regression (offset_estimate_m)
-  // and the ridge-end estimator (offset_ridge_m); the part's offsets are their means.
-  nlohmann::json per_taxel = nlohmann::json::object();
-  double sum = 0.0, sum_ridge = 0.0;
-  int n = 0, n_ridge = 0;
-  const auto opt_json = [](const std::optional<double>& v) {
-    return v ? nlohmann::json(*v) : nlohmann::json();
-  };
-  const bool distance_only = params_.model == pps::PpsModel::kDistanceOnly;
-  for (std::size_t k = 0; k < learner_->maps().size(); ++k) {
-    auto& map = learner_->maps()[k];
-    if (map.stale()) map.refresh();
-    std::uint64_t samples = 0;
-    for (std::size_t i = 0; i < map.pos().size(); ++i) samples += map.pos()[i] + map.neg()[i];
-    // Fig 8 needs a TTC axis: undefined for the distance-only model.
-    const auto offset = distance_only ? std::nullopt : pps::estimate_offset(map);
-    const auto ridge = pps::estimate_offset_ridge(map);
-    const std::string id = std::to_string(learner_->taxels()[k].id);
-    per_taxel[id] = {{"samples", samples},
-                     {"offset_estimate_m", opt_json(offset)},
-                     {"offset_ridge_m", opt_json(ridge)}};
-    if (samples < static_cast<std::uint64_t>(min_samples_)) continue;
-    if (offset) {
-      sum += *offset;
-      ++n;
-    }
-    if (ridge) {
-      sum_ridge += *ridge;
-      ++n_ridge;
-    }
+  if (!bound_) return;
+  report_learning(ctx, parts_, min_samples_, true_offsets_);
+  if (!save_name_.empty()) {
+    std::vector<pps::LearnedState> states;
+    for (const LearnerPart& p : parts_) states.push_back(pps::learned_state(*p.learner));
+    pps::save_learned_parts(states, ctx.output_path(save_name_).string());
   }
-  ctx.report_metric("offset_estimate_m", n ? nlohmann::json(sum / n) : nlohmann::json());
-  ctx.report_metric("offset_ridge_m",
-                    n_ridge ? nlohmann::json(sum_ridge / n_ridge) : nlohmann::json());
-  ctx.report_metric("taxels", per_taxel);
+  for (LearnerPart& p : parts_) draw_landscapes(ctx, *p.learner, figure_taxels_, "");
 }
 
 }  // namespace somasim::plugins

@@ -1,8 +1,12 @@
 #pragma once
-// pps_learner: learns and evaluates the peripersonal-space maps of one body part's taxels.
+// pps_learner: learns and evaluates the peripersonal-space maps of the taxels of one or several
+// body parts (one pps::BodyPartLearner per part).
+#include <cstdint>
 #include <memory>
-#include <optional>
+#include <string>
+#include <vector>
 
+#include "learner_part.hpp"
 #include "somasim/plugin.hpp"
 #include "somasim/port_types.hpp"
 #include "somasim/pps/body_part_learner.hpp"
@@ -17,14 +21,15 @@ class PpsLearner : public Plugin {
   void finish(NodeContext& ctx) override;
 
  private:
-  const SkinPart* find_part(NodeContext& ctx) const;
-  void create_learner(NodeContext& ctx, const SkinPart& part);
+  void parse_body_parts(NodeContext& ctx);
+  void load(NodeContext& ctx, const std::string& file);
+  void bind_parts(NodeContext& ctx);
+  void check_figure_taxels(NodeContext& ctx) const;
+  const SkinPart& input_part(NodeContext& ctx, LearnerPart& part) const;
   void learn_from_events(NodeContext& ctx);
   void update_activations();
-  void report(NodeContext& ctx);
 
   pps::LearnerParams params_;
-  std::string body_part_;
   std::string load_path_;
   std::string save_name_;
   bool learn_ = true;
@@ -33,14 +38,13 @@ class PpsLearner : public Plugin {
   const Stimulus* stimulus_ = nullptr;
   const SkinTaxels* skin_ = nullptr;
   const ContactEvents* contacts_ = nullptr;
+  const TaxelValues* true_offsets_ = nullptr;
   TaxelValues* activations_ = nullptr;
   double* max_activation_ = nullptr;
-  std::unique_ptr<pps::BodyPartLearner> learner_;
+  std::vector<LearnerPart> parts_;  // in the order of the body_part parameter
+  bool bound_ = false;              // parts found in the taxels input, learners created
   std::uint64_t last_event_id_ = 0;
-  std::size_t events_ = 0;
-  std::vector<pps::TaxelPose> poses_;  // root frame, current tick
-  std::vector<int> touched_;
-  std::vector<std::size_t> snapshot_after_;  // event counts at which maps are drawn (Fig 9)
+  std::vector<std::size_t> snapshot_after_;  // per-part event counts at which maps are drawn
 };
 
 }  // namespace somasim::plugins
