@@ -80,6 +80,14 @@ PluginSpec BulletWorld::spec() {
       .defaults(0.0005)
       .range(0, 0.1)
       .describe("contact points closer than this (or penetrating) are reported");
+  s.add_double("kinematic_contact_stiffness")
+      .unit_is("N/m")
+      .defaults(1000.0)
+      .range(0, 1e7)
+      .describe(
+          "normal force per metre of penetration reported for a kinematic object touching "
+          "immovable robot geometry (locked links, the fixed base), where the solver applies no "
+          "force; the object keeps its path");
   s.add_double("contact_history")
       .unit_is("s")
       .defaults(0.1)
@@ -146,6 +154,7 @@ void BulletWorld::configure(NodeContext& ctx) {
   dt_ = ctx.period_s();
   contact_distance_ = ctx.param<double>("contact_distance");
   contact_history_ = ctx.param<double>("contact_history");
+  kinematic_stiffness_ = ctx.param<double>("kinematic_contact_stiffness");
   spawn_tolerance_ = ctx.param<double>("spawn_tolerance");
   world_radius_ = ctx.param<double>("world_radius");
   limits_ = {ctx.param<double>("max_joint_speed"), ctx.param<double>("max_object_speed"),
@@ -241,8 +250,9 @@ void BulletWorld::step(NodeContext& ctx) {
 void BulletWorld::publish(double t) {
   robot_->read_joint_state(*joint_state_);
   robot_->link_poses(link_poses_->poses);
-  const Penetration deepest = extract_contacts(physics_->dispatcher(), *robot_, link_poses_->poses,
-                                               *objects_, dt_, contact_distance_, *contacts_);
+  const Penetration deepest =
+      extract_contacts(physics_->dispatcher(), *robot_, link_poses_->poses, *objects_, dt_,
+                       contact_distance_, kinematic_stiffness_, *contacts_);
   record_contact_history(*contacts_, t, contact_history_);
   max_penetration_ = std::max(max_penetration_, deepest.depth);
   const auto n = static_cast<std::int64_t>(contacts_->points.size());

@@ -14,6 +14,9 @@
 /// `locked_joints` fixes joints at their initial value: they are folded into rigid bodies (no
 /// dynamics, no motor; commands on them are a RunError); with `all` the robot is static
 /// collision geometry that still reports link poses, a constant joint state and contacts.
+/// Kinematic objects touch immovable robot geometry (locked links, the fixed base) too: the
+/// solver ignores such pairs (both bodies immovable), so their contacts carry a penetration
+/// force, kinematic_contact_stiffness × depth.
 #include <memory>
 #include <set>
 #include <vector>
@@ -56,7 +59,8 @@ class BulletWorld : public Plugin {
 
   double dt_ = 1e-3;
   double contact_distance_ = 0.0;
-  double contact_history_ = 0.1;  // [s] kept in Contacts::recent
+  double contact_history_ = 0.1;      // [s] kept in Contacts::recent
+  double kinematic_stiffness_ = 0.0;  // [N/m] kinematic object vs immovable robot geometry
   double spawn_tolerance_ = 0.0;
   double world_radius_ = 0.0;
   BlowupLimits limits_;

@@ -44,13 +44,14 @@ BodyTag resolved(BodyTag tag, const RobotMultiBody& robot, int child) {
 Penetration extract_contacts(btDispatcher& dispatcher, const RobotMultiBody& robot,
                              const std::vector<Eigen::Isometry3d>& link_poses,
                              const ObjectManager& objects, double dt, double max_distance,
-                             Contacts& out) {
+                             double kinematic_stiffness, Contacts& out) {
   out.points.clear();
   Penetration deepest;
   const int num_manifolds = dispatcher.getNumManifolds();
   for (int m = 0; m < num_manifolds; ++m) {
     const btPersistentManifold* manifold = dispatcher.getManifoldByIndexInternal(m);
     const BodyTag body0 = tag_of(*manifold->getBody0()), body1 = tag_of(*manifold->getBody1());
+    const bool unsolved = body0.immovable && body1.immovable;  // kinematic_meets_link
     for (int p = 0; p < manifold->getNumContacts(); ++p) {
       const btManifoldPoint& pt = manifold->getContactPoint(p);
       const double distance = pt.getDistance();
@@ -60,7 +61,7 @@ Penetration extract_contacts(btDispatcher& dispatcher, const RobotMultiBody& rob
       const bool swap = !goes_first(t0, t1);
       const BodyTag& ta = swap ? t1 : t0;
       const BodyTag& tb = swap ? t0 : t1;
-      if (-distance > deepest.depth) deepest = {-distance, ta, tb};
+      if (!unsolved && -distance > deepest.depth) deepest = {-distance, ta, tb};
       Contact c;
       set_side(c, true, ta);
       set_side(c, false, tb);
@@ -70,7 +71,8 @@ Penetration extract_contacts(btDispatcher& dispatcher, const RobotMultiBody& rob
       const Eigen::Isometry3d a_pose =
           ta.kind == BodyKind::kLink ? link_poses[ta.index] : objects.pose(ta.index);
       c.point_in_a = a_pose.inverse() * c.point;
-      c.normal_force = std::max(0.0, pt.getAppliedImpulse() / dt);
+      c.normal_force = unsolved ? kinematic_stiffness * std::max(0.0, -distance)
+                                : std::max(0.0, pt.getAppliedImpulse() / dt);
       out.points.push_back(c);
     }
   }

@@ -106,7 +106,8 @@ int ObjectManager::add(const ObjectSpawn& s, double t) {
   info.m_restitution = material_.restitution;
   o.body = std::make_unique<btRigidBody>(info);
   const int index = static_cast<int>(objects_.size());
-  set_tag(*o.body, {BodyKind::kObject, index, s.motion != ObjectMotion::kDynamic});
+  set_tag(*o.body, {BodyKind::kObject, index, s.motion != ObjectMotion::kDynamic,
+                    s.motion == ObjectMotion::kKinematic});
   if (s.motion == ObjectMotion::kKinematic)
     o.body->setCollisionFlags(o.body->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
   if (s.motion != ObjectMotion::kStatic) o.body->setActivationState(DISABLE_DEACTIVATION);

@@ -1,8 +1,9 @@
 #pragma once
 /// @file
 /// Which body pairs Bullet tests for collision. Self-collision is on between all robot links
-/// except adjacent ones; immovable bodies (fixed base, static and kinematic objects) never
-/// collide with each other.
+/// except adjacent ones; immovable bodies (fixed base, static robot, static and kinematic
+/// objects) never collide with each other, except a kinematic object with a robot link (the
+/// contact is reported with a penetration force, contact_extraction.hpp).
 ///
 /// Adjacent links: links joined by fixed (or locked) joints form one rigid group (never tested
 /// against each other); a group is adjacent to its nearest ancestor group that has collision
