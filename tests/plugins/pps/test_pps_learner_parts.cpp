@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <limits>
 #include <string>
 
@@ -294,6 +295,13 @@ TEST(PpsLearnerParts, AFileWithAnotherTaxelCountForAPartIsRejected) {
   EXPECT_EQ(error_of([&] { h.step(); }),
             saved.string() +
                 ": body part \"palm\" has 3 taxels, expected 2 (the 'taxels' input's count)");
+  // Same count, other ids: the maps would land on the wrong taxels.
+  Harness other_ids(graph("palm patch", "load: " + saved.string()));
+  set_skin(other_ids);
+  other_ids.input<SkinTaxels>("taxels").parts[1].taxel_ids = {0, 2, 1};
+  EXPECT_EQ(error_of([&] { other_ids.step(); }),
+            saved.string() +
+                ": body part \"palm\": taxel 1 has id 1, expected 2 (the 'taxels' input's order)");
   std::filesystem::remove(saved);
 }
 
