@@ -221,7 +221,12 @@ void SkinPlugin::init_outputs() {
 void SkinPlugin::update_poses(const std::vector<Eigen::Isometry3d>& poses) {
   for (std::size_t k = 0; k < parts_.size(); ++k) {
     SkinPart& out = taxels_->parts[k];
-    const Eigen::Isometry3d& pose = poses[static_cast<std::size_t>(parts_[k].layout.link)];
+    Part& part = parts_[k];
+    const Eigen::Isometry3d& pose = poses[static_cast<std::size_t>(part.layout.link)];
+    // A link that has not moved (a posed robot) leaves its taxels where they are.
+    if (part.posed && pose.matrix() == part.posed_at.matrix()) continue;
+    part.posed = true;
+    part.posed_at = pose;
     for (std::size_t v = 0; v < out.taxel_ids.size(); ++v) {
       out.positions[v] = pose * out.positions_link[v];
       out.normals[v] = pose.linear() * out.normals_link[v];
@@ -233,8 +238,11 @@ void SkinPlugin::apply_contacts(const Contacts& contacts,
                                 const std::vector<Eigen::Isometry3d>& poses) {
   const auto press = [&](int link, const Eigen::Vector3d& point_link, double force) {
     if (link < 0 || link >= static_cast<int>(parts_on_link_.size())) return;
-    for (int k : parts_on_link_[static_cast<std::size_t>(link)])
-      parts_[static_cast<std::size_t>(k)].response->add_contact(point_link, force);
+    for (int k : parts_on_link_[static_cast<std::size_t>(link)]) {
+      Part& part = parts_[static_cast<std::size_t>(k)];
+      part.pressed = true;
+      part.response->add_contact(point_link, force);
+    }
   };
   // A world faster than the skin keeps a history: take every point since the last step, so
   // that brief impacts between two skin samples still press the taxels.
@@ -273,7 +281,12 @@ void SkinPlugin::step(NodeContext& ctx) {
     throw RunError(fmt::format("input 'link_poses': expected {} link poses (robot '{}'), got {}",
                                model_->num_links(), model_->name(), poses.size()));
   update_poses(poses);
-  for (auto& p : parts_) p.response->clear();
+  for (auto& p : parts_) {
+    // Pressures are all zero unless a contact pressed the part in the previous step.
+    if (p.pressed) p.response->clear();
+    p.pressed_before = p.pressed;
+    p.pressed = false;
+  }
   if (contacts_) apply_contacts(*contacts_, poses);
 
   const double now = ctx.time_s();
@@ -290,6 +303,11 @@ void SkinPlugin::step(NodeContext& ctx) {
       ctx.log().debug("contact on '{}' at t = {:.3f} s: {} taxels, virtual {}", e.body_part, now,
                       onset->physical_count, fmt::join(e.touched_taxels, " "));
       events_->recent.push_back(std::move(e));
+    }
+    // Untouched now and at the previous step: its virtual pressures are (still) all zero.
+    if (!p.pressed && !p.pressed_before) {
+      out += p.layout.virtual_taxels.size();
+      continue;
     }
     for (std::size_t v = 0; v < p.layout.virtual_taxels.size(); ++v)
       pressures_->values[out++] = p.response->virtual_pressure(v);

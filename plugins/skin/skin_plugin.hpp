@@ -30,6 +30,11 @@ class SkinPlugin : public Plugin {
     std::unique_ptr<skin::PartResponse> response;
     std::size_t events = 0;
     std::set<int> touched_virtual;  // virtual ids named in any event
+    // Work skipped when nothing changed (same outputs): the link pose the taxels were last
+    // posed at, and whether any contact pressed the part this step / the previous step.
+    Eigen::Isometry3d posed_at = Eigen::Isometry3d::Identity();
+    bool posed = false;
+    bool pressed = false, pressed_before = false;
   };
 
   void select_parts(NodeContext& ctx);

@@ -254,3 +254,38 @@ TEST(SkinPlugin, BadLayoutFilesParameter) {
                  "items separated by commas, got 'right_palm'");
   }
 }
+
+// Skipped work must not change outputs: taxels still follow a link that moves after standing
+// still, and pressures fall back to zero (and rise again) when contacts come and go.
+TEST(SkinPlugin, PosesAndPressuresFollowChangesAfterQuietSteps) {
+  Harness h(graph());
+  std::vector<Eigen::Isometry3d> poses = rest_poses();
+  h.input<LinkPoses>("links").poses = poses;
+  h.step(3);  // the links stand still
+  const int forearm = model().find_link("l_forearm");
+  poses[static_cast<std::size_t>(forearm)].translate(Eigen::Vector3d(0.01, 0.02, -0.03));
+  h.input<LinkPoses>("links").poses = poses;
+  h.step();
+  const auto& skin = h.output<SkinTaxels>("skin.taxels");
+  const auto& pose = poses[static_cast<std::size_t>(forearm)];
+  for (std::size_t k = 0; k < skin.parts[0].positions.size(); ++k)
+    ASSERT_TRUE(skin.parts[0].positions[k].isApprox(pose * skin.parts[0].positions_link[k], 1e-12));
+
+  const auto layout = forearm_layout();
+  const Eigen::Vector3d p = layout.positions[layout.virtual_taxels[5].centre];
+  auto& contacts = h.input<Contacts>("contacts").points;
+  const auto& pressures = h.output<TaxelValues>("skin.pressures");
+  const auto peak = [&] {
+    return *std::max_element(pressures.values.begin(), pressures.values.end());
+  };
+  for (int round = 0; round < 2; ++round) {
+    contacts = {forearm_contact(p, 1.0)};
+    h.step();
+    EXPECT_GT(pressures.values[5], 0.01) << round;
+    contacts.clear();
+    h.step();
+    EXPECT_EQ(peak(), 0.0) << round;
+    h.step(2);
+    EXPECT_EQ(peak(), 0.0) << round;
+  }
+}
