@@ -151,18 +151,19 @@ void write_presentations_csv(const std::filesystem::path& file,
   std::ofstream out(file);
   if (!out) throw InputError("cannot write " + file.string());
   out << "id,motion,body_part,taxel_id,object,shape,speed [m/s],start [s],end [s],triggered,"
-         "trigger_time [s],trigger_distance [m],min_distance [m],min_distance_any_part [m],"
+         "trigger_time [s],trigger_taxel_id,trigger_distance [m],min_distance "
+         "[m],min_distance_any_part [m],"
          "max_activation,triggered_other_part,skin_contact,skin_contact_any_part,"
          "contact_time [s],object_contact,max_controller_speed [m/s],seen\n";
   for (const auto& r : records)
     out << r.id << ',' << motion_name(r.motion) << ',' << r.body_part << ',' << r.taxel_id << ','
         << r.object << ',' << r.shape << ',' << number(r.speed) << ',' << number(r.start_s) << ','
         << number(r.end_s) << ',' << r.triggered << ',' << number(r.trigger_time_s) << ','
-        << number(r.trigger_distance_m) << ',' << number(r.min_distance_m) << ','
-        << number(r.min_distance_any_part_m) << ',' << number(r.max_activation) << ','
-        << r.triggered_other_part << ',' << r.skin_contact << ',' << r.skin_contact_any << ','
-        << number(r.contact_time_s) << ',' << r.object_contact << ',' << number(r.max_speed) << ','
-        << r.seen << '\n';
+        << r.trigger_taxel_id << ',' << number(r.trigger_distance_m) << ','
+        << number(r.min_distance_m) << ',' << number(r.min_distance_any_part_m) << ','
+        << number(r.max_activation) << ',' << r.triggered_other_part << ',' << r.skin_contact << ','
+        << r.skin_contact_any << ',' << number(r.contact_time_s) << ',' << r.object_contact << ','
+        << number(r.max_speed) << ',' << r.seen << '\n';
   if (!out) throw InputError("cannot write " + file.string());
 }
 

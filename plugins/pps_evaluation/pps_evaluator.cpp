@@ -190,12 +190,18 @@ void PpsEvaluator::observe(NodeContext& ctx, PresentationRecord& r) {
   // Activations of the aimed part, and whether another part's crossed the threshold.
   const auto a = part_activations_[r.body_part].select(*activations_, *part, ctx.node_name());
   double peak = 0.0;
-  for (double x : a) peak = std::max(peak, x);
+  std::size_t peak_at = 0;
+  for (std::size_t k = 0; k < a.size(); ++k)
+    if (a[k] > peak) {
+      peak = a[k];
+      peak_at = k;
+    }
   r.max_activation = std::max(r.max_activation, peak);
   if (present && peak > threshold_ && !r.triggered) {
     r.triggered = true;
     r.trigger_time_s = ctx.time_s();
     r.trigger_distance_m = nearest;
+    r.trigger_taxel_id = part->taxel_ids[peak_at];
   }
   const std::string prefix = r.body_part + "/";
   for (std::size_t i = 0; present && i < activations_->labels.size(); ++i)

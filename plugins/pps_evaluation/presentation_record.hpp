@@ -24,6 +24,7 @@ struct PresentationRecord {
   bool triggered = false;                 ///< a taxel of the aimed part went above threshold
   bool triggered_other_part = false;      ///< ... a taxel of another part did
   double trigger_time_s = kNaN;           ///< first trigger
+  int trigger_taxel_id = -1;              ///< the most activated taxel at the first trigger
   double trigger_distance_m = kNaN;       ///< nearest taxel of the aimed part at that moment
   double min_distance_m = kNaN;           ///< to the nearest taxel of the aimed part
   double min_distance_any_part_m = kNaN;  ///< to the nearest taxel of any part

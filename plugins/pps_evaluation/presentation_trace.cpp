@@ -35,6 +35,14 @@ void draw_presentation_figure(const PresentationTrace& trace, const Presentation
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
     return peak[a] != peak[b] ? peak[a] > peak[b] : nearest[a] < nearest[b];
   });
+  // The taxel of the first trigger comes first.
+  const auto trig =
+      std::find(trace.taxel_ids.begin(), trace.taxel_ids.end(), record.trigger_taxel_id);
+  if (trig != trace.taxel_ids.end()) {
+    const auto k = static_cast<std::size_t>(trig - trace.taxel_ids.begin());
+    order.erase(std::find(order.begin(), order.end(), k));
+    order.insert(order.begin(), k);
+  }
   order.resize(std::min<std::size_t>(order.size(), static_cast<std::size_t>(taxels)));
 
   fig::LinePlotSpec distance, activation, speed;
@@ -45,7 +53,9 @@ void draw_presentation_figure(const PresentationTrace& trace, const Presentation
   speed.y_label = "arm speed [m/s]";
   for (std::size_t k : order) {
     fig::Series d, a;
-    d.label = a.label = fmt::format("taxel {}", trace.taxel_ids[k]);
+    d.label = a.label =
+        fmt::format("taxel {}{}", trace.taxel_ids[k],
+                    trace.taxel_ids[k] == record.trigger_taxel_id ? " (trigger)" : "");
     for (std::size_t s = 0; s < samples; ++s) {
       d.x.push_back(trace.time_s[s] - record.start_s);
       d.y.push_back(100.0 * trace.distance_m[s * n + k]);

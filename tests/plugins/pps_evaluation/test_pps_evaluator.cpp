@@ -131,6 +131,14 @@ void approach_taxel_10(Bench& b, std::uint64_t id, double trigger_below_m, bool 
   b.step(10);
 }
 
+// Field k of a CSV row.
+std::string field(const std::string& row, int k) {
+  std::stringstream in(row);
+  std::string f;
+  for (int i = 0; i <= k; ++i) std::getline(in, f, ',');
+  return f;
+}
+
 }  // namespace
 
 TEST(PpsEvaluator, AnApproachIsTriggeredAtTheTrueDistanceAndTouchesTheSkin) {
@@ -148,6 +156,12 @@ TEST(PpsEvaluator, AnApproachIsTriggeredAtTheTrueDistanceAndTouchesTheSkin) {
   EXPECT_NEAR(b.metric("contact_time_s")["median"].get<double>(), 2.0, 1e-9);
   EXPECT_TRUE(b.metric("false_trigger_rate").is_null());  // no static or receding object
   EXPECT_EQ(b.metric("per_part")["left_forearm"]["approaches"], 1);
+  std::ifstream csv(b.h.out_dir() / "presentations.csv");
+  std::string header, row;
+  std::getline(csv, header);
+  std::getline(csv, row);
+  EXPECT_EQ(field(header, 11), "trigger_taxel_id");
+  EXPECT_EQ(field(row, 11), "10");  // the most activated taxel then
 }
 
 TEST(PpsEvaluator, AnAvoidedApproachKeepsItsMinimumDistance) {
@@ -211,7 +225,8 @@ TEST(PpsEvaluator, BoxAndCylinderDistancesAreExactSideways) {
   b.present(1, PresentationMotion::kStatic, ObjectShape::kBox, {0.01, 0.03, 0.01});
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   pose.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  pose.translation() = Eigen::Vector3d(0.10, 0.0, 0.03);  // corner region beyond taxel 11 (x = 0.05)
+  pose.translation() =
+      Eigen::Vector3d(0.10, 0.0, 0.03);  // corner region beyond taxel 11 (x = 0.05)
   b.h.input<ObjectStates>("objects").poses.back() = pose;
   b.step(3);
   b.remove();
@@ -231,16 +246,10 @@ TEST(PpsEvaluator, BoxAndCylinderDistancesAreExactSideways) {
   std::getline(csv, row1);
   std::getline(csv, row2);
   // Box: nearest point (0.07, 0, 0.02) to taxel 11 at (0.05, 0, 0): hypot(0.02, 0.02).
-  const auto field = [](const std::string& row, int k) {
-    std::stringstream in(row);
-    std::string f;
-    for (int i = 0; i <= k; ++i) std::getline(in, f, ',');
-    return f;
-  };
-  EXPECT_EQ(field(header, 12), "min_distance [m]");
-  EXPECT_NEAR(std::stod(field(row1, 12)), std::hypot(0.02, 0.02), 1e-6);
+  EXPECT_EQ(field(header, 13), "min_distance [m]");
+  EXPECT_NEAR(std::stod(field(row1, 13)), std::hypot(0.02, 0.02), 1e-6);
   EXPECT_EQ(field(row1, 5), "box");
-  EXPECT_NEAR(std::stod(field(row2, 12)), 0.03, 1e-6);
+  EXPECT_NEAR(std::stod(field(row2, 13)), 0.03, 1e-6);
   EXPECT_EQ(field(row2, 5), "cylinder");
   EXPECT_EQ(field(row2, 1), "static");
 }
