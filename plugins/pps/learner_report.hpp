@@ -10,9 +10,22 @@
 
 namespace somasim::plugins {
 
-/// Reports every metric of the learner (keys in README.md, pps_learner). Taxels with fewer than
-/// `min_samples` learned samples are left out of the offset statistics. `true_offsets` (null:
-/// unwired) is matched to the taxels by label "part/id"; NaN or missing values are left out.
+/// Reports every metric of the learner. "Counted" taxels have >= `min_samples` learned samples;
+/// offsets [m] are D at contact, ridge = estimate_offset_ridge (best), paper = estimate_offset
+/// (Fig 8; none for the distance-only model).
+/// - `events`, `samples`, `positive_samples`, `negative_samples`, `negative_d_share`: all parts;
+///   `per_part` = {part: the same per part, plus `taxels`}.
+/// - `offset_ridge_m`, `offset_estimate_m`: mean ridge / paper offset over counted taxels of all
+///   parts; `offset_mean_m`, `offset_mean_paper_m` = {part: the same per part} (null: none).
+/// - `taxels` = {id (one part) or "part/id": {samples, offset_ridge_m, offset_estimate_m,
+///   true_offset_m}}.
+/// With `true_offsets` (null: unwired; matched by label "part/id", NaN or missing = unknown):
+/// - `true_offset_mean_m` = {part: mean true offset over counted taxels with a known one};
+/// - `offset_error_max_m`, `offset_error_mean_m` (ridge) and `offset_error_max_paper_m`,
+///   `offset_error_mean_paper_m`: max / mean of |estimate - true| over counted taxels with a known
+///   true offset and an estimate; `offset_taxels_evaluated`: counted taxels with a known true
+///   offset; `offset_taxels_without_estimate` = {ridge, paper}: of those, how many had none;
+///   per part: `offset_taxels_evaluated`, `offset_error_max_m`, `offset_error_max_paper_m`.
 void report_learning(NodeContext& ctx, std::vector<LearnerPart>& parts, int min_samples,
                      const TaxelValues* true_offsets);
 
