@@ -7,7 +7,6 @@
 #include <Eigen/Geometry>
 
 #include "somasim/diagnostics.hpp"
-#include "somasim/random_directions.hpp"
 #include "somasim/robot/clearance.hpp"
 #include "somasim/robot/robot_cache.hpp"
 
@@ -15,61 +14,108 @@ namespace somasim::plugins {
 
 namespace {
 
-std::string trim(const std::string& s) {
-  const auto b = s.find_first_not_of(" \t\n");
-  if (b == std::string::npos) return "";
-  return s.substr(b, s.find_last_not_of(" \t\n") - b + 1);
+std::vector<std::string> words(const std::string& s) {
+  std::istringstream in(s);
+  std::vector<std::string> out;
+  for (std::string w; in >> w;) out.push_back(w);
+  return out;
+}
+
+// Radius of a sphere around the centre that holds the whole object [m].
+double bounding_radius(ObjectShape shape, double size, double half_height) {
+  switch (shape) {
+    case ObjectShape::kBox:
+      return std::sqrt(3.0) * size;
+    case ObjectShape::kCylinder:
+      return std::hypot(size, half_height);
+    default:
+      return size;
+  }
 }
 
 }  // namespace
 
 PluginSpec ObjectThrower::spec() {
   PluginSpec s("object_thrower",
-               "Moves objects (balls, cubes) one at a time toward random taxels of skin parts and "
-               "publishes each as the robot perceives it: ground truth + noise, expressed through "
-               "the robot's believed kinematics (true joint values + injected offsets).");
+               "Presents objects (balls, cubes, cylinders) one at a time at random taxels of skin "
+               "parts - approaching, static or receding - and publishes each as the robot "
+               "perceives it (ground truth + noise, seen through the believed head/eye "
+               "kinematics), and the offset each touched taxel should learn.");
   s.add_string("robot").describe("robot description file (skin parts, kinematics)");
   s.add_string("parts")
       .defaults(std::string("left_forearm right_palm"))
       .describe("space-separated skin parts to aim at, in turn");
   s.add_string("shapes")
       .defaults(std::string("sphere box"))
-      .describe("space-separated object shapes (sphere, box), in turn");
+      .describe(
+          "space-separated object shapes (sphere, box, cylinder), in turn (each part gets every "
+          "shape)");
+  s.add_string("motions")
+      .defaults(std::string("approach"))
+      .describe(
+          "space-separated motions (approach, static, receding), in turn (after every part and "
+          "shape)");
   s.add_double("size")
       .unit_is("m")
       .defaults(0.025)
       .range(0.001, 0.5)
-      .describe("sphere radius / half edge of the cube");
+      .describe("sphere radius / half edge of the cube / cylinder radius");
+  s.add_string("box_facing")
+      .defaults(std::string("face"))
+      .one_of({"face", "corner"})
+      .describe(
+          "what of a cube meets the aimed taxel: a face (stimulus radius = half edge) or a "
+          "corner (a point contact like a ball's; radius = half diagonal, sqrt(3) x size)");
+  s.add_double("cylinder_half_height")
+      .unit_is("m")
+      .defaults(0.04)
+      .range(0.001, 0.5)
+      .describe("half height of cylinders (their side faces the taxel)");
   s.add_double("distance_min")
       .unit_is("m")
       .defaults(0.20)
-      .range(0.01, 5)
-      .describe("smallest start distance (object surface to the aimed taxel)");
+      .range(0.0, 5)
+      .describe("smallest start distance of approaching and static objects (surface to taxel)");
   s.add_double("distance_max")
       .unit_is("m")
       .defaults(0.30)
       .range(0.01, 5)
-      .describe("largest start distance");
+      .describe("largest start distance; also how far receding objects travel");
+  s.add_double("receding_start_min")
+      .unit_is("m")
+      .defaults(0.05)
+      .range(0.0, 5)
+      .describe("smallest start distance of receding objects (surface to taxel)");
+  s.add_double("receding_start_max")
+      .unit_is("m")
+      .defaults(0.10)
+      .range(0.0, 5)
+      .describe("largest start distance of receding objects");
+  s.add_double("static_duration")
+      .unit_is("s")
+      .defaults(2.0)
+      .range(0.01, 1000)
+      .describe("how long a static object stays");
   s.add_double("cone").unit_is("deg").defaults(45.0).range(0, 89).describe(
       "start directions within this angle of the aimed taxel's normal");
   s.add_double("speed_min")
       .unit_is("m/s")
       .defaults(0.05)
       .range(0.001, 10)
-      .describe("smallest approach speed");
+      .describe("smallest speed of approaching and receding objects");
   s.add_double("speed_max")
       .unit_is("m/s")
       .defaults(0.15)
       .range(0.001, 10)
-      .describe("largest approach speed");
+      .describe("largest speed");
   s.add_int("approaches")
       .defaults(std::int64_t{20})
       .range(1, 1000000)
-      .describe("objects thrown; the run stops after the last");
+      .describe("objects presented (all motions); the run stops after the last");
   s.add_double("pause").unit_is("s").defaults(1.0).range(0, 100).describe(
-      "pause between the removal of an object and the next approach");
+      "pause between the removal of an object and the next one");
   s.add_double("linger").unit_is("s").defaults(0.1).range(0, 10).describe(
-      "an object is removed this long after reaching the skin");
+      "an approaching object is removed this long after reaching the skin");
   s.add_double("position_noise")
       .unit_is("m")
       .defaults(0.0)
@@ -80,29 +126,37 @@ PluginSpec ObjectThrower::spec() {
       .defaults(0.0)
       .range(0, 10)
       .describe("perceived velocity noise (Gaussian σ per axis)");
-  s.add_string("joint_offsets_deg")
+  s.add_string("vision_link")
       .defaults(std::string(""))
       .describe(
-          "believed-kinematics error, 'joint: value, ...' [deg] (prismatic: [m]) added to the "
-          "true joint values");
+          "link the cameras are on, for vision through the believed kinematics ('' = the link "
+          "of the robot's left_eye camera)");
   s.input<SkinTaxels>("taxels", "skin taxel poses (root frame, true kinematics)");
-  s.input<JointState>("state", "true joint values (for the believed kinematics)");
+  s.input<JointState>("state", "true joint values (the true camera pose)");
   s.input<ObjectStates>("objects", "object states from the world (ground truth)");
+  s.input<JointState>("believed_state",
+                      "believed joint values (believed_kinematics.state): the object is placed "
+                      "through the believed camera pose; unwired: truth + noise",
+                      /*optional=*/true);
   s.input<LinkPoses>("link_poses", "robot link poses: start points are drawn clear of the robot",
                      /*optional=*/true);
+  s.input<ContactEvents>("contacts", "skin contact events (for true_offsets)", /*optional=*/true);
+  s.input<SkinTaxels>("believed_taxels",
+                      "taxels posed by the believed kinematics (believed_kinematics.taxels), for "
+                      "the perceived D of true_offsets; unwired: the true taxels",
+                      /*optional=*/true);
   s.output<ObjectSpawns>("spawns", "objects to add to the world");
   s.output<Stimulus>("stimulus", "the object as the robot perceives it (root frame)");
   s.output<Stimulus>("truth", "the object's true centre and velocity (root frame)");
+  s.output<Presentation>("presentation", "the object presented now (motion, aimed taxel)");
+  s.output<TaxelValues>("true_offsets",
+                        "per taxel 'part/id': mean perceived D − true D over its contact events "
+                        "[m]; NaN while never touched (needs 'contacts')");
   return s;
 }
 
-void ObjectThrower::configure(NodeContext& ctx) {
-  model_ = robot::shared_robot_model(ctx.resolve_input_path(ctx.param<std::string>("robot")));
-  true_data_ = std::make_unique<robot::RobotData>(*model_);
-  believed_data_ = std::make_unique<robot::RobotData>(*model_);
-
-  std::istringstream in(ctx.param<std::string>("parts"));
-  for (std::string p; in >> p;) parts_.push_back(p);
+void ObjectThrower::read_lists(NodeContext& ctx) {
+  parts_ = words(ctx.param<std::string>("parts"));
   if (parts_.empty()) ctx.param_error("parts", "expected at least one skin part name");
   std::vector<std::string> known;
   for (const auto& patch : model_->skin_patches()) known.push_back(patch.body_part);
@@ -111,81 +165,103 @@ void ObjectThrower::configure(NodeContext& ctx) {
       ctx.param_error("parts", "unknown skin part '" + p + "'" + did_you_mean(p, known) +
                                    "; the robot's skin parts: " + join_names(known));
 
-  std::istringstream shapes(ctx.param<std::string>("shapes"));
-  for (std::string s; shapes >> s;) {
-    if (s == "sphere")
-      shapes_.push_back(ObjectShape::kSphere);
-    else if (s == "box")
-      shapes_.push_back(ObjectShape::kBox);
-    else
-      ctx.param_error("shapes", "unknown shape '" + s + "'" + did_you_mean(s, {"sphere", "box"}) +
-                                    "; expected sphere or box");
+  const std::vector<std::string> shape_names = {"sphere", "box", "cylinder"};
+  for (const auto& s : words(ctx.param<std::string>("shapes"))) {
+    const auto it = std::find(shape_names.begin(), shape_names.end(), s);
+    if (it == shape_names.end())
+      ctx.param_error("shapes", "unknown shape '" + s + "'" + did_you_mean(s, shape_names) +
+                                    "; expected sphere, box or cylinder");
+    const ObjectShape shapes[] = {ObjectShape::kSphere, ObjectShape::kBox, ObjectShape::kCylinder};
+    shapes_.push_back(shapes[it - shape_names.begin()]);
   }
   if (shapes_.empty()) ctx.param_error("shapes", "expected at least one shape (sphere, box)");
 
-  size_ = ctx.param<double>("size");
-  distance_min_ = ctx.param<double>("distance_min");
-  distance_max_ = ctx.param<double>("distance_max");
-  if (distance_max_ < distance_min_)
+  const std::vector<std::string> motion_names = {"approach", "static", "receding"};
+  for (const auto& m : words(ctx.param<std::string>("motions"))) {
+    const auto it = std::find(motion_names.begin(), motion_names.end(), m);
+    if (it == motion_names.end())
+      ctx.param_error("motions", "unknown motion '" + m + "'" + did_you_mean(m, motion_names) +
+                                     "; expected approach, static or receding");
+    const PresentationMotion motions[] = {
+        PresentationMotion::kApproach, PresentationMotion::kStatic, PresentationMotion::kReceding};
+    motions_.push_back(motions[it - motion_names.begin()]);
+  }
+  if (motions_.empty())
+    ctx.param_error("motions", "expected at least one motion (approach, static, receding)");
+}
+
+void ObjectThrower::configure(NodeContext& ctx) {
+  try {
+    model_ = robot::shared_robot_model(ctx.resolve_input_path(ctx.param<std::string>("robot")));
+  } catch (const InputError& e) {
+    ctx.param_error("robot", e.what());
+  }
+  read_lists(ctx);
+
+  auto& g = geometry_;
+  g.size = ctx.param<double>("size");
+  cylinder_half_height_ = ctx.param<double>("cylinder_half_height");
+  box_corner_ = ctx.param<std::string>("box_facing") == "corner";
+  g.distance_min = ctx.param<double>("distance_min");
+  g.distance_max = ctx.param<double>("distance_max");
+  if (g.distance_max < g.distance_min)
     ctx.param_error("distance_max", "must not be less than distance_min");
-  cone_rad_ = ctx.param<double>("cone") * M_PI / 180.0;
-  speed_min_ = ctx.param<double>("speed_min");
-  speed_max_ = ctx.param<double>("speed_max");
-  if (speed_max_ < speed_min_) ctx.param_error("speed_max", "must not be less than speed_min");
-  approaches_ = ctx.param<int>("approaches");
+  g.receding_start_min = ctx.param<double>("receding_start_min");
+  g.receding_start_max = ctx.param<double>("receding_start_max");
+  if (g.receding_start_max < g.receding_start_min)
+    ctx.param_error("receding_start_max", "must not be less than receding_start_min");
+  g.static_duration = ctx.param<double>("static_duration");
+  g.cone_rad = ctx.param<double>("cone") * M_PI / 180.0;
+  g.speed_min = ctx.param<double>("speed_min");
+  g.speed_max = ctx.param<double>("speed_max");
+  if (g.speed_max < g.speed_min) ctx.param_error("speed_max", "must not be less than speed_min");
+  g.linger = ctx.param<double>("linger");
+  presentations_ = ctx.param<int>("approaches");
   pause_ = ctx.param<double>("pause");
-  linger_ = ctx.param<double>("linger");
   position_noise_ = ctx.param<double>("position_noise");
   velocity_noise_ = ctx.param<double>("velocity_noise");
-
-  // "joint: value, ..." → per-dof offsets [rad] (prismatic [m]).
-  offsets_ = Eigen::VectorXd::Zero(model_->num_dofs());
-  std::vector<std::string> joints;
-  for (int d = 0; d < model_->num_dofs(); ++d)
-    joints.push_back(model_->joint(model_->dof_joint(d)).name);
-  std::istringstream entries(ctx.param<std::string>("joint_offsets_deg"));
-  for (std::string entry; std::getline(entries, entry, ',');) {
-    entry = trim(entry);
-    if (entry.empty()) continue;
-    const auto colon = entry.find(':');
-    if (colon == std::string::npos)
-      ctx.param_error("joint_offsets_deg",
-                      "expected 'joint: value', got '" + entry + "' (entries separated by ',')");
-    const std::string name = trim(entry.substr(0, colon));
-    const std::string value = trim(entry.substr(colon + 1));
-    const auto it = std::find(joints.begin(), joints.end(), name);
-    if (it == joints.end())
-      ctx.param_error("joint_offsets_deg", "unknown joint '" + name + "'" +
-                                               did_you_mean(name, joints) +
-                                               " (movable joints of the robot)");
-    double v = 0.0;
-    std::size_t used = 0;
-    try {
-      v = std::stod(value, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used == 0 || used != value.size() || !std::isfinite(v))
-      ctx.param_error("joint_offsets_deg",
-                      "joint '" + name + "': expected a number [deg], got '" + value + "'");
-    const int dof = static_cast<int>(it - joints.begin());
-    const bool revolute = model_->joint(model_->dof_joint(dof)).type == robot::JointType::Revolute;
-    offsets_[dof] = revolute ? v * M_PI / 180.0 : v;
-  }
 
   skin_ = &ctx.input<SkinTaxels>("taxels");
   state_ = &ctx.input<JointState>("state");
   objects_ = &ctx.input<ObjectStates>("objects");
+  if (ctx.is_wired("believed_state")) {
+    believed_state_ = &ctx.input<JointState>("believed_state");
+    const std::string name = ctx.param<std::string>("vision_link");
+    int link = -1;
+    if (name.empty()) {
+      const int camera = model_->find_camera("left_eye");
+      if (camera < 0)
+        ctx.param_error("vision_link", "robot '" + model_->name() +
+                                           "' has no 'left_eye' camera; name the link the "
+                                           "cameras are on");
+      link = model_->cameras()[static_cast<std::size_t>(camera)].link;
+    } else {
+      try {
+        link = model_->link_index(name);
+      } catch (const InputError& e) {
+        ctx.param_error("vision_link", e.what());
+      }
+    }
+    vision_ = std::make_unique<BelievedVision>(model_, link);
+  }
   link_poses_ = ctx.is_wired("link_poses") ? &ctx.input<LinkPoses>("link_poses") : nullptr;
+  contacts_ = ctx.is_wired("contacts") ? &ctx.input<ContactEvents>("contacts") : nullptr;
+  believed_taxels_ =
+      ctx.is_wired("believed_taxels") ? &ctx.input<SkinTaxels>("believed_taxels") : nullptr;
   spawns_ = &ctx.output<ObjectSpawns>("spawns");
   stimulus_ = &ctx.output<Stimulus>("stimulus");
   truth_ = &ctx.output<Stimulus>("truth");
+  presentation_ = &ctx.output<Presentation>("presentation");
+  true_offsets_out_ = &ctx.output<TaxelValues>("true_offsets");
 }
 
 void ObjectThrower::launch(NodeContext& ctx) {
   const std::size_t index = static_cast<std::size_t>(launched_);
+  // Every combination in turn: the part changes fastest, then the shape, then the motion.
   const std::string& part = parts_[index % parts_.size()];
-  const ObjectShape shape = shapes_[index % shapes_.size()];
+  const ObjectShape shape = shapes_[(index / parts_.size()) % shapes_.size()];
+  const PresentationMotion motion =
+      motions_[(index / (parts_.size() * shapes_.size())) % motions_.size()];
   const SkinPart* sp = nullptr;
   for (const auto& p : skin_->parts)
     if (p.name == part) sp = &p;
@@ -194,65 +270,75 @@ void ObjectThrower::launch(NodeContext& ctx) {
                    "' is not in the 'taxels' input (is the skin node wired?)");
   auto& rng = ctx.rng();
   std::uniform_int_distribution<std::size_t> pick(0, sp->taxel_ids.size() - 1);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
   const std::size_t k = pick(rng);
   const Eigen::Vector3d n = sp->normals[k].normalized();
-  // The centre's path ends one `size` above the taxel along its normal: the surface touches it.
-  const Eigen::Vector3d target = sp->positions[k] + size_ * n;
-  Eigen::Vector3d dir;
-  double distance = 0.0;
-  for (int attempt = 0;; ++attempt) {
-    dir = sample_direction_in_cone(n, cone_rad_, rng);
-    distance = distance_min_ + unit(rng) * (distance_max_ - distance_min_);
-    // Start outside the robot (when its pose is known): redraw otherwise.
-    if (!link_poses_ || robot::point_clear_of_robot(*model_, link_poses_->poses,
-                                                    target + distance * dir, 2.0 * size_ + 0.01))
-      break;
-    if (attempt == 100)
-      throw RunError("no start point clear of the robot for an object aimed at '" + part +
-                     "' (lower 'distance_max' or 'cone')");
-  }
-  const double speed = speed_min_ + unit(rng) * (speed_max_ - speed_min_);
+  const double margin = bounding_radius(shape, geometry_.size, cylinder_half_height_) + 0.01;
+  const auto clear = [&](const Eigen::Vector3d& p) {
+    return !link_poses_ || robot::point_clear_of_robot(*model_, link_poses_->poses, p, margin);
+  };
+  // The distance from the centre to the skin at contact: also the stimulus radius.
+  const bool corner = shape == ObjectShape::kBox && box_corner_;
+  radius_ = corner ? std::sqrt(3.0) * geometry_.size : geometry_.size;
+  PresentationGeometry g = geometry_;
+  g.size = radius_;
+  const PlannedObject plan = plan_presentation(motion, sp->positions[k], n, g, rng, clear, part);
 
   ObjectSpawn spawn;
   spawn.id = next_spawn_id_++;
   spawn.name = "pps_object_" + std::to_string(spawn.id);
   spawn.shape = shape;
-  spawn.size = shape == ObjectShape::kSphere ? Eigen::Vector3d(size_, 0, 0)
-                                             : Eigen::Vector3d::Constant(size_);
   spawn.motion = ObjectMotion::kKinematic;
   spawn.pose = Eigen::Isometry3d::Identity();
-  // A cube's face (its local +z) faces the taxel.
-  spawn.pose.linear() =
-      Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), n).toRotationMatrix();
-  spawn.pose.translation() = target + distance * dir;
-  spawn.linear_velocity = -speed * dir;
-  const double travel = distance / speed;
-  spawn.remove_after_s = travel + linger_;
+  if (shape == ObjectShape::kCylinder) {
+    // The axis (local z) across the normal: the round side faces the taxel.
+    const Eigen::Vector3d axis = n.unitOrthogonal();
+    spawn.pose.linear().col(0) = n;
+    spawn.pose.linear().col(1) = axis.cross(n);
+    spawn.pose.linear().col(2) = axis;
+    spawn.size = Eigen::Vector3d(geometry_.size, cylinder_half_height_, 0);
+  } else if (corner) {
+    // The cube's corner (+1, +1, +1)·size points at the taxel.
+    spawn.pose.linear() =
+        Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::Ones().normalized(), -n)
+            .toRotationMatrix();
+    spawn.size = Eigen::Vector3d::Constant(geometry_.size);
+  } else {
+    // A cube's face (its local +z) faces the taxel.
+    spawn.pose.linear() =
+        Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), n).toRotationMatrix();
+    spawn.size = shape == ObjectShape::kSphere ? Eigen::Vector3d(geometry_.size, 0, 0)
+                                               : Eigen::Vector3d::Constant(geometry_.size);
+  }
+  spawn.pose.translation() = plan.start;
+  spawn.linear_velocity = plan.velocity;
+  spawn.remove_after_s = plan.lifetime;
   spawns_->recent.push_back(spawn);
   while (spawns_->recent.size() > 8) spawns_->recent.erase(spawns_->recent.begin());
 
-  current_ = Approach{};
-  current_.name = spawn.name;
-  current_.part = part;
-  current_.link = model_->link_index(sp->link);
-  current_.taxel = sp->positions[k];
-  current_.normal = n;
-  current_.t_spawn = ctx.time_s();
-  current_.travel = travel;
-  current_.lifetime = spawn.remove_after_s;
-  active_ = true;
   ++launched_;
-  ++per_part_approaches_[part];
+  Presentation& p = *presentation_;
+  p.id = static_cast<std::uint64_t>(launched_);
+  p.active = true;
+  p.motion = motion;
+  p.object = spawn.name;
+  p.body_part = part;
+  p.taxel_id = sp->taxel_ids[k];
+  p.aimed_point = sp->positions[k];
+  p.start_time_s = ctx.time_s();
+  p.speed = plan.speed;
+  lifetime_ = plan.lifetime;
+  seen_.reset();
+  ++per_part_presentations_[part];
+  ++per_motion_[motion_name(motion)];
 }
 
 void ObjectThrower::perceive(NodeContext& ctx) {
   *truth_ = Stimulus{};
   *stimulus_ = Stimulus{};
-  if (!active_) return;
+  if (!presentation_->active) return;
   int obj = -1;
   for (std::size_t i = 0; i < objects_->names.size(); ++i)
-    if (objects_->names[i] == current_.name) obj = static_cast<int>(i);
+    if (objects_->names[i] == presentation_->object) obj = static_cast<int>(i);
   const auto at = static_cast<std::size_t>(obj);
   if (obj < 0 || at >= objects_->present.size() || !objects_->present[at] ||
       at >= objects_->poses.size())
@@ -261,14 +347,14 @@ void ObjectThrower::perceive(NodeContext& ctx) {
   truth_->position = objects_->poses[at].translation();
   truth_->velocity =
       at < objects_->linear_velocity.size() ? objects_->linear_velocity[at] : Eigen::Vector3d{};
-  truth_->radius = size_;
+  truth_->radius = radius_;
 
-  Eigen::VectorXd q = Eigen::VectorXd::Zero(model_->num_dofs());
-  if (state_->position.size() != 0) q = state_->position;  // InputError below if mis-sized
-  robot::forward_kinematics(*model_, *true_data_, q);
-  robot::forward_kinematics(*model_, *believed_data_, q, offsets_);
-  const Eigen::Isometry3d to_believed = robot::link_pose(*believed_data_, current_.link) *
-                                        robot::link_pose(*true_data_, current_.link).inverse();
+  Seen seen;
+  seen.time_s = ctx.time_s();
+  seen.position = truth_->position;
+  seen.velocity = truth_->velocity;
+  if (vision_) seen.to_perceived = vision_->update(state_->position, believed_state_->position);
+  seen_ = seen;
 
   auto& rng = ctx.rng();
   std::normal_distribution<double> gauss(0.0, 1.0);
@@ -278,46 +364,64 @@ void ObjectThrower::perceive(NodeContext& ctx) {
   if (velocity_noise_ > 0)
     for (int i = 0; i < 3; ++i) v[i] += velocity_noise_ * gauss(rng);
   stimulus_->present = true;
-  stimulus_->position = to_believed * p;
-  stimulus_->velocity = to_believed.linear() * v;  // a direction: rotation only
-  stimulus_->radius = size_;
+  stimulus_->position = seen.to_perceived * p;
+  stimulus_->velocity = seen.to_perceived.linear() * v;  // a direction: rotation only
+  stimulus_->radius = radius_;
+}
 
-  // Perceived D at the aimed taxel at the moment of contact (the offset it should learn).
-  if (!current_.contact_seen && ctx.time_s() - current_.t_spawn >= current_.travel - 1e-9) {
-    current_.contact_seen = true;
-    const Eigen::Vector3d rel = stimulus_->position - current_.taxel;
-    const double z = rel.dot(current_.normal) - size_;
-    const double tangential = (rel - rel.dot(current_.normal) * current_.normal).norm();
-    const double d = std::copysign(std::hypot(z, tangential), z);
-    contact_d_sum_[current_.part] += d;
-    ++contact_d_count_[current_.part];
+void ObjectThrower::learn_true_offsets() {
+  for (const auto& e : contacts_->recent) {
+    if (e.id <= last_event_id_) continue;
+    last_event_id_ = e.id;
+    ++per_part_events_[e.body_part];
+    // Only contacts while the current object is in the world (seen at least once).
+    if (!seen_ || e.time_s < presentation_->start_time_s ||
+        e.time_s > presentation_->start_time_s + lifetime_ + 1e-9)
+      continue;
+    // The object moves at a constant velocity: its centre at the event, noise-free.
+    pps::Stimulus truth;
+    truth.position = seen_->position + (e.time_s - seen_->time_s) * seen_->velocity;
+    truth.velocity = seen_->velocity;
+    truth.radius = radius_;
+    truth.position -= time_since_reaching_skin(e, *skin_, truth) * truth.velocity;
+    pps::Stimulus perceived = truth;
+    perceived.position = seen_->to_perceived * truth.position;
+    perceived.velocity = seen_->to_perceived.linear() * truth.velocity;
+    true_offsets_.add_event(e, *skin_, believed_taxels_ ? *believed_taxels_ : *skin_, perceived,
+                            truth);
   }
 }
 
 void ObjectThrower::step(NodeContext& ctx) {
   const double now = ctx.time_s();
-  if (active_ && now - current_.t_spawn >= current_.lifetime + pause_ - 1e-9) active_ = false;
-  if (!active_) {
-    if (launched_ >= approaches_) {
-      *truth_ = Stimulus{};
-      *stimulus_ = Stimulus{};
-      ctx.request_stop(std::to_string(launched_) + " approaches done");
-      return;
-    }
-    launch(ctx);
-  }
+  Presentation& p = *presentation_;
+  if (p.active && now - p.start_time_s >= lifetime_ - 1e-9) p.active = false;
+  const bool between = launched_ > 0 && now - p.start_time_s < lifetime_ + pause_ - 1e-9;
+  const bool done = !p.active && !between && launched_ >= presentations_;
+  if (!p.active && !between && !done) launch(ctx);
   perceive(ctx);
+  true_offsets_.sync_layout(*skin_);
+  if (contacts_) learn_true_offsets();
+  true_offsets_.write(*true_offsets_out_);
+  if (done) ctx.request_stop(std::to_string(launched_) + " objects presented");
 }
 
 void ObjectThrower::finish(NodeContext& ctx) {
   ctx.report_metric("approaches", launched_);
+  nlohmann::json per_motion = nlohmann::json::object();
+  for (const auto& [motion, n] : per_motion_) per_motion[motion] = n;
+  ctx.report_metric("presented_per_motion", per_motion);
   nlohmann::json per_part = nlohmann::json::object();
-  for (const auto& [part, n] : per_part_approaches_) {
-    per_part[part] = {{"approaches", n}};
-    const int c = contact_d_count_[part];
-    if (c > 0) per_part[part]["contact_distance_mean_m"] = contact_d_sum_[part] / c;
+  const auto means = true_offsets_.part_means();
+  for (const auto& [part, n] : per_part_presentations_) {
+    per_part[part] = {{"presentations", n}};
+    if (contacts_) per_part[part]["contact_events"] = per_part_events_[part];
+    if (const auto it = means.find(part); it != means.end()) {
+      per_part[part]["true_offset_mean_m"] = it->second.first;
+      per_part[part]["taxels_touched"] = it->second.second;
+    }
   }
-  ctx.report_metric("per_part", per_part);
+  ctx.report_metric("presented_per_part", per_part);
 }
 
 }  // namespace somasim::plugins

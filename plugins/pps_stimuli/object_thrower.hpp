@@ -1,24 +1,31 @@
 #pragma once
-// object_thrower: the experimenter's stand-in for PPS learning with objects (PAPERS.md A, exp. 3).
+// object_thrower: the experimenter's stand-in for PPS learning and evaluation with objects
+// (PAPERS.md A, exp. 3).
 //
-// One approach at a time: a part is drawn (cycling through `parts`), then a random taxel of it; a
-// kinematic object (cycling through `shapes`) starts `distance_min..max` from the taxel, within
-// `cone` of its outward normal, and moves at a constant speed in `speed_min..max` so that its
-// surface reaches the taxel after the travel time; the world removes it shortly after.
+// One object at a time, aimed at a random taxel of a part; parts, `shapes` and `motions`
+// (approach / static / receding; geometry in presentation_plan.hpp) are taken in turn, every
+// combination: the part changes fastest, then the shape, then the motion; the world removes it at
+// the end of its lifetime, and the next one follows after `pause`. Start points are clear of the
+// robot when `link_poses` is wired.
 //
-// `truth` is the object's centre and velocity (root frame) read back from the world. `stimulus`
-// is what the robot perceives: the truth plus Gaussian noise, expressed through the believed
-// kinematics of the aimed part's link (true joint values + `joint_offsets_deg`):
-//   p_perceived = T_link_believed · T_link_true⁻¹ · p_noisy,  v_perceived = R_b · R_tᵀ · v_noisy.
+// `truth` is the object's centre and velocity (root frame) read back from the world.
+// `stimulus` is what the robot perceives: the truth plus Gaussian noise, placed through the
+// believed head/eye kinematics when `believed_state` is wired (believed_vision.hpp), else as is.
+// `true_offsets` (with `contacts`): per taxel, the mean over its skin contact events of
+// perceived D − true D (true_offsets.hpp), the taxels posed by `believed_taxels` for the
+// perceived D (by the true `taxels` when unwired).
 #include <map>
 #include <memory>
+#include <optional>
 #include <random>
 
+#include "believed_vision.hpp"
+#include "presentation_plan.hpp"
 #include "somasim/plugin.hpp"
 #include "somasim/port_types.hpp"
-#include "somasim/robot/kinematics.hpp"
 #include "somasim/robot/robot_model.hpp"
 #include "somasim/robot_ports.hpp"
+#include "true_offsets.hpp"
 
 namespace somasim::plugins {
 
@@ -30,38 +37,48 @@ class ObjectThrower : public Plugin {
   void finish(NodeContext& ctx) override;
 
  private:
-  struct Approach {
-    std::string name, part;
-    int link = -1;
-    Eigen::Vector3d taxel = Eigen::Vector3d::Zero();    // aimed taxel, root frame
-    Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  // its outward normal, root frame
-    double t_spawn = 0.0, travel = 0.0, lifetime = 0.0;
-    bool contact_seen = false;
-  };
+  void read_lists(NodeContext& ctx);
   void launch(NodeContext& ctx);
   void perceive(NodeContext& ctx);
+  void learn_true_offsets();
 
   std::shared_ptr<const robot::RobotModel> model_;
-  std::unique_ptr<robot::RobotData> true_data_, believed_data_;
-  Eigen::VectorXd offsets_;
+  std::unique_ptr<BelievedVision> vision_;  // set when believed_state is wired
   std::vector<std::string> parts_;
   std::vector<ObjectShape> shapes_;
-  double size_ = 0, distance_min_ = 0, distance_max_ = 0, cone_rad_ = 0, speed_min_ = 0,
-         speed_max_ = 0, pause_ = 0, linger_ = 0, position_noise_ = 0, velocity_noise_ = 0;
-  int approaches_ = 0;
+  std::vector<PresentationMotion> motions_;
+  PresentationGeometry geometry_;
+  bool box_corner_ = false;
+  double cylinder_half_height_ = 0, position_noise_ = 0, velocity_noise_ = 0, pause_ = 0;
+  int presentations_ = 0;
   const SkinTaxels* skin_ = nullptr;
   const JointState* state_ = nullptr;
+  const JointState* believed_state_ = nullptr;  // optional
   const ObjectStates* objects_ = nullptr;
-  const LinkPoses* link_poses_ = nullptr;  // optional
+  const LinkPoses* link_poses_ = nullptr;        // optional
+  const ContactEvents* contacts_ = nullptr;      // optional
+  const SkinTaxels* believed_taxels_ = nullptr;  // optional
   ObjectSpawns* spawns_ = nullptr;
   Stimulus* stimulus_ = nullptr;
   Stimulus* truth_ = nullptr;
-  Approach current_;
-  bool active_ = false;
+  Presentation* presentation_ = nullptr;
+  TaxelValues* true_offsets_out_ = nullptr;
+
+  double lifetime_ = 0.0;  // of the current object [s]
+  double radius_ = 0.0;    // its stimulus radius: centre to skin at contact [m]
   int launched_ = 0;
-  std::uint64_t next_spawn_id_ = 1;
-  std::map<std::string, double> contact_d_sum_;
-  std::map<std::string, int> contact_d_count_, per_part_approaches_;
+  std::uint64_t next_spawn_id_ = 1, last_event_id_ = 0;
+  // The last time the current object was seen: true centre and velocity [root], and the map
+  // to the perceived root frame then.
+  struct Seen {
+    double time_s = 0.0;
+    Eigen::Vector3d position = Eigen::Vector3d::Zero(), velocity = Eigen::Vector3d::Zero();
+    Eigen::Isometry3d to_perceived = Eigen::Isometry3d::Identity();
+  };
+  std::optional<Seen> seen_;
+  TrueOffsets true_offsets_;
+  std::map<std::string, int> per_part_presentations_, per_part_events_;
+  std::map<std::string, int> per_motion_;
 };
 
 }  // namespace somasim::plugins

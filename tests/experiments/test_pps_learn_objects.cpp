@@ -1,23 +1,56 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 
 #include "experiment_runner.hpp"
 
+using somasim::testing::read_file;
 using somasim::testing::run_config;
 
-// configs/pps_learn_objects.yaml, shortened: objects reach the skin, the skin reports the
-// contacts and both parts learn (the experiment's offset metrics are work in progress).
-TEST(PpsLearnObjects, ApproachingObjectsTeachBothParts) {
-  const auto run = run_config("pps_learn_objects", {{"nodes.thrower.params.approaches", "4"}});
+namespace {
+
+// configs/pps_learn_objects.yaml, shortened to one ball and one cube per part.
+const std::vector<somasim::Override> kShort = {{"nodes.thrower.params.approaches", "4"}};
+
+nlohmann::json without_wall_clock(nlohmann::json m) {
+  for (const char* key : {"wall_time_s", "real_time_factor"}) m.erase(key);
+  return m;
+}
+
+}  // namespace
+
+// Objects reach the skin, the skin reports the contacts, one learner teaches both parts from
+// the taxels posed by the believed kinematics, and compares its offset estimates with the
+// offsets the thrower knows each touched taxel should show.
+TEST(PpsLearnObjects, ApproachingObjectsTeachBothPartsAndTheirOffsetsAreEvaluated) {
+  const auto run = run_config("pps_learn_objects", kShort, "a");
   ASSERT_EQ(run.metrics["status"], "completed") << run.metrics["error"];
   EXPECT_EQ(run.metrics["approaches"], 4);
-  EXPECT_EQ(run.metrics["nodes"]["pps_forearm"]["events"], 2);
-  EXPECT_EQ(run.metrics["nodes"]["pps_palm"]["events"], 2);
-  EXPECT_GT(run.metrics["nodes"]["pps_forearm"]["positive_samples"].get<int>(), 0);
-  EXPECT_TRUE(std::filesystem::exists(run.dir / "pps_left_forearm.json"));
+  const auto& pps = run.metrics["nodes"]["pps"];
+  EXPECT_EQ(pps["events"], 4);
+  for (const char* part : {"left_forearm", "right_palm"}) {
+    EXPECT_EQ(pps["per_part"][part]["events"], 2) << part;
+    EXPECT_GT(pps["per_part"][part]["positive_samples"].get<int>(), 0) << part;
+    EXPECT_TRUE(run.metrics["offset_mean_m"][part].is_number()) << part;
+    // The injected error is 2 cm-class and positive (the believed skin lies inside).
+    const double truth = run.metrics["true_offset_mean_m"][part].get<double>();
+    EXPECT_GT(truth, 0.005) << part;
+    EXPECT_LT(truth, 0.04) << part;
+    EXPECT_EQ(run.metrics["presented_per_part"][part]["contact_events"], 2) << part;
+  }
+  EXPECT_GT(run.metrics["offset_taxels_evaluated"].get<int>(), 0);
+  EXPECT_TRUE(run.metrics["offset_error_max_m"].is_number());
+  EXPECT_TRUE(run.metrics["offset_error_max_paper_m"].is_number());
+  EXPECT_TRUE(std::filesystem::exists(run.dir / "pps_objects.json"));
   // Fig 9-style snapshot after the first event, and the final landscapes.
   EXPECT_TRUE(
       std::filesystem::exists(run.dir / "figures/landscape_left_forearm_0_after_1_events.png"));
   EXPECT_TRUE(std::filesystem::exists(run.dir / "figures/landscape_right_palm_0.png"));
+
+  // Same seed: the same metrics (but for wall-clock figures) and the same learned maps.
+  const auto again = run_config("pps_learn_objects", kShort, "b");
+  ASSERT_EQ(again.metrics["status"], "completed") << again.metrics["error"];
+  EXPECT_EQ(without_wall_clock(again.metrics), without_wall_clock(run.metrics));
+  EXPECT_EQ(read_file(again.dir / "pps_objects.json"), read_file(run.dir / "pps_objects.json"));
 }

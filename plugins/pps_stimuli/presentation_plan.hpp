@@ -1,0 +1,54 @@
+#pragma once
+// Where one presented object starts and how it moves, relative to the taxel it is aimed at
+// (object_thrower). All vectors in the root frame; [m], [m/s], [s].
+//
+// The object's centre is referred to the TARGET, one contact distance (`size`: sphere radius,
+// half edge of a cube facing the taxel with a face, radius of a cylinder facing it with its side)
+// above the taxel along its outward normal n; a direction `dir` is drawn within `cone` of n.
+//   approach: starts at target + d·dir, d in distance_min..max, moves at −speed·dir and reaches
+//             the target (the surface touches the taxel) after d / speed; removed `linger` later.
+//   static:   placed at target + d·dir, d in distance_min..max, still for static_duration.
+//   receding: starts at target + s·dir, s in receding_start_min..max, moves at +speed·dir and is
+//             removed after travelling distance_max.
+#include <functional>
+#include <random>
+
+#include <Eigen/Geometry>
+
+#include "somasim/robot_ports.hpp"
+
+namespace somasim::plugins {
+
+struct PresentationGeometry {
+  double size = 0.025;  ///< contact distance of the object (see above) [m]
+  double distance_min = 0.2, distance_max = 0.3;
+  double cone_rad = 0.0;  ///< [rad]
+  double speed_min = 0.05, speed_max = 0.15;
+  double linger = 0.1;
+  double static_duration = 2.0;
+  double receding_start_min = 0.05, receding_start_max = 0.10;
+};
+
+struct PlannedObject {
+  Eigen::Vector3d start = Eigen::Vector3d::Zero();  ///< centre at spawn [m]
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
+  double speed = 0.0;
+  double lifetime = 0.0;  ///< removed this long after spawn [s]
+  double travel = 0.0;    ///< approach: time to reach the skin [s]; otherwise 0
+};
+
+/// Draws one presentation for `motion` aimed at the taxel (`taxel`, unit `normal`). Draws, in
+/// order: per attempt a direction (2 numbers) and a start distance (1); then a speed (1, also
+/// for static objects, so the streams of mixed motions stay aligned). `clear(point)` accepts or
+/// rejects a start point (e.g. robot::point_clear_of_robot); after 100 rejected attempts a
+/// RunError names `part` and the parameters to change.
+PlannedObject plan_presentation(PresentationMotion motion, const Eigen::Vector3d& taxel,
+                                const Eigen::Vector3d& normal, const PresentationGeometry& g,
+                                std::mt19937_64& rng,
+                                const std::function<bool(const Eigen::Vector3d&)>& clear,
+                                const std::string& part);
+
+/// "approach", "static", "receding".
+const char* motion_name(PresentationMotion motion);
+
+}  // namespace somasim::plugins
