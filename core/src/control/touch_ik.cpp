@@ -149,13 +149,17 @@ TouchIkResult TouchIk::solve(const TouchTarget& target, const Eigen::VectorXd& h
 
   TouchIkResult result;
   double best = INFINITY;
-  Eigen::VectorXd q_best = q, q_try(nq), q_new(nq), dq(n), z(n);
+  const Eigen::VectorXd q_in = q;
+  Eigen::VectorXd q_best = q, q_try(nq), q_new(nq), dq(n), z(n), scale(n);
+  const double target_scale = 1.0 / std::sqrt(std::max(1.0, target.target_dof_cost));
   std::vector<bool> frozen(static_cast<std::size_t>(n));
   using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 9, 9>;
   using SmallVec = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 9, 1>;
 
   for (int attempt = 0; attempt <= options_.restarts; ++attempt) {
-    q_try = attempt == 0 ? q : home;
+    q_try = q_in;  // the dofs not solved keep their values
+    if (attempt >= 1)
+      for (int k = 0; k < n; ++k) q_try[dofs_[k]] = home[dofs_[k]];
     if (attempt >= 2)
       for (int k = 0; k < n; ++k) q_try[dofs_[k]] += options_.restart_spread * gauss(rng);
     clamp_solved(q_try);
@@ -179,10 +183,15 @@ TouchIkResult TouchIk::solve(const TouchTarget& target, const Eigen::VectorXd& h
         result.roll_error = now.roll_error;
         return result;
       }
-      for (int k = 0; k < n; ++k) z[k] = options_.posture_gain * (home[dofs_[k]] - q_try[dofs_[k]]);
+      // Weighted least norm: in scaled joints y = S⁻¹ q the target branch's dofs cost
+      // `target_dof_cost` times more to move; the posture pull z acts in the null space.
+      for (int k = 0; k < n; ++k) {
+        scale[k] = k < effector_dofs_ ? 1.0 : target_scale;
+        z[k] = options_.posture_gain * (home[dofs_[k]] - q_try[dofs_[k]]) / scale[k];
+      }
       // Active set: freeze joints at a limit whose step would push them out.
       std::fill(frozen.begin(), frozen.end(), false);
-      Eigen::Matrix<double, 9, Eigen::Dynamic> jf = jacobian_;
+      Eigen::Matrix<double, 9, Eigen::Dynamic> jf = jacobian_ * scale.asDiagonal();
       for (int pass = 0; pass < 3; ++pass) {
         for (int k = 0; k < n; ++k)
           if (frozen[static_cast<std::size_t>(k)]) {
@@ -196,7 +205,7 @@ TouchIkResult TouchIk::solve(const TouchTarget& target, const Eigen::VectorXd& h
         const SmallVec y = ldlt.solve(r_.head(rows_));
         const SmallVec jz = j * z;
         const SmallVec yz = ldlt.solve(jz);
-        dq = -(j.transpose() * y) + z - j.transpose() * yz;
+        dq = (-(j.transpose() * y) + z - j.transpose() * yz).cwiseProduct(scale);
         bool changed = false;
         for (int k = 0; k < n; ++k) {
           const auto kk = static_cast<std::size_t>(k);

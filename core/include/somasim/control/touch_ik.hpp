@@ -57,6 +57,9 @@ struct TouchTarget {
   /// from the skin, where only the fingertip's path matters.
   double axis_tolerance = 0.0;  ///< [rad], also the roll tolerance
   double axis_weight = 0.0;     ///< [m]
+  /// How much more it costs to move the target link's dofs than the effector's (>= 1): e.g.
+  /// 100 keeps the touched limb still wherever the effector's arm alone can do the job.
+  double target_dof_cost = 1.0;
 };
 
 struct TouchIkResult {
@@ -93,6 +96,8 @@ class TouchIk {
   const robot::RobotModel& model() const { return *model_; }
   const TouchIkOptions& options() const { return options_; }
   const robot::FrameRef& effector() const { return effector_; }
+  const Eigen::Vector3d& effector_axis() const { return effector_axis_; }  ///< link frame, unit
+  const Eigen::Vector3d& effector_side() const { return effector_side_; }  ///< link frame
   int target_link() const { return target_link_; }
 
   /// Effector contact point and axis [root frame] at the last evaluated q.

@@ -1,0 +1,550 @@
+#include "double_touch.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "somasim/control/posture_text.hpp"
+#include "somasim/control/trajectory.hpp"
+#include "somasim/diagnostics.hpp"
+#include "somasim/random_directions.hpp"
+#include "somasim/robot/robot_cache.hpp"
+
+namespace somasim::plugins {
+
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+
+Eigen::Vector3d vec3(const std::vector<double>& v) {
+  return {v[0], v[1], v[2]};
+}
+
+// A double-touch posture of the iCub: the left forearm in front of the body, turned (prosup)
+// so that most of its skin faces the right hand, the right hand beside it (21 of the 32 forearm
+// taxels of icub_v1 can then be touched).
+const char* kDefaultHome =
+    "l_shoulder_pitch: -60, l_shoulder_roll: 30, l_shoulder_yaw: 30, l_elbow: 55, "
+    "l_wrist_prosup: -45, r_shoulder_pitch: -45, r_shoulder_roll: 30, r_shoulder_yaw: 30, "
+    "r_elbow: 70";
+
+}  // namespace
+
+PluginSpec DoubleTouch::spec() {
+  PluginSpec s("double_touch",
+               "Self-touch for tactile-motor PPS learning: the right index fingertip touches "
+               "taxels of the left forearm along their normals (both arms solved together), "
+               "approaching from start_distance at speed_min..speed_max, again and again; the "
+               "stimulus is the fingertip from the believed kinematics (proprioception) + noise.");
+  s.add_string("robot").describe("robot description file (kinematics, skin parts)");
+  s.add_string("body_part")
+      .defaults(std::string("left_forearm"))
+      .describe("the skin part touched (its link is moved by the other arm's joints)");
+  s.add_string("effector")
+      .defaults(std::string("r_index_tip"))
+      .describe("the touching frame (its origin is the fingertip)");
+  s.add_list("effector_axis")
+      .size(3)
+      .defaults(std::vector<double>{1, 0, 0})
+      .describe("the finger's pointing direction in the effector frame (brought along -normal)");
+  s.add_list("effector_side")
+      .size(3)
+      .defaults(std::vector<double>{0, 1, 0})
+      .describe(
+          "direction from the touching finger toward the other fingers (effector frame); they "
+          "are kept across the limb (perpendicular to limb_axis) and lifted by finger_tilt");
+  s.add_list("limb_axis")
+      .size(3)
+      .defaults(std::vector<double>{0, 1, 0})
+      .describe("the touched limb's long axis in its link frame; zero: the hand's roll is free");
+  s.add_double("finger_tilt")
+      .unit_is("deg")
+      .defaults(25.0)
+      .range(0.0, 60.0)
+      .describe(
+          "the finger leans this far from -normal (across the limb) so that the longer "
+          "neighbouring finger stays off the skin; the fingertip still moves along the normal");
+  s.add_double("finger_radius")
+      .unit_is("m")
+      .defaults(0.0065)
+      .range(0.0, 0.1)
+      .describe("stimulus radius: the ball inscribed in the fingertip");
+  s.add_string("taxels")
+      .defaults(std::string(""))
+      .describe("space-separated taxel ids touched in turn; '' = random reachable taxels");
+  s.add_int("touches")
+      .defaults(std::int64_t{20})
+      .range(1, 100000)
+      .describe("touches; the arms then return home and the run stops");
+  s.add_double("start_distance")
+      .unit_is("m")
+      .defaults(0.20)
+      .range(0.01, 1.0)
+      .describe("the approach starts this far from the skin along the normal");
+  s.add_double("press_depth")
+      .unit_is("m")
+      .defaults(0.003)
+      .range(0.0, 0.02)
+      .describe("the approach ends this far below the taxel (a slight press)");
+  s.add_double("align_distance")
+      .unit_is("m")
+      .defaults(0.03)
+      .range(0.0, 1.0)
+      .describe(
+          "within this distance of the skin the finger keeps its orientation (axis, tilt, "
+          "fingers across the limb); farther out it may lean, up to max_tilt at start_distance");
+  s.add_double("max_tilt")
+      .unit_is("deg")
+      .defaults(60.0)
+      .range(0.0, 90.0)
+      .describe("largest lean of the finger from -normal at start_distance");
+  s.add_double("approach_step")
+      .unit_is("m")
+      .defaults(0.01)
+      .range(0.001, 0.1)
+      .describe("spacing of the IK solutions along the approach (joint-space interpolation)");
+  s.add_double("speed_min")
+      .unit_is("m/s")
+      .defaults(0.05)
+      .range(0.001, 1.0)
+      .describe("slowest approach speed of the fingertip");
+  s.add_double("speed_max")
+      .unit_is("m/s")
+      .defaults(0.15)
+      .range(0.001, 1.0)
+      .describe("fastest approach speed (also the retreat speed)");
+  s.add_double("position_jitter")
+      .unit_is("m")
+      .defaults(0.003)
+      .range(0.0, 0.05)
+      .describe("aimed point: Gaussian σ per tangential axis around the taxel");
+  s.add_double("normal_jitter")
+      .unit_is("deg")
+      .defaults(5.0)
+      .range(0.0, 45.0)
+      .describe("approach direction drawn within this angle of the taxel normal");
+  s.add_string("home_posture_deg")
+      .defaults(std::string(kDefaultHome))
+      .describe("'joint: value, ...' [deg]: posture regularisation and the final posture");
+  s.add_double("move_duration")
+      .unit_is("s")
+      .defaults(2.0)
+      .range(0.1, 60.0)
+      .describe("joint-space (minimum-jerk) move to the start of each approach");
+  s.add_double("hold").unit_is("s").defaults(0.3).range(0.0, 60.0).describe(
+      "pause on the skin before retreating");
+  s.add_double("clearance")
+      .unit_is("m")
+      .defaults(0.002)
+      .range(-0.1, 0.2)
+      .describe("smallest distance kept between the arms elsewhere (capsule bounds)");
+  s.add_double("position_noise")
+      .unit_is("m")
+      .defaults(0.0)
+      .range(0.0, 1.0)
+      .describe("perceived fingertip position noise (Gaussian σ per axis)");
+  s.add_double("velocity_noise")
+      .unit_is("m/s")
+      .defaults(0.0)
+      .range(0.0, 10.0)
+      .describe("perceived fingertip velocity noise (Gaussian σ per axis)");
+  s.input<JointState>("state", "true joint values (world.joint_state)");
+  s.input<SkinTaxels>("taxels", "skin taxels posed by the true kinematics (skin.taxels)");
+  s.input<ContactEvents>("contacts", "skin contact events (skin.contacts)", /*optional=*/true);
+  s.input<JointState>("believed_state", "joint values the robot believes (default: the true ones)",
+                      /*optional=*/true);
+  s.input<SkinTaxels>("believed_taxels",
+                      "taxels posed by the believed kinematics (the learner's; for true_offsets)",
+                      /*optional=*/true);
+  s.output<JointCommand>("command", "position commands (with velocity feed-forward), both arms");
+  s.output<Stimulus>("stimulus", "the fingertip as perceived (present during approach and hold)");
+  s.output<Stimulus>("truth", "the true fingertip (same convention)");
+  s.output<TaxelValues>("true_offsets",
+                        "per taxel: mean perceived D − true D at the contact events (NaN: never)");
+  return s;
+}
+
+void DoubleTouch::configure(NodeContext& ctx) {
+  model_ = robot::shared_robot_model(ctx.resolve_input_path(ctx.param<std::string>("robot")));
+  true_data_ = std::make_unique<robot::RobotData>(*model_);
+  believed_data_ = std::make_unique<robot::RobotData>(*model_);
+
+  body_part_ = ctx.param<std::string>("body_part");
+  const robot::SkinPatch* patch = nullptr;
+  std::vector<std::string> parts;
+  for (const auto& p : model_->skin_patches()) {
+    parts.push_back(p.body_part);
+    if (p.body_part == body_part_) patch = &p;
+  }
+  if (!patch)
+    ctx.param_error("body_part", "unknown skin part '" + body_part_ + "'" +
+                                     did_you_mean(body_part_, parts) +
+                                     "; the robot's skin parts: " + join_names(parts));
+  try {
+    effector_ = model_->frame_ref(ctx.param<std::string>("effector"));
+  } catch (const InputError& e) {
+    ctx.param_error("effector", e.what());
+  }
+  const Eigen::Vector3d axis = vec3(ctx.param<std::vector<double>>("effector_axis"));
+  if (axis.norm() < 1e-9) ctx.param_error("effector_axis", "must not be zero");
+  effector_axis_link_ = effector_.pose.linear() * axis.normalized();
+  const Eigen::Vector3d side = vec3(ctx.param<std::vector<double>>("effector_side"));
+  limb_axis_ = vec3(ctx.param<std::vector<double>>("limb_axis"));
+  const Eigen::Vector3d side_link = effector_.pose.linear() * side;
+  finger_tilt_ = ctx.param<double>("finger_tilt") * kDeg;
+
+  touches_ = ctx.param<int>("touches");
+  speed_min_ = ctx.param<double>("speed_min");
+  speed_max_ = ctx.param<double>("speed_max");
+  if (speed_max_ < speed_min_) ctx.param_error("speed_max", "must not be less than speed_min");
+  position_jitter_ = ctx.param<double>("position_jitter");
+  normal_jitter_ = ctx.param<double>("normal_jitter") * kDeg;
+  move_duration_ = ctx.param<double>("move_duration");
+  hold_ = ctx.param<double>("hold");
+  finger_radius_ = ctx.param<double>("finger_radius");
+  position_noise_ = ctx.param<double>("position_noise");
+  velocity_noise_ = ctx.param<double>("velocity_noise");
+  try {
+    home_ = control::parse_posture_deg(ctx.param<std::string>("home_posture_deg"), *model_);
+  } catch (const InputError& e) {
+    ctx.param_error("home_posture_deg", e.what());
+  }
+  std::istringstream list(ctx.param<std::string>("taxels"));
+  for (std::string t; list >> t;) {
+    std::size_t used = 0;
+    int id = -1;
+    try {
+      id = std::stoi(t, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || used != t.size() || id < 0)
+      ctx.param_error("taxels", "expected taxel ids (integers >= 0), got '" + t + "'");
+    taxel_list_.push_back(id);
+  }
+
+  TouchPlannerOptions po;
+  po.start_distance = ctx.param<double>("start_distance");
+  po.press_depth = ctx.param<double>("press_depth");
+  po.step = ctx.param<double>("approach_step");
+  po.align_distance = ctx.param<double>("align_distance");
+  po.max_tilt = ctx.param<double>("max_tilt") * kDeg;
+  po.clearance = ctx.param<double>("clearance");
+  try {
+    control::TouchIkOptions io;
+    io.position_tolerance = 1e-4;  // waypoints this close to the normal line
+    control::TouchIk ik(model_, effector_, effector_axis_link_, side_link, patch->link, {}, io);
+    planner_ = std::make_unique<TouchPlanner>(model_, std::move(ik), po);
+  } catch (const InputError& e) {
+    ctx.param_error("effector", e.what());
+  }
+
+  plan_data_ = std::make_unique<robot::RobotData>(*model_);
+  measure_ = [this](const Eigen::VectorXd& q) {
+    // The planned fingertip's distance from the aimed point along the aimed normal.
+    robot::forward_kinematics(*model_, *plan_data_, q);
+    const Eigen::Isometry3d& t =
+        plan_data_->link_poses[static_cast<std::size_t>(planner_->ik().target_link())];
+    const Eigen::Vector3d tip = robot::frame_pose(*plan_data_, effector_).translation();
+    return (tip - t * aimed_link_).dot(t.linear() * aimed_normal_link_);
+  };
+  state_ = &ctx.input<JointState>("state");
+  taxels_ = &ctx.input<SkinTaxels>("taxels");
+  if (ctx.is_wired("contacts")) contacts_ = &ctx.input<ContactEvents>("contacts");
+  if (ctx.is_wired("believed_state")) believed_state_ = &ctx.input<JointState>("believed_state");
+  if (ctx.is_wired("believed_taxels")) believed_taxels_ = &ctx.input<SkinTaxels>("believed_taxels");
+  command_ = &ctx.output<JointCommand>("command");
+  stimulus_ = &ctx.output<Stimulus>("stimulus");
+  truth_ = &ctx.output<Stimulus>("truth");
+  true_offsets_ = &ctx.output<TaxelValues>("true_offsets");
+}
+
+const SkinPart& DoubleTouch::part(NodeContext&) const {
+  for (const auto& p : taxels_->parts)
+    if (p.name == body_part_) {
+      if (p.taxel_ids.empty() || p.positions_link.size() != p.taxel_ids.size() ||
+          p.normals_link.size() != p.taxel_ids.size())
+        break;
+      return p;
+    }
+  throw RunError("skin part '" + body_part_ +
+                 "' (with link-frame taxel poses) is not in the 'taxels' input (is the skin node "
+                 "wired?)");
+}
+
+bool DoubleTouch::plan_touch(NodeContext& ctx) {
+  const SkinPart& p = part(ctx);
+  auto& rng = ctx.rng();
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  const auto plan_at = [&](std::size_t k, bool jitter) {
+    control::TouchTarget target;
+    const Eigen::Vector3d n = p.normals_link[k].normalized();
+    target.point = p.positions_link[k];
+    target.normal = n;
+    if (jitter) {
+      const Eigen::Vector3d t1 = n.unitOrthogonal(), t2 = n.cross(t1);
+      target.point += position_jitter_ * (gauss(rng) * t1 + gauss(rng) * t2);
+      target.normal = sample_direction_in_cone(n, normal_jitter_, rng);
+    }
+    target.tilt = finger_tilt_;
+    std::string detail;
+    PlanResult r = PlanResult::kUnreachable;
+    // The other fingers may lie on either side of the limb: try both.
+    for (const double sign : {1.0, -1.0}) {
+      target.tangent = sign * limb_axis_.cross(target.normal);
+      r = planner_->plan(target, home_, q_ref_, path_, detail);
+      ctx.log().debug("taxel {}, fingers toward {:+.0f}: {}", p.taxel_ids[k], sign,
+                      r == PlanResult::kOk ? "ok" : detail);
+      if (r == PlanResult::kOk) {
+        aimed_link_ = target.point;
+        aimed_normal_link_ = target.normal.normalized();
+        return true;
+      }
+    }
+    (r == PlanResult::kUnreachable ? ik_failures_ : collision_rejections_) += jitter ? 1 : 0;
+    return false;
+  };
+  constexpr int kAttempts = 20;
+  if (!taxel_list_.empty()) {
+    const int id = taxel_list_[static_cast<std::size_t>(next_in_list_++) % taxel_list_.size()];
+    const auto it = std::find(p.taxel_ids.begin(), p.taxel_ids.end(), id);
+    if (it == p.taxel_ids.end())
+      throw RunError("taxel " + std::to_string(id) + " is not a taxel of '" + body_part_ + "' (" +
+                     std::to_string(p.taxel_ids.size()) + " taxels)");
+    const auto k = static_cast<std::size_t>(it - p.taxel_ids.begin());
+    for (int a = 0; a < kAttempts; ++a)
+      if (plan_at(k, true)) {
+        planned_taxel_ = static_cast<int>(k);
+        return true;
+      }
+    throw RunError("taxel " + std::to_string(id) + " of '" + body_part_ +
+                   "' cannot be touched from the home posture (" + std::to_string(kAttempts) +
+                   " attempts; see the log)");
+  }
+  if (reachable_.empty()) {
+    // Once: the taxels the fingertip can reach along their normals from home, clear of the arms.
+    for (std::size_t k = 0; k < p.taxel_ids.size(); ++k)
+      if (plan_at(k, false)) reachable_.push_back(k);
+    if (reachable_.empty())
+      throw RunError("no taxel of '" + body_part_ +
+                     "' can be touched from the home posture (see the log at debug level)");
+  }
+  std::uniform_int_distribution<std::size_t> pick(0, reachable_.size() - 1);
+  for (int a = 0; a < kAttempts; ++a) {
+    const std::size_t k = reachable_[pick(rng)];
+    if (plan_at(k, true)) {
+      planned_taxel_ = static_cast<int>(k);
+      return true;
+    }
+  }
+  throw RunError("no touch could be planned in " + std::to_string(kAttempts) +
+                 " draws (lower position_jitter or normal_jitter)");
+}
+
+void DoubleTouch::start_transfer(double now, const Eigen::VectorXd& goal) {
+  transfer_from_ = q_ref_;
+  transfer_to_ = goal;
+  phase_start_ = now;
+}
+
+void DoubleTouch::advance(NodeContext& ctx) {
+  const double now = ctx.time_s();
+  for (int guard = 0; guard < 8; ++guard) {
+    const double elapsed = now - phase_start_;
+    switch (phase_) {
+      case Phase::kPlan:
+        if (static_cast<int>(log_.size()) >= touches_) {
+          start_transfer(now, home_);
+          phase_ = Phase::kHome;
+          continue;
+        }
+        plan_touch(ctx);
+        start_transfer(now, path_.posture.front());
+        phase_ = Phase::kTransfer;
+        continue;
+      case Phase::kTransfer:
+      case Phase::kHome: {
+        const auto p =
+            control::sample_profile(control::Profile::kMinimumJerk, elapsed / move_duration_);
+        q_ref_ = transfer_from_ + p.s * (transfer_to_ - transfer_from_);
+        dq_ref_ = (p.ds / move_duration_) * (transfer_to_ - transfer_from_);
+        if (elapsed < move_duration_ - 1e-9) return;
+        if (phase_ == Phase::kHome) {
+          phase_ = Phase::kDone;
+          ctx.request_stop(std::to_string(log_.size()) + " touches done");
+          return;
+        }
+        Touch t;
+        t.taxel_id = part(ctx).taxel_ids[static_cast<std::size_t>(planned_taxel_)];
+        t.speed = speed_min_ + std::uniform_real_distribution<double>(0.0, 1.0)(ctx.rng()) *
+                                   (speed_max_ - speed_min_);
+        t.t_approach = now;
+        log_.push_back(t);
+        phase_ = Phase::kApproach;
+        phase_start_ = now;
+        continue;
+      }
+      case Phase::kApproach: {
+        const double v = log_.back().speed;
+        const double d = path_.start() - v * elapsed;
+        Eigen::VectorXd dq_dd;
+        path_.sample(d, measure_, q_ref_, &dq_dd);
+        dq_ref_ = -v * dq_dd;
+        if (d > path_.end()) return;
+        phase_ = Phase::kHold;
+        phase_start_ = now;
+        continue;
+      }
+      case Phase::kHold:
+        q_ref_ = path_.posture.back();
+        dq_ref_.setZero(q_ref_.size());
+        if (elapsed < hold_ - 1e-9) return;
+        {
+          // Control accuracy: the true fingertip against the aimed point, along the skin.
+          const robot::FrameRef& e = effector_;
+          const Eigen::Vector3d tip = robot::frame_pose(*true_data_, e).translation();
+          const int link = planner_->ik().target_link();
+          const Eigen::Isometry3d& tl = true_data_->link_poses[static_cast<std::size_t>(link)];
+          const SkinPart& p = part(ctx);
+          const Eigen::Vector3d n =
+              tl.linear() * p.normals_link[static_cast<std::size_t>(planned_taxel_)].normalized();
+          const Eigen::Vector3d rel = tip - tl * aimed_link_;
+          log_.back().final_error = (rel - rel.dot(n) * n).norm();
+        }
+        phase_ = Phase::kRetreat;
+        phase_start_ = now;
+        continue;
+      case Phase::kRetreat: {
+        const double d = path_.end() + speed_max_ * elapsed;
+        Eigen::VectorXd dq_dd;
+        path_.sample(d, measure_, q_ref_, &dq_dd);
+        dq_ref_ = speed_max_ * dq_dd;
+        if (d < path_.start()) return;
+        log_.back().t_end = now;
+        phase_ = Phase::kPlan;
+        continue;
+      }
+      case Phase::kDone:
+        dq_ref_.setZero(q_ref_.size());
+        return;
+    }
+  }
+}
+
+void DoubleTouch::perceive(NodeContext& ctx) {
+  const Eigen::VectorXd& q = state_->position;
+  robot::forward_kinematics(*model_, *true_data_, q);  // InputError names the size mismatch
+  const bool believed = believed_state_ && believed_state_->position.size() == q.size();
+  robot::forward_kinematics(*model_, *believed_data_, believed ? believed_state_->position : q);
+  const auto centre = [&](const robot::RobotData& data) {
+    const Eigen::Isometry3d& link = data.link_poses[static_cast<std::size_t>(effector_.link)];
+    return Eigen::Vector3d(link * effector_.pose.translation() -
+                           finger_radius_ * (link.linear() * effector_axis_link_));
+  };
+  const Eigen::Vector3d pb = centre(*believed_data_), pt = centre(*true_data_);
+  const double dt = ctx.period_s();
+  const Eigen::Vector3d vb =
+      have_last_ ? Eigen::Vector3d((pb - last_perceived_) / dt) : Eigen::Vector3d::Zero();
+  const Eigen::Vector3d vt =
+      have_last_ ? Eigen::Vector3d((pt - last_true_) / dt) : Eigen::Vector3d::Zero();
+  last_perceived_ = pb;
+  last_true_ = pt;
+  have_last_ = true;
+
+  const bool present = phase_ == Phase::kApproach || phase_ == Phase::kHold;
+  perceived_clean_ = Stimulus{true, pb, vb, finger_radius_};
+  *truth_ = Stimulus{present, pt, vt, finger_radius_};
+  *stimulus_ = Stimulus{present, pb, vb, finger_radius_};
+  auto& rng = ctx.rng();
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  if (position_noise_ > 0)
+    for (int i = 0; i < 3; ++i) stimulus_->position[i] += position_noise_ * gauss(rng);
+  if (velocity_noise_ > 0)
+    for (int i = 0; i < 3; ++i) stimulus_->velocity[i] += velocity_noise_ * gauss(rng);
+  if (!present) *stimulus_ = Stimulus{false, {}, {}, finger_radius_};
+  if (!present) *truth_ = Stimulus{false, {}, {}, finger_radius_};
+}
+
+void DoubleTouch::read_contacts(NodeContext&) {
+  if (!contacts_) return;
+  Stimulus true_now = Stimulus{true, last_true_, Eigen::Vector3d::Zero(), finger_radius_};
+  const bool touching =
+      phase_ == Phase::kApproach || phase_ == Phase::kHold || phase_ == Phase::kRetreat;
+  for (const auto& e : contacts_->recent) {
+    if (e.id <= last_event_id_) continue;
+    last_event_id_ = e.id;
+    if (e.body_part == body_part_) {
+      ++events_on_part_;
+      if (touching && !log_.empty())
+        log_.back().reached_skin = true;
+      else
+        ++events_outside_touches_;
+    } else {
+      ++events_elsewhere_;
+    }
+    offsets_.add_event(e, *taxels_, believed_taxels_, perceived_clean_, true_now, *true_offsets_);
+  }
+}
+
+void DoubleTouch::write_command() {
+  const int n = model_->num_dofs();
+  if (command_->mode.size() != static_cast<std::size_t>(n)) {
+    command_->mode.assign(static_cast<std::size_t>(n), JointCommandMode::kNone);
+    for (int d : planner_->ik().solved_dofs())
+      command_->mode[static_cast<std::size_t>(d)] = JointCommandMode::kPosition;
+  }
+  command_->position = q_ref_;
+  command_->velocity = dq_ref_;
+}
+
+void DoubleTouch::step(NodeContext& ctx) {
+  if (!started_) {
+    if (state_->position.size() != model_->num_dofs())
+      throw RunError("'state' has " + std::to_string(state_->position.size()) +
+                     " joint values, expected " + std::to_string(model_->num_dofs()) +
+                     " (is it wired to the world's joint_state?)");
+    q_ref_ = state_->position;
+    dq_ref_ = Eigen::VectorXd::Zero(q_ref_.size());
+    started_ = true;
+  }
+  offsets_.update_layout(*taxels_, *true_offsets_);
+  perceive(ctx);
+  read_contacts(ctx);
+  advance(ctx);
+  write_command();
+}
+
+void DoubleTouch::finish(NodeContext& ctx) {
+  int reached = 0, measured = 0;
+  double err_sum = 0.0, err_max = 0.0;
+  nlohmann::json per_touch = nlohmann::json::array();
+  for (const auto& t : log_) {
+    reached += t.reached_skin ? 1 : 0;
+    nlohmann::json j = {
+        {"taxel", t.taxel_id}, {"speed_m_s", t.speed}, {"reached_skin", t.reached_skin}};
+    if (t.final_error >= 0) {
+      ++measured;
+      err_sum += t.final_error;
+      err_max = std::max(err_max, t.final_error);
+      j["final_error_m"] = t.final_error;
+    }
+    per_touch.push_back(j);
+  }
+  ctx.report_metric("touches", static_cast<int>(log_.size()));
+  ctx.report_metric("touches_reached_skin", reached);
+  ctx.report_metric("ik_failures", ik_failures_);
+  ctx.report_metric("collision_rejections", collision_rejections_);
+  ctx.report_metric("reachable_taxels", static_cast<int>(reachable_.size()));
+  ctx.report_metric("events_on_part", events_on_part_);
+  ctx.report_metric("events_outside_touches", events_outside_touches_);
+  ctx.report_metric("events_elsewhere", events_elsewhere_);
+  if (measured > 0) {
+    ctx.report_metric("final_error_mean_m", err_sum / measured);
+    ctx.report_metric("final_error_max_m", err_max);
+  }
+  ctx.report_metric("true_offset_samples", offsets_.samples());
+  ctx.report_metric("per_touch", per_touch);
+}
+
+}  // namespace somasim::plugins

@@ -1,0 +1,114 @@
+#pragma once
+// double_touch: tactile-motor PPS learning by self-touch (Roncone et al. 2016; PAPERS.md A,
+// experiment 2). The right index fingertip touches chosen taxels of the left forearm, again and
+// again, and is the stimulus the skin learns from, perceived through proprioception.
+//
+// Each touch: a taxel of `body_part` is drawn (at random among the reachable ones, or in turn
+// from `taxels`), its point jittered along the skin (`position_jitter`) and its approach direction
+// within `normal_jitter` of the normal; both arms are solved together (TouchIk: fingertip at the
+// point + d·n, finger axis along −n leaning `finger_tilt` across the limb so that the longer
+// middle finger stays off the skin, torso held, pulled toward the home posture) for d from
+// `start_distance` down to −`press_depth`; taxels that are unreachable or where the arms would come
+// too close elsewhere are redrawn. The arms move (minimum jerk, joint space, `move_duration`) to
+// the pre-touch posture, the fingertip approaches along the normal at a speed drawn in
+// `speed_min..speed_max`, holds `hold` s, retreats at `speed_max`, and the next touch begins; after
+// `touches` touches the arms return home and the run stops.
+//
+// The stimulus is the fingertip as the robot perceives it: forward kinematics of the BELIEVED
+// joint values (`believed_state`, else the true ones) + Gaussian `position_noise`; it is the ball
+// inscribed in the fingertip (centre one finger radius behind the tip along the finger axis,
+// radius = `finger_radius`), so D = 0 when the fingertip touches the taxel. Velocity: finite
+// difference of the noise-free perceived centre over the node period, + `velocity_noise`.
+#include <functional>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "somasim/plugin.hpp"
+#include "somasim/port_types.hpp"
+#include "somasim/robot/kinematics.hpp"
+#include "somasim/robot/robot_model.hpp"
+#include "somasim/robot_ports.hpp"
+#include "touch_planner.hpp"
+#include "true_offsets.hpp"
+
+namespace somasim::plugins {
+
+class DoubleTouch : public Plugin {
+ public:
+  static PluginSpec spec();
+  void configure(NodeContext& ctx) override;
+  void step(NodeContext& ctx) override;
+  void finish(NodeContext& ctx) override;
+
+ private:
+  enum class Phase { kPlan, kTransfer, kApproach, kHold, kRetreat, kHome, kDone };
+  struct Touch {
+    int taxel_id = -1;
+    double speed = 0.0;
+    double t_approach = 0.0, t_end = 0.0;
+    bool reached_skin = false;
+    double final_error = -1.0;  // [m] true fingertip to aimed taxel at the end of the hold
+  };
+
+  const SkinPart& part(NodeContext& ctx) const;
+  bool plan_touch(NodeContext& ctx);
+  void start_transfer(double now, const Eigen::VectorXd& goal);
+  void advance(NodeContext& ctx);
+  void perceive(NodeContext& ctx);
+  void read_contacts(NodeContext& ctx);
+  void write_command();
+
+  std::shared_ptr<const robot::RobotModel> model_;
+  std::unique_ptr<TouchPlanner> planner_;
+  std::unique_ptr<robot::RobotData> true_data_, believed_data_;
+  robot::FrameRef effector_;
+  Eigen::Vector3d effector_axis_link_ = Eigen::Vector3d::UnitX();
+  Eigen::Vector3d limb_axis_ = Eigen::Vector3d::UnitY();
+  std::string body_part_;
+  std::vector<int> taxel_list_;
+  int touches_ = 0;
+  double finger_tilt_ = 0, speed_min_ = 0, speed_max_ = 0, position_jitter_ = 0, normal_jitter_ = 0;
+  double move_duration_ = 0, hold_ = 0, finger_radius_ = 0, position_noise_ = 0,
+         velocity_noise_ = 0;
+  Eigen::VectorXd home_;
+
+  const JointState* state_ = nullptr;
+  const JointState* believed_state_ = nullptr;  // optional
+  const SkinTaxels* taxels_ = nullptr;
+  const SkinTaxels* believed_taxels_ = nullptr;  // optional
+  const ContactEvents* contacts_ = nullptr;      // optional
+  JointCommand* command_ = nullptr;
+  Stimulus* stimulus_ = nullptr;
+  Stimulus* truth_ = nullptr;
+  TaxelValues* true_offsets_ = nullptr;
+
+  // Motion.
+  Phase phase_ = Phase::kPlan;
+  bool started_ = false;
+  Eigen::VectorXd q_ref_, dq_ref_;
+  Eigen::VectorXd transfer_from_, transfer_to_;
+  double phase_start_ = 0.0;
+  TouchPath path_;
+  int planned_taxel_ = -1;              // index into the part
+  std::vector<std::size_t> reachable_;  // indices of the taxels reachable from home
+  Eigen::Vector3d aimed_link_ = Eigen::Vector3d::Zero();          // aimed point, link frame
+  Eigen::Vector3d aimed_normal_link_ = Eigen::Vector3d::UnitZ();  // approach direction (−)
+  std::unique_ptr<robot::RobotData> plan_data_;
+  std::function<double(const Eigen::VectorXd&)> measure_;  // planned distance at a posture
+
+  // Perception.
+  Stimulus perceived_clean_;  // noise-free perceived stimulus of this tick
+  Eigen::Vector3d last_perceived_ = Eigen::Vector3d::Zero(), last_true_ = Eigen::Vector3d::Zero();
+  bool have_last_ = false;
+  TrueOffsetTracker offsets_;
+  std::uint64_t last_event_id_ = 0;
+
+  // Statistics.
+  std::vector<Touch> log_;
+  int ik_failures_ = 0, collision_rejections_ = 0, events_on_part_ = 0, events_elsewhere_ = 0,
+      events_outside_touches_ = 0, next_in_list_ = 0;
+};
+
+}  // namespace somasim::plugins

@@ -1,0 +1,88 @@
+#pragma once
+// Plans one double touch. The limb is presented first: both arms are solved together (TouchIk,
+// regularised toward home) for the fingertip at a middle distance along the normal; the limb
+// then stays still and the effector's arm alone is solved for the approach postures, from there
+// out to `start_distance` and in to `press_depth` below the skin, each seeded by the previous one
+// (so the fingertip's root-frame velocity is its velocity relative to the skin, as the PPS
+// learner assumes). If that fails, the limb is presented for the touch itself, then for a far
+// point. Every posture, and the joint-space move to the start, is checked for clearance between
+// the two arms (and the trunk) apart from the touching finger on the touched link.
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "somasim/control/link_clearance.hpp"
+#include "somasim/control/touch_ik.hpp"
+
+namespace somasim::plugins {
+
+struct TouchPlannerOptions {
+  double start_distance = 0.20;  ///< [m]
+  double press_depth = 0.003;    ///< [m] below the taxel at the end of the approach
+  double step = 0.01;            ///< distance between IK waypoints [m]
+  double clearance = 0.002;      ///< smallest distance between other shapes of the arms [m]
+  int transfer_checks = 10;      ///< samples of the joint-space move to the start checked
+  /// Within align_distance of the skin the finger is along −n (the IK's tolerance); farther out
+  /// only the fingertip stays on the normal and the finger may tilt, up to max_tilt at
+  /// start_distance (the arms cannot hold a 20 cm normal approach for every taxel).
+  double align_distance = 0.06;    ///< [m]
+  double max_tilt = 0.6;           ///< [rad]
+  double far_axis_weight = 0.001;  ///< IK axis weight beyond align_distance [m]
+  /// Along the approach, moving the touched limb costs this much more than moving the effector's
+  /// arm: the limb stays still wherever the arm alone can follow the normal.
+  double limb_cost = 100.0;
+};
+
+/// The approach: postures (full model vectors) at decreasing distances.
+struct TouchPath {
+  std::vector<double> distance;
+  std::vector<Eigen::VectorXd> posture;
+
+  /// Posture at distance d (clamped to the path), piecewise linear; `dq_dd` (optional): its
+  /// derivative with respect to d [rad/m].
+  void sample(double d, Eigen::VectorXd& q, Eigen::VectorXd* dq_dd = nullptr) const;
+  /// Same, but on each segment the interpolation parameter is solved (regula falsi) so that
+  /// `measure(q)` — the effector's actual distance from the target along its normal — equals d:
+  /// the fingertip then closes in at exactly the commanded rate between the IK waypoints.
+  void sample(double d, const std::function<double(const Eigen::VectorXd&)>& measure,
+              Eigen::VectorXd& q, Eigen::VectorXd* dq_dd = nullptr) const;
+  double start() const { return distance.front(); }
+  double end() const { return distance.back(); }
+};
+
+enum class PlanResult { kOk, kUnreachable, kCollision };
+
+class TouchPlanner {
+ public:
+  TouchPlanner(std::shared_ptr<const robot::RobotModel> model, control::TouchIk ik,
+               TouchPlannerOptions options);
+
+  /// Plans an approach to `target` (its distance is ignored) starting with a joint-space move
+  /// from `from`; `home` regularises the postures. `detail` says why a plan failed.
+  PlanResult plan(const control::TouchTarget& target, const Eigen::VectorXd& home,
+                  const Eigen::VectorXd& from, TouchPath& path, std::string& detail);
+
+  control::TouchIk& ik() { return ik_; }
+  const TouchPlannerOptions& options() const { return options_; }
+
+ private:
+  // The target at distance d (the finger may lean beyond align_distance).
+  control::TouchTarget at(control::TouchTarget target, double d) const;
+  // Postures through distances `ds` from q (the limb kept as still as it can); appends.
+  bool sweep(const control::TouchTarget& target, const Eigen::VectorXd& home,
+             const std::vector<double>& ds, Eigen::VectorXd q, TouchPath& path,
+             std::string& detail);
+  // Clearance of posture q [m] (and the closest pair in `detail`).
+  double clearance(const Eigen::VectorXd& q, std::string* detail);
+
+  std::shared_ptr<const robot::RobotModel> model_;
+  control::TouchIk ik_;
+  TouchPlannerOptions options_;
+  std::unique_ptr<control::LinkClearance> check_;
+  robot::RobotData data_;
+};
+
+}  // namespace somasim::plugins
