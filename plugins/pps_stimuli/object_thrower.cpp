@@ -48,13 +48,11 @@ PluginSpec ObjectThrower::spec() {
   s.add_string("shapes")
       .defaults(std::string("sphere box"))
       .describe(
-          "space-separated object shapes (sphere, box, cylinder), in turn (each part gets every "
-          "shape)");
+          "space-separated object shapes (sphere, box, cylinder), in turn (with two parts, "
+          "'sphere sphere box box' gives each part both)");
   s.add_string("motions")
       .defaults(std::string("approach"))
-      .describe(
-          "space-separated motions (approach, static, receding), in turn (after every part and "
-          "shape)");
+      .describe("space-separated motions (approach, static, receding), in turn");
   s.add_double("size")
       .unit_is("m")
       .defaults(0.025)
@@ -257,11 +255,10 @@ void ObjectThrower::configure(NodeContext& ctx) {
 
 void ObjectThrower::launch(NodeContext& ctx) {
   const std::size_t index = static_cast<std::size_t>(launched_);
-  // Every combination in turn: the part changes fastest, then the shape, then the motion.
+  // Parts, shapes and motions in turn, each with the presentation index.
   const std::string& part = parts_[index % parts_.size()];
-  const ObjectShape shape = shapes_[(index / parts_.size()) % shapes_.size()];
-  const PresentationMotion motion =
-      motions_[(index / (parts_.size() * shapes_.size())) % motions_.size()];
+  const ObjectShape shape = shapes_[index % shapes_.size()];
+  const PresentationMotion motion = motions_[index % motions_.size()];
   const SkinPart* sp = nullptr;
   for (const auto& p : skin_->parts)
     if (p.name == part) sp = &p;

@@ -3,9 +3,9 @@
 // (PAPERS.md A, exp. 3).
 //
 // One object at a time, aimed at a random taxel of a part; parts, `shapes` and `motions`
-// (approach / static / receding; geometry in presentation_plan.hpp) are taken in turn, every
-// combination: the part changes fastest, then the shape, then the motion; the world removes it at
-// the end of its lifetime, and the next one follows after `pause`. Start points are clear of the
+// (approach / static / receding; geometry in presentation_plan.hpp) are each taken in turn with
+// the presentation index (lists of coprime lengths visit every combination); the world removes it
+// at the end of its lifetime, and the next one follows after `pause`. Start points are clear of the
 // robot when `link_poses` is wired.
 //
 // `truth` is the object's centre and velocity (root frame) read back from the world.

@@ -74,12 +74,12 @@ TEST(ObjectThrowerMotions, RecedingObjectsMoveAwayFromATaxelForDistanceMax) {
   }
 }
 
-// Every combination in turn: the part changes fastest, then the shape, then the motion.
+// Parts, shapes and motions each in turn with the presentation index.
 TEST(ObjectThrowerMotions, PartsShapesAndMotionsCycleCylindersShowTheirSide) {
-  Harness h(
-      thrower("parts: left_forearm right_palm, motions: approach static receding, shapes: sphere "
-              "cylinder, approaches: 12, pause: 0, size: 0.02, cylinder_half_height: 0.05, "
-              "distance_max: 0.25, static_duration: 0.5"));
+  Harness h(thrower(
+      "parts: left_forearm right_palm, motions: approach static receding, shapes: sphere "
+      "sphere cylinder cylinder, approaches: 12, pause: 0, size: 0.02, cylinder_half_height: 0.05, "
+      "distance_max: 0.25, static_duration: 0.5"));
   feed_world(h);
   SkinPart palm = forearm();  // the same patch 1 m higher
   palm.name = "right_palm";
@@ -92,10 +92,10 @@ TEST(ObjectThrowerMotions, PartsShapesAndMotionsCycleCylindersShowTheirSide) {
   for (std::size_t i = 0; i < spawns.size(); ++i) {
     const auto& s = spawns[i];
     EXPECT_EQ(s.pose.translation().z() > 0.9, i % 2 == 1) << i;  // the palm
-    EXPECT_EQ(s.shape, (i / 2) % 2 ? ObjectShape::kCylinder : ObjectShape::kSphere) << i;
+    EXPECT_EQ(s.shape, i % 4 < 2 ? ObjectShape::kSphere : ObjectShape::kCylinder) << i;
     EXPECT_EQ(s.motion, ObjectMotion::kKinematic);
-    EXPECT_EQ(s.linear_velocity.isZero(), i / 4 == 1) << i;  // the static ones
-    if (i / 4 == 2)                                          // receding
+    EXPECT_EQ(s.linear_velocity.isZero(), i % 3 == 1) << i;  // the static ones
+    if (i % 3 == 2)                                          // receding
       EXPECT_NEAR(s.remove_after_s * s.linear_velocity.norm(), 0.25, 1e-12) << i;
     if (s.shape != ObjectShape::kCylinder) {
       EXPECT_EQ(s.size, Eigen::Vector3d(0.02, 0.0, 0.0));
