@@ -206,3 +206,29 @@ TEST(ObjectThrowerPerception, ALateContactIsTakenWhereTheObjectReachedTheSkin) {
   // Beside the contact: sqrt(1.5² + 1.01²) − sqrt(1.5² + 0.01²) cm, not ≈ 2 × 1.5 cm.
   EXPECT_NEAR(offsets.values[beside], std::hypot(0.015, 0.0101) - std::hypot(0.015, 1e-4), 1e-9);
 }
+
+// Labels for every taxel of every part of the true taxels input, parts in input order; an
+// event on the second part fills only its taxel.
+TEST(ObjectThrowerPerception, TrueOffsetsCoverEveryPartInInputOrder) {
+  Harness h(thrower("parts: right_palm, approaches: 1, cone: 0", "contacts: harness.contacts"));
+  feed_world(h);
+  SkinPart palm = forearm();
+  palm.name = "right_palm";
+  palm.link = "r_hand";
+  palm.taxel_ids = {5, 9, 4};
+  h.input<SkinTaxels>("taxels").parts.push_back(palm);
+  ASSERT_TRUE(h.step());
+  const int id = h.output<Presentation>("t.presentation").taxel_id;
+  feed_object(h, h.output<ObjectSpawns>("t.spawns").recent.back(), 0.05);
+  h.input<ContactEvents>("contacts").recent = {touch(1, 0.05, {id}, "right_palm")};
+  ASSERT_TRUE(h.step());
+  const auto& offsets = h.output<TaxelValues>("t.true_offsets");
+  EXPECT_EQ(offsets.labels,
+            std::vector<std::string>({"left_forearm/0", "left_forearm/1", "left_forearm/2",
+                                      "right_palm/5", "right_palm/9", "right_palm/4"}));
+  for (std::size_t i = 0; i < 6; ++i)
+    if (offsets.labels[i] == "right_palm/" + std::to_string(id))
+      EXPECT_NEAR(offsets.values[i], 0.0, 1e-12);  // believed = true taxels, no vision error
+    else
+      EXPECT_TRUE(std::isnan(offsets.values[i])) << offsets.labels[i];
+}

@@ -220,3 +220,16 @@ TEST(BelievedKinematics, AJointStateOfAnotherRobotFailsTheRun) {
                                          " joint values (robot '" + icub()->name() + "'), got 5");
   }
 }
+
+// Without skin taxels wired, the state and the link poses are still published.
+TEST(BelievedKinematics, TaxelsAreOptional) {
+  Harness h("base_rate_hz: 20\nnodes:\n  bk: {plugin: believed_kinematics, params: {robot: " +
+            kRobot + ", joint_offsets_deg: 'neck_yaw: 2'}, inputs: {state: harness.state}}\n");
+  h.input<JointState>("state").position = posture();
+  ASSERT_TRUE(h.step());
+  const auto model = icub();
+  EXPECT_NEAR(h.output<JointState>("bk.state").position[model->dof_index("neck_yaw")],
+              2.0 * M_PI / 180.0, 1e-15);
+  EXPECT_EQ(h.output<LinkPoses>("bk.link_poses").poses.size(), std::size_t(model->num_links()));
+  EXPECT_TRUE(h.output<SkinTaxels>("bk.taxels").parts.empty());
+}
