@@ -49,7 +49,8 @@ class DoubleTouch : public Plugin {
     double speed = 0.0;
     double t_approach = 0.0, t_end = 0.0;
     bool reached_skin = false;
-    double final_error = -1.0;  // [m] true fingertip to aimed taxel at the end of the hold
+    bool on_aimed_taxel = false;  // an event of the touch named the aimed taxel
+    double final_error = -1.0;    // [m] true fingertip to aimed taxel at the end of the hold
   };
 
   const SkinPart& part(NodeContext& ctx) const;

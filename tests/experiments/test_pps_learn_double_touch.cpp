@@ -16,6 +16,7 @@ TEST(PpsLearnDoubleTouch, FingertipTouchesTeachTheForearm) {
   const auto& touch = run.metrics["nodes"]["touch"];
   EXPECT_EQ(touch["touches"], 3);
   EXPECT_EQ(touch["touches_reached_skin"], 3);
+  EXPECT_EQ(touch["touches_on_aimed_taxel"], 3);
   EXPECT_EQ(touch["events_elsewhere"], 0);
   EXPECT_EQ(touch["events_outside_touches"], 0);
   EXPECT_LT(touch["final_error_max_m"].get<double>(), 0.005);

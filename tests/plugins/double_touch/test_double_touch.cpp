@@ -323,6 +323,7 @@ TEST(DoubleTouch, TrueOffsetsArePerceivedMinusTrueDAtTheEvents) {
   EXPECT_TRUE(sent);
   EXPECT_EQ(h.finish(), "");
   EXPECT_EQ(h.metric("t", "touches_reached_skin"), 1);
+  EXPECT_EQ(h.metric("t", "touches_on_aimed_taxel"), 1);  // the event named taxel 23
   EXPECT_EQ(h.metric("t", "events_on_part"), 1);
   EXPECT_EQ(h.metric("t", "true_offset_samples"), 2);
 }
