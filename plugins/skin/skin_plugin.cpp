@@ -345,7 +345,7 @@ void SkinPlugin::report(NodeContext& ctx) {
         {"virtual", std::vector<int>(p.touched_virtual.begin(), p.touched_virtual.end())}};
     taxels[name] = {{"physical", p.layout.size()}, {"virtual", p.layout.virtual_taxels.size()}};
   }
-  ctx.report_metric("events", events);
+  ctx.report_metric("events_per_part", events);
   ctx.report_metric("events_total", total);
   ctx.report_metric("taxels_fired", fired);
   ctx.report_metric("taxels", taxels);

@@ -136,8 +136,8 @@ TEST(SkinPlugin, ContactOnTheForearmFiresOneEventWithTheTouchedVirtualTaxels) {
   ASSERT_EQ(h.output<ContactEvents>("skin.contacts").recent.size(), 2u);
   EXPECT_EQ(h.output<ContactEvents>("skin.contacts").recent[1].id, 2u);
   EXPECT_EQ(h.finish(), "");
-  EXPECT_EQ(h.metric("skin", "events")["left_forearm"], 2);
-  EXPECT_EQ(h.metric("skin", "events")["right_palm"], 0);
+  EXPECT_EQ(h.metric("skin", "events_per_part")["left_forearm"], 2);
+  EXPECT_EQ(h.metric("skin", "events_per_part")["right_palm"], 0);
   EXPECT_EQ(h.metric("skin", "events_total"), 2);
   EXPECT_EQ(h.metric("skin", "taxels_fired")["left_forearm"]["virtual"], expected);
   EXPECT_TRUE(std::filesystem::exists(h.out_dir() / "figures" / "skin_layout.png"));
