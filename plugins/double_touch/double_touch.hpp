@@ -5,20 +5,25 @@
 //
 // Each touch: a taxel of `body_part` is drawn (at random among the reachable ones, or in turn
 // from `taxels`), its point jittered along the skin (`position_jitter`) and its approach direction
-// within `normal_jitter` of the normal; both arms are solved together (TouchIk: fingertip at the
-// point + d·n, finger axis along −n leaning `finger_tilt` across the limb so that the longer
-// middle finger stays off the skin, torso held, pulled toward the home posture) for d from
-// `start_distance` down to −`press_depth`; taxels that are unreachable or where the arms would come
-// too close elsewhere are redrawn. The arms move (minimum jerk, joint space, `move_duration`) to
-// the pre-touch posture, the fingertip approaches along the normal at a speed drawn in
-// `speed_min..speed_max`, holds `hold` s, retreats at `speed_max`, and the next touch begins; after
-// `touches` touches the arms return home and the run stops.
+// within `normal_jitter` of the normal. TouchPlanner solves the postures for the fingertip at the
+// point + d·n, d from `start_distance` down to −`press_depth` (finger along −n leaning
+// `finger_tilt` across the limb so that the longer middle finger stays off the skin, within
+// `align_distance`; free to lean up to `max_tilt` farther out; torso held): both arms present
+// the limb, which then stays nearly still while the fingertip's arm follows the normal. Taxels
+// that are unreachable or where the arms would come too close elsewhere are redrawn. The arms
+// move (minimum jerk, joint space, `move_duration`) to the start of the approach, the fingertip
+// closes in along the normal at a speed drawn in `speed_min..speed_max` (the interpolation
+// between IK waypoints is solved for the exact distance), holds `hold` s, retreats at
+// `speed_max`, and the next touch begins; after `touches` touches the arms return home and the
+// run stops. Commands: position (with velocity feed-forward) on both arms' dofs.
 //
 // The stimulus is the fingertip as the robot perceives it: forward kinematics of the BELIEVED
 // joint values (`believed_state`, else the true ones) + Gaussian `position_noise`; it is the ball
 // inscribed in the fingertip (centre one finger radius behind the tip along the finger axis,
-// radius = `finger_radius`), so D = 0 when the fingertip touches the taxel. Velocity: finite
-// difference of the noise-free perceived centre over the node period, + `velocity_noise`.
+// radius = `finger_radius`), so D ≈ 0 when the fingertip touches the taxel. Velocity: finite
+// difference of the noise-free perceived centre over the node period (differencing noisy
+// positions would turn 1 mm of noise into ~0.1 m/s at 100 Hz), + `velocity_noise`. Present
+// during the approach and the hold. `true_offsets`: see true_offsets.hpp.
 #include <functional>
 #include <memory>
 #include <random>
