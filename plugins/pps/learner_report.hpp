@@ -1,7 +1,7 @@
 #pragma once
-// The pps_learner's metrics: sample counts, estimated systematic offsets (ridge end = best
-// estimator, Fig 8 = the paper's) per taxel and per body part, and, when the true offsets are
-// wired, their errors.
+// The pps_learner's metrics: sample counts, estimated systematic offsets (floor = best
+// estimator, ridge end, Fig 8 = the paper's) per taxel and per body part, and, when the true
+// offsets are wired, their errors.
 #include <vector>
 
 #include "learner_part.hpp"
@@ -11,21 +11,25 @@
 namespace somasim::plugins {
 
 /// Reports every metric of the learner. "Counted" taxels have >= `min_samples` learned samples;
-/// offsets [m] are D at contact, ridge = estimate_offset_ridge (best), paper = estimate_offset
-/// (Fig 8; none for the distance-only model).
+/// offsets [m] are the perceived D at contact: floor = estimate_offset_floor (best: it locates
+/// the radial D the truth defines), ridge = estimate_offset_ridge (the contact's distance along
+/// the normal), paper = estimate_offset (Fig 8; none for the distance-only model). Estimates are
+/// computed for counted taxels only (null for the others).
 /// - `events`, `samples`, `positive_samples`, `negative_samples`, `negative_d_share`: all parts;
 ///   `per_part` = {part: the same per part, plus `taxels`}.
-/// - `offset_ridge_m`, `offset_estimate_m`: mean ridge / paper offset over counted taxels of all
-///   parts; `offset_mean_m`, `offset_mean_paper_m` = {part: the same per part} (null: none).
-/// - `taxels` = {id (one part) or "part/id": {samples, offset_ridge_m, offset_estimate_m,
-///   true_offset_m}}.
+/// - `offset_floor_m`, `offset_ridge_m`, `offset_estimate_m`: mean floor / ridge / paper offset
+///   over counted taxels of all parts; `offset_mean_m` (floor), `offset_mean_ridge_m`,
+///   `offset_mean_paper_m` = {part: the same per part} (null: none).
+/// - `taxels` = {id (one part) or "part/id": {samples, offset_floor_m, offset_ridge_m,
+///   offset_estimate_m, true_offset_m}}.
 /// With `true_offsets` (null: unwired; matched by label "part/id", NaN or missing = unknown):
 /// - `true_offset_mean_m` = {part: mean true offset over counted taxels with a known one};
-/// - `offset_error_max_m`, `offset_error_mean_m` (ridge) and `offset_error_max_paper_m`,
-///   `offset_error_mean_paper_m`: max / mean of |estimate - true| over counted taxels with a known
-///   true offset and an estimate; `offset_taxels_evaluated`: counted taxels with a known true
-///   offset; `offset_taxels_without_estimate` = {ridge, paper}: of those, how many had none;
-///   per part: `offset_taxels_evaluated`, `offset_error_max_m`, `offset_error_max_paper_m`.
+/// - `offset_error_max_m`, `offset_error_mean_m` (floor), `offset_error_max_ridge_m`,
+///   `offset_error_mean_ridge_m` and `offset_error_max_paper_m`, `offset_error_mean_paper_m`:
+///   max / mean of |estimate - true| over counted taxels with a known true offset and an
+///   estimate; `offset_taxels_evaluated`: counted taxels with a known true offset;
+///   `offset_taxels_without_estimate` = {floor, ridge, paper}: of those, how many had none;
+///   per part: `offset_taxels_evaluated` and the six error keys.
 void report_learning(NodeContext& ctx, std::vector<LearnerPart>& parts, int min_samples,
                      const TaxelValues* true_offsets);
 

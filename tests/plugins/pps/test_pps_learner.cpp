@@ -161,8 +161,8 @@ TEST(PpsLearner, ALearnedFileForAnotherBodyPartIsRejected) {
 
 // The single-taxel Monte Carlo (Fig 3 noise and speeds, unsigned TTC, the code's RF) with a
 // -2 cm systematic offset, shortened: the ridge-end estimate is within 1 cm of the truth (the
-// mean perceived D at contact, from the thrower) and of the injected offset; the Fig 8 estimate
-// is reported alongside under its old key.
+// mean perceived D at contact, from the thrower) and of the injected offset; the floor within a
+// D bin (3.75 cm here); the Fig 8 estimate is reported alongside under its old key.
 TEST(PpsLearner, RidgeEndOffsetRecoversAnInjectedTwoCentimetreOffset) {
   Harness h(R"(
 base_rate_hz: 20
@@ -187,6 +187,10 @@ nodes:
   EXPECT_NEAR(ridge, -0.02, 0.01);
   const auto taxel = h.metric("pps", "taxels")["0"];
   EXPECT_DOUBLE_EQ(taxel["offset_ridge_m"].get<double>(), ridge);
+  const double floor = h.metric("pps", "offset_floor_m").get<double>();
+  EXPECT_DOUBLE_EQ(taxel["offset_floor_m"].get<double>(), floor);
+  EXPECT_DOUBLE_EQ(h.metric("pps", "offset_mean_m")["taxel"].get<double>(), floor);
+  EXPECT_NEAR(floor, truth, 0.0375) << floor;
   EXPECT_TRUE(taxel["offset_estimate_m"].is_number());
   EXPECT_TRUE(h.metric("pps", "offset_estimate_m").is_number());
 }

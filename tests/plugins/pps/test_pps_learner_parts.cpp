@@ -185,8 +185,10 @@ TEST(PpsLearnerParts, PartsLearnIndependentlyLikeOneLearnerPerPart) {
 }
 
 // Known answer: the ridge-end estimates are -0.02 (patch/10) and +0.01 m (palm/1); with true
-// offsets -0.02 and +0.013 the largest error is 0.003 m on palm/1. Untouched taxels (NaN),
-// taxels with too few samples (palm/2) and labels of no part are left out.
+// offsets -0.02 and +0.013 the largest ridge error is 0.003 m on palm/1. The floor (the best
+// estimator, unsuffixed keys) reads the same ends to a fraction of the paper's 3.75 cm bins.
+// Untouched taxels (NaN), taxels with too few samples (palm/2, no estimate at all) and labels
+// of no part are left out.
 TEST(PpsLearnerParts, OffsetErrorsAgainstTrueOffsetsMatchedByLabel) {
   Harness h(graph("palm patch"));
   set_skin(h);
@@ -201,28 +203,48 @@ TEST(PpsLearnerParts, OffsetErrorsAgainstTrueOffsetsMatchedByLabel) {
   EXPECT_EQ(taxels["palm/1"]["true_offset_m"], 0.013);
   EXPECT_TRUE(taxels["palm/0"]["true_offset_m"].is_null());
   EXPECT_EQ(taxels["palm/2"]["samples"], 0);
-  EXPECT_NEAR(h.metric("pps", "offset_error_max_m").get<double>(), 0.003, 1e-12);
-  EXPECT_NEAR(h.metric("pps", "offset_error_mean_m").get<double>(), 0.0015, 1e-12);
+  for (const char* key : {"offset_floor_m", "offset_ridge_m", "offset_estimate_m"})
+    EXPECT_TRUE(taxels["palm/2"][key].is_null()) << key;
+  EXPECT_NEAR(h.metric("pps", "offset_error_max_ridge_m").get<double>(), 0.003, 1e-12);
+  EXPECT_NEAR(h.metric("pps", "offset_error_mean_ridge_m").get<double>(), 0.0015, 1e-12);
   EXPECT_EQ(h.metric("pps", "offset_taxels_evaluated"), 2);
-  EXPECT_EQ(h.metric("pps", "offset_taxels_without_estimate")["ridge"], 0);
-  // Fig 8: the same statistic from its per-taxel estimates.
+  EXPECT_EQ(h.metric("pps", "offset_taxels_without_estimate"),
+            (nlohmann::json{{"floor", 0}, {"ridge", 0}, {"paper", 0}}));
+  // The floor and Fig 8: the same statistics from their per-taxel estimates.
+  const double floor_patch = taxels["patch/10"]["offset_floor_m"].get<double>();
+  const double floor_palm = taxels["palm/1"]["offset_floor_m"].get<double>();
+  EXPECT_NEAR(floor_patch, -0.02, 0.001);
+  EXPECT_NEAR(floor_palm, 0.01, 0.001);
+  const double floor_err[] = {std::abs(floor_patch + 0.02), std::abs(floor_palm - 0.013)};
+  EXPECT_DOUBLE_EQ(h.metric("pps", "offset_error_max_m").get<double>(),
+                   std::max(floor_err[0], floor_err[1]));
+  EXPECT_DOUBLE_EQ(h.metric("pps", "offset_error_mean_m").get<double>(),
+                   (floor_err[0] + floor_err[1]) / 2);
   const double paper_patch = taxels["patch/10"]["offset_estimate_m"].get<double>();
   const double paper_palm = taxels["palm/1"]["offset_estimate_m"].get<double>();
   EXPECT_DOUBLE_EQ(h.metric("pps", "offset_error_max_paper_m").get<double>(),
                    std::max(std::abs(paper_patch + 0.02), std::abs(paper_palm - 0.013)));
   // Per part: means over the taxels with enough samples. Patch/11 and palm/0 have negatives
-  // only (no ridge estimate, and a Fig 8 line through their activations).
+  // only (no floor or ridge estimate, and a Fig 8 line through their activations).
   EXPECT_EQ(taxels["patch/11"]["offset_ridge_m"], nullptr);
-  EXPECT_NEAR(h.metric("pps", "offset_mean_m")["patch"].get<double>(), -0.02, 1e-12);
-  EXPECT_NEAR(h.metric("pps", "offset_mean_m")["palm"].get<double>(), 0.01, 1e-12);
+  EXPECT_EQ(taxels["patch/11"]["offset_floor_m"], nullptr);
+  EXPECT_DOUBLE_EQ(h.metric("pps", "offset_mean_m")["patch"].get<double>(), floor_patch);
+  EXPECT_DOUBLE_EQ(h.metric("pps", "offset_mean_m")["palm"].get<double>(), floor_palm);
+  EXPECT_NEAR(h.metric("pps", "offset_mean_ridge_m")["patch"].get<double>(), -0.02, 1e-12);
+  EXPECT_NEAR(h.metric("pps", "offset_mean_ridge_m")["palm"].get<double>(), 0.01, 1e-12);
   EXPECT_NEAR(h.metric("pps", "true_offset_mean_m")["patch"].get<double>(), -0.02, 1e-12);
   EXPECT_NEAR(h.metric("pps", "true_offset_mean_m")["palm"].get<double>(), 0.013, 1e-12);
   EXPECT_TRUE(h.metric("pps", "offset_mean_paper_m")["palm"].is_number());
-  EXPECT_NEAR(h.metric("pps", "per_part")["palm"]["offset_error_max_m"].get<double>(), 0.003,
-              1e-12);
-  EXPECT_NEAR(h.metric("pps", "per_part")["patch"]["offset_error_max_m"].get<double>(), 0.0, 1e-12);
+  const auto per_part = h.metric("pps", "per_part");
+  EXPECT_DOUBLE_EQ(per_part["palm"]["offset_error_max_m"].get<double>(), floor_err[1]);
+  EXPECT_DOUBLE_EQ(per_part["patch"]["offset_error_mean_m"].get<double>(), floor_err[0]);
+  EXPECT_NEAR(per_part["palm"]["offset_error_max_ridge_m"].get<double>(), 0.003, 1e-12);
+  EXPECT_NEAR(per_part["patch"]["offset_error_max_ridge_m"].get<double>(), 0.0, 1e-12);
+  EXPECT_DOUBLE_EQ(per_part["palm"]["offset_error_max_paper_m"].get<double>(),
+                   std::abs(paper_palm - 0.013));
   // The all-taxel means under the original keys.
   EXPECT_NEAR(h.metric("pps", "offset_ridge_m").get<double>(), -0.005, 1e-12);
+  EXPECT_DOUBLE_EQ(h.metric("pps", "offset_floor_m").get<double>(), (floor_patch + floor_palm) / 2);
 }
 
 TEST(PpsLearnerParts, WithoutTrueOffsetsThereAreNoErrorMetrics) {
@@ -232,7 +254,9 @@ TEST(PpsLearnerParts, WithoutTrueOffsetsThereAreNoErrorMetrics) {
   h.finish();
   EXPECT_TRUE(h.metric("pps", "offset_error_max_m").is_null());
   EXPECT_TRUE(h.metric("pps", "true_offset_mean_m").is_null());
-  EXPECT_NEAR(h.metric("pps", "offset_mean_m")["palm"].get<double>(), 0.01, 1e-12);
+  EXPECT_TRUE(h.metric("pps", "offset_error_max_ridge_m").is_null());
+  EXPECT_NEAR(h.metric("pps", "offset_mean_m")["palm"].get<double>(), 0.01, 0.001);
+  EXPECT_NEAR(h.metric("pps", "offset_mean_ridge_m")["palm"].get<double>(), 0.01, 1e-12);
 }
 
 TEST(PpsLearnerParts, ReloadsAMultiPartFile) {
