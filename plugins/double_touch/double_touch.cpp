@@ -320,8 +320,11 @@ void DoubleTouch::perceive(NodeContext& ctx) {
     for (int i = 0; i < 3; ++i) stimulus_->position[i] += position_noise_ * gauss(rng);
   if (velocity_noise_ > 0)
     for (int i = 0; i < 3; ++i) stimulus_->velocity[i] += velocity_noise_ * gauss(rng);
-  if (!present) *stimulus_ = Stimulus{false, {}, {}, finger_radius_};
-  if (!present) *truth_ = Stimulus{false, {}, {}, finger_radius_};
+  if (!present) {
+    const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
+    *stimulus_ = Stimulus{false, zero, zero, finger_radius_};
+    *truth_ = Stimulus{false, zero, zero, finger_radius_};
+  }
 }
 
 void DoubleTouch::read_contacts(NodeContext&) {

@@ -125,22 +125,56 @@ control::TouchTarget TouchPlanner::at(control::TouchTarget target, double d) con
   return target;
 }
 
+bool TouchPlanner::solve_at(const control::TouchTarget& target, const Eigen::VectorXd& home,
+                            double d, Eigen::VectorXd& q, std::string& detail) {
+  control::TouchTarget t = at(target, d);
+  t.target_dof_cost = options_.limb_cost;
+  const auto r = ik_.solve(t, home, q);
+  if (!r.success) {
+    detail =
+        fmt::format("no posture at {:.3f} m from the skin (residual {:.1f} mm, axis {:.1f} deg)", d,
+                    1000.0 * r.position_error, r.axis_error * 180.0 / M_PI);
+    return false;
+  }
+  if (clearance(q, &detail) < options_.clearance) return false;
+  return true;
+}
+
+bool TouchPlanner::refine(const control::TouchTarget& target, const Eigen::VectorXd& home,
+                          double d0, const Eigen::VectorXd& q0, double d1,
+                          const Eigen::VectorXd& q1, int depth, TouchPath& path,
+                          std::string& detail) {
+  // Joint-space interpolation between two IK solutions may swing the fingertip off the normal,
+  // and a restart of the IK may land on another arm posture (a jump the motors cannot follow):
+  // halve such segments; a jump survives the halvings and rejects the plan.
+  const double dm = 0.5 * (d0 + d1);
+  Eigen::VectorXd qm = 0.5 * (q0 + q1);
+  control::TouchTarget tm = at(target, dm);
+  const double stray = ik_.evaluate(tm, qm).position_error;
+  const double rate = (q1 - q0).cwiseAbs().maxCoeff() / std::max(std::abs(d1 - d0), 1e-12);
+  if (stray <= options_.path_tolerance && rate <= options_.max_joint_rate) {
+    path.distance.push_back(d1);
+    path.posture.push_back(q1);
+    return true;
+  }
+  if (depth >= options_.max_refinements) {
+    detail = fmt::format("the posture jumps between {:.4f} and {:.4f} m from the skin", d0, d1);
+    return false;
+  }
+  if (!solve_at(target, home, dm, qm, detail)) return false;
+  return refine(target, home, d0, q0, dm, qm, depth + 1, path, detail) &&
+         refine(target, home, dm, qm, d1, q1, depth + 1, path, detail);
+}
+
 bool TouchPlanner::sweep(const control::TouchTarget& target, const Eigen::VectorXd& home,
-                         const std::vector<double>& ds, Eigen::VectorXd q, TouchPath& path,
-                         std::string& detail) {
+                         double d_from, const std::vector<double>& ds, Eigen::VectorXd q,
+                         TouchPath& path, std::string& detail) {
+  double d_prev = d_from;
   for (double d : ds) {
-    control::TouchTarget t = at(target, d);
-    t.target_dof_cost = options_.limb_cost;
-    const auto r = ik_.solve(t, home, q);
-    if (!r.success) {
-      detail =
-          fmt::format("no posture at {:.3f} m from the skin (residual {:.1f} mm, axis {:.1f} deg)",
-                      d, 1000.0 * r.position_error, r.axis_error * 180.0 / M_PI);
-      return false;
-    }
-    if (clearance(q, &detail) < options_.clearance) return false;
-    path.distance.push_back(d);
-    path.posture.push_back(q);
+    const Eigen::VectorXd q_prev = q;
+    if (!solve_at(target, home, d, q, detail)) return false;
+    if (!refine(target, home, d_prev, q_prev, d, q, 0, path, detail)) return false;
+    d_prev = d;
   }
   return true;
 }
@@ -167,14 +201,17 @@ PlanResult TouchPlanner::plan(const control::TouchTarget& target, const Eigen::V
       continue;
     }
     std::vector<double> out, in;  // from d_present outwards / inwards
-    for (double d = d_present; d < d_out - 1e-9; d = std::min(d + options_.step, d_out))
+    for (double d = d_present + options_.step; d < d_out - 1e-9; d += options_.step)
       out.push_back(d);
     out.push_back(d_out);
     for (double d = d_present - options_.step; d > d_in + 1e-9; d -= options_.step) in.push_back(d);
     if (d_present > d_in + 1e-9) in.push_back(d_in);
     TouchPath outward, inward;
+    outward.distance = {d_present};
+    outward.posture = {q};
     std::string why;
-    if (!sweep(target, q, out, q, outward, why) || !sweep(target, q, in, q, inward, why)) {
+    if (!sweep(target, q, d_present, out, q, outward, why) ||
+        !sweep(target, q, d_present, in, q, inward, why)) {
       collision = collision || why.find("comes within") != std::string::npos;
       detail += (detail.empty() ? "" : "; ") + fmt::format("limb at {:.3f} m: {}", d_present, why);
       continue;

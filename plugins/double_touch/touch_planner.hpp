@@ -34,6 +34,12 @@ struct TouchPlannerOptions {
   /// Along the approach, moving the touched limb costs this much more than moving the effector's
   /// arm: the limb stays still wherever the arm alone can follow the normal.
   double limb_cost = 100.0;
+  /// The fingertip may stray this far from the approach line between waypoints [m], and a
+  /// joint may change at most max_joint_rate per metre; otherwise the segment is halved (a plan
+  /// whose posture still jumps after max_refinements halvings is rejected).
+  double path_tolerance = 0.001;
+  double max_joint_rate = 25.0;  ///< largest joint change per metre of approach [rad/m]
+  int max_refinements = 4;
 };
 
 /// The approach: postures (full model vectors) at decreasing distances.
@@ -71,8 +77,15 @@ class TouchPlanner {
  private:
   // The target at distance d (the finger may lean beyond align_distance).
   control::TouchTarget at(control::TouchTarget target, double d) const;
-  // Postures through distances `ds` from q (the limb kept as still as it can); appends.
-  bool sweep(const control::TouchTarget& target, const Eigen::VectorXd& home,
+  // One approach posture at distance d (seeded by q; the limb kept as still as it can).
+  bool solve_at(const control::TouchTarget& target, const Eigen::VectorXd& home, double d,
+                Eigen::VectorXd& q, std::string& detail);
+  // Appends q1 at d1 after q0 at d0, with midpoints where the interpolation strays.
+  bool refine(const control::TouchTarget& target, const Eigen::VectorXd& home, double d0,
+              const Eigen::VectorXd& q0, double d1, const Eigen::VectorXd& q1, int depth,
+              TouchPath& path, std::string& detail);
+  // Postures through distances `ds` from q at d_from; appends them (not d_from) to `path`.
+  bool sweep(const control::TouchTarget& target, const Eigen::VectorXd& home, double d_from,
              const std::vector<double>& ds, Eigen::VectorXd q, TouchPath& path,
              std::string& detail);
   // Clearance of posture q [m] (and the closest pair in `detail`).

@@ -27,7 +27,7 @@ TEST(PpsLearnDoubleTouch, FingertipTouchesTeachTheForearm) {
   EXPECT_TRUE(pps.contains("offset_error_max_m"));
   EXPECT_TRUE(std::filesystem::exists(run.dir / "pps_double_touch.json"));
   EXPECT_TRUE(
-      std::filesystem::exists(run.dir / "figures/landscape_left_forearm_0_after_1_events.png"));
+      std::filesystem::exists(run.dir / "figures/landscape_left_forearm_13_after_1_events.png"));
 
   // Same seed: the same touches and the same learning.
   const auto again = run_config("pps_learn_double_touch", shorter, "b");

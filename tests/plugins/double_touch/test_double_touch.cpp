@@ -184,7 +184,7 @@ TEST(DoubleTouch, ApproachesAtASpeedInRangeAlongTheNormal) {
     while (i < ticks.size() && ticks[i].stimulus.present) seg.push_back(ticks[i++]);
     // The fingertip relative to the taxel: the distance along the normal falls at v, the path
     // stays on the normal; the skin itself barely moves over the last 10 cm.
-    double rate_min = 1e9, rate_max = 0, off_normal = 0, skin_speed_near = 0;
+    double rate_min = 1e9, rate_max = 0, off_normal = 0, skin_speed_near = 0, joint_rate = 0;
     int moving = 0;
     for (std::size_t j = 2; j < seg.size(); ++j) {  // from the second step of the approach
       const SkinTaxels s0 = skin.pose(seg[j - 1].q), s1 = skin.pose(seg[j].q);
@@ -201,11 +201,14 @@ TEST(DoubleTouch, ApproachesAtASpeedInRangeAlongTheNormal) {
       const Eigen::Vector3d rel = b - x1;
       off_normal = std::max(off_normal, (rel - rel.dot(n1) * n1).norm());
       if (d1 < 0.1) skin_speed_near = std::max(skin_speed_near, (x1 - x0).norm() / 0.01);
+      // No posture jumps: joints move at most 25 rad per metre of approach (the planner's bound).
+      joint_rate = std::max(joint_rate, (seg[j].q - seg[j - 1].q).cwiseAbs().maxCoeff() / 0.01);
     }
     EXPECT_GT(moving, static_cast<int>(0.19 / v / 0.01));  // ~0.2 m at v
     EXPECT_NEAR(rate_min, v, 0.03 * v) << "touch " << k;
     EXPECT_NEAR(rate_max, v, 0.03 * v) << "touch " << k;
     EXPECT_LT(skin_speed_near, 0.02) << "touch " << k;
+    EXPECT_LT(joint_rate, 25.0 * v * 1.1) << "touch " << k;
     EXPECT_LT(off_normal, 0.002) << "touch " << k;
   }
 }
