@@ -40,8 +40,11 @@ TEST(PpsLearnObjects, ApproachingObjectsTeachBothPartsAndTheirOffsetsAreEvaluate
     EXPECT_EQ(run.metrics["presented_per_part"][part]["contact_events"], 2) << part;
   }
   EXPECT_GT(run.metrics["offset_taxels_evaluated"].get<int>(), 0);
+  // The best estimator (floor) under the unsuffixed keys, Fig 8 alongside; the ridge end too
+  // (null here: 1 cm bins hold too few samples of 2 approaches for its plateau of 5 counts).
   EXPECT_TRUE(run.metrics["offset_error_max_m"].is_number());
   EXPECT_TRUE(run.metrics["offset_error_max_paper_m"].is_number());
+  EXPECT_TRUE(run.metrics.contains("offset_error_max_ridge_m"));
   EXPECT_TRUE(std::filesystem::exists(run.dir / "pps_objects.json"));
   // Fig 9-style snapshot after the first event, and the final landscapes.
   EXPECT_TRUE(

@@ -43,7 +43,7 @@ namespace somasim::pps {
 struct FloorOptions {
   /// A bin is solid when its positive count is at least this share of the largest bin's, in
   /// (0, 1].
-  double min_fraction = 0.3;
+  double min_fraction = 0.4;
   /// Bins above the lowest solid one averaged for the plateau count (>= 1).
   int plateau_bins = 3;
   /// Fewer positive counts per plateau bin than this: no estimate (a touching approach at
