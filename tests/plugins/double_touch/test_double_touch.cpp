@@ -403,6 +403,36 @@ TEST(DoubleTouch, RunErrors) {
               "'state' has 3 joint values, expected 23 (is it wired to the world's joint_state?)");
   }
   {
+    Harness h(graph("taxels: '0'"));  // by the wrist: the hands would collide
+    EXPECT_EQ(run_error(h, true),
+              "taxel 0 of 'left_forearm' cannot be touched from the home posture (20 attempts; "
+              "see the log)");
+  }
+  {
+    Harness h(graph("start_distance: 1.0"));  // no arm reaches 1 m out along a normal
+    EXPECT_EQ(run_error(h, true),
+              "no taxel of 'left_forearm' can be touched from the home posture (see the log at "
+              "debug level)");
+  }
+  {
+    // An event on a part the believed taxels lack.
+    Harness h(graph("taxels: '23'", true));
+    KinematicWorld w(0.01);
+    w.state.position = somasim::control::parse_posture_deg(kHome, *w.model);
+    Skin skin(*w.model);
+    h.input<JointState>("state") = w.state;
+    h.input<JointState>("believed") = w.state;
+    h.input<SkinTaxels>("taxels") = skin.pose(w.state.position);
+    h.input<SkinTaxels>("btaxels") = SkinTaxels{};
+    ContactEvent e;
+    e.id = 1;
+    e.body_part = "left_forearm";
+    e.touched_taxels = {23};
+    h.input<ContactEvents>("contacts").recent = {e};
+    EXPECT_EQ(run_error(h, false),
+              "true offsets: skin part 'left_forearm' is not in the 'believed_taxels' input");
+  }
+  {
     Harness h(graph(""));
     KinematicWorld w(0.01);
     h.input<JointState>("state") = w.state;  // no skin yet
