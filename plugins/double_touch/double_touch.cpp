@@ -92,6 +92,7 @@ void DoubleTouch::configure(NodeContext& ctx) {
   try {
     control::TouchIkOptions io;
     io.position_tolerance = 1e-4;  // waypoints this close to the normal line
+    io.posture_gain = 0.03;        // a gentle pull: fewer jumps along the approach
     control::TouchIk ik(model_, effector_, effector_axis_link_, side_link, patch->link, {}, io);
     planner_ = std::make_unique<TouchPlanner>(model_, std::move(ik), po);
   } catch (const InputError& e) {
