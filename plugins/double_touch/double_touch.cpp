@@ -313,6 +313,7 @@ void DoubleTouch::perceive(NodeContext& ctx) {
 
   const bool present = phase_ == Phase::kApproach || phase_ == Phase::kHold;
   perceived_clean_ = Stimulus{true, pb, vb, finger_radius_};
+  truth_clean_ = Stimulus{true, pt, vt, finger_radius_};
   *truth_ = Stimulus{present, pt, vt, finger_radius_};
   *stimulus_ = Stimulus{present, pb, vb, finger_radius_};
   auto& rng = ctx.rng();
@@ -330,7 +331,6 @@ void DoubleTouch::perceive(NodeContext& ctx) {
 
 void DoubleTouch::read_contacts(NodeContext&) {
   if (!contacts_) return;
-  Stimulus true_now = Stimulus{true, last_true_, Eigen::Vector3d::Zero(), finger_radius_};
   const bool touching =
       phase_ == Phase::kApproach || phase_ == Phase::kHold || phase_ == Phase::kRetreat;
   for (const auto& e : contacts_->recent) {
@@ -350,8 +350,20 @@ void DoubleTouch::read_contacts(NodeContext&) {
     } else {
       ++events_elsewhere_;
     }
-    offsets_.add_event(e, *taxels_, believed_taxels_, perceived_clean_, true_now, *true_offsets_);
+    add_true_offsets(e);
   }
+}
+
+void DoubleTouch::add_true_offsets(const ContactEvent& e) {
+  // At the event itself: moving the fingertips back to where the true one reached the skin (as
+  // object_thrower does) fails on the curved forearm, where a touched neighbour taxel's plane is
+  // tilted so that the tip lies behind it long before the touch (the back-off then runs to its
+  // limit).
+  const pps::Stimulus truth{truth_clean_.position, truth_clean_.velocity, finger_radius_};
+  const pps::Stimulus perceived{perceived_clean_.position, perceived_clean_.velocity,
+                                finger_radius_};
+  true_offset_samples_ += offsets_.add_event(
+      e, *taxels_, believed_taxels_ ? *believed_taxels_ : *taxels_, perceived, truth);
 }
 
 void DoubleTouch::write_command() {
@@ -375,9 +387,10 @@ void DoubleTouch::step(NodeContext& ctx) {
     dq_ref_ = Eigen::VectorXd::Zero(q_ref_.size());
     started_ = true;
   }
-  offsets_.update_layout(*taxels_, *true_offsets_);
+  offsets_.sync_layout(*taxels_);
   perceive(ctx);
   read_contacts(ctx);
+  offsets_.write(*true_offsets_);
   advance(ctx);
   write_command();
 }
@@ -414,7 +427,7 @@ void DoubleTouch::finish(NodeContext& ctx) {
     ctx.report_metric("final_error_mean_m", err_sum / measured);
     ctx.report_metric("final_error_max_m", err_max);
   }
-  ctx.report_metric("true_offset_samples", offsets_.samples());
+  ctx.report_metric("true_offset_samples", true_offset_samples_);
   ctx.report_metric("per_touch", per_touch);
 }
 

@@ -23,7 +23,8 @@
 // radius = `finger_radius`), so D ≈ 0 when the fingertip touches the taxel. Velocity: finite
 // difference of the noise-free perceived centre over the node period (differencing noisy
 // positions would turn 1 mm of noise into ~0.1 m/s at 100 Hz), + `velocity_noise`. Present
-// during the approach and the hold. `true_offsets`: see true_offsets.hpp.
+// during the approach and the hold. `true_offsets`: see somasim/pps/true_offsets.hpp (the contact
+// instant is taken where the fingertip reached the skin, as for objects).
 #include <functional>
 #include <memory>
 #include <random>
@@ -32,11 +33,11 @@
 
 #include "somasim/plugin.hpp"
 #include "somasim/port_types.hpp"
+#include "somasim/pps/true_offsets.hpp"
 #include "somasim/robot/kinematics.hpp"
 #include "somasim/robot/robot_model.hpp"
 #include "somasim/robot_ports.hpp"
 #include "touch_planner.hpp"
-#include "true_offsets.hpp"
 
 namespace somasim::plugins {
 
@@ -64,6 +65,7 @@ class DoubleTouch : public Plugin {
   void advance(NodeContext& ctx);
   void perceive(NodeContext& ctx);
   void read_contacts(NodeContext& ctx);
+  void add_true_offsets(const ContactEvent& e);
   void write_command();
 
   std::shared_ptr<const robot::RobotModel> model_;
@@ -106,9 +108,11 @@ class DoubleTouch : public Plugin {
 
   // Perception.
   Stimulus perceived_clean_;  // noise-free perceived stimulus of this tick
+  Stimulus truth_clean_;      // true stimulus of this tick (also when not presented)
   Eigen::Vector3d last_perceived_ = Eigen::Vector3d::Zero(), last_true_ = Eigen::Vector3d::Zero();
   bool have_last_ = false;
-  TrueOffsetTracker offsets_;
+  pps::TrueOffsets offsets_;
+  int true_offset_samples_ = 0;
   std::uint64_t last_event_id_ = 0;
 
   // Statistics.

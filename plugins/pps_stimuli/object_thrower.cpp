@@ -380,7 +380,7 @@ void ObjectThrower::learn_true_offsets() {
     truth.position = seen_->position + (e.time_s - seen_->time_s) * seen_->velocity;
     truth.velocity = seen_->velocity;
     truth.radius = radius_;
-    truth.position -= time_since_reaching_skin(e, *skin_, truth) * truth.velocity;
+    truth.position -= pps::time_since_reaching_skin(e, *skin_, truth) * truth.velocity;
     pps::Stimulus perceived = truth;
     perceived.position = seen_->to_perceived * truth.position;
     perceived.velocity = seen_->to_perceived.linear() * truth.velocity;

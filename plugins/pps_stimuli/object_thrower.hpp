@@ -12,8 +12,8 @@
 // `stimulus` is what the robot perceives: the truth plus Gaussian noise, placed through the
 // believed head/eye kinematics when `believed_state` is wired (believed_vision.hpp), else as is.
 // `true_offsets` (with `contacts`): per taxel, the mean over its skin contact events of
-// perceived D − true D (true_offsets.hpp), the taxels posed by `believed_taxels` for the
-// perceived D (by the true `taxels` when unwired).
+// perceived D − true D (somasim/pps/true_offsets.hpp), the taxels posed by `believed_taxels` for
+// the perceived D (by the true `taxels` when unwired).
 #include <map>
 #include <memory>
 #include <optional>
@@ -23,9 +23,9 @@
 #include "presentation_plan.hpp"
 #include "somasim/plugin.hpp"
 #include "somasim/port_types.hpp"
+#include "somasim/pps/true_offsets.hpp"
 #include "somasim/robot/robot_model.hpp"
 #include "somasim/robot_ports.hpp"
-#include "true_offsets.hpp"
 
 namespace somasim::plugins {
 
@@ -76,7 +76,7 @@ class ObjectThrower : public Plugin {
     Eigen::Isometry3d to_perceived = Eigen::Isometry3d::Identity();
   };
   std::optional<Seen> seen_;
-  TrueOffsets true_offsets_;
+  pps::TrueOffsets true_offsets_;
   std::map<std::string, int> per_part_presentations_, per_part_events_;
   std::map<std::string, int> per_motion_;
 };

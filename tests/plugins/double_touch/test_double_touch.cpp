@@ -430,7 +430,8 @@ TEST(DoubleTouch, RunErrors) {
     e.touched_taxels = {23};
     h.input<ContactEvents>("contacts").recent = {e};
     EXPECT_EQ(run_error(h, false),
-              "true offsets: skin part 'left_forearm' is not in the 'believed_taxels' input");
+              "input 'believed_taxels' has no skin part 'left_forearm' (wire "
+              "believed_kinematics.taxels)");
   }
   {
     Harness h(graph(""));

@@ -1,11 +1,11 @@
-#include "true_offsets.hpp"
+#include "somasim/pps/true_offsets.hpp"
 
 #include <algorithm>
 #include <limits>
 
 #include "somasim/error.hpp"
 
-namespace somasim::plugins {
+namespace somasim::pps {
 namespace {
 
 const SkinPart* find_part(const SkinTaxels& skin, const std::string& name) {
@@ -14,16 +14,16 @@ const SkinPart* find_part(const SkinTaxels& skin, const std::string& name) {
   return nullptr;
 }
 
-double d_of(const SkinPart& part, std::size_t k, const pps::Stimulus& s) {
-  const pps::TaxelPose taxel{part.positions[k], part.normals[k]};
-  const pps::TaxelFrameStimulus local = pps::to_taxel_frame(taxel, s);
-  return pps::compute_d_ttc(local.p, local.v, pps::TtcDefinition::kUnsigned).d;
+double d_of(const SkinPart& part, std::size_t k, const Stimulus& s) {
+  const TaxelPose taxel{part.positions[k], part.normals[k]};
+  const TaxelFrameStimulus local = to_taxel_frame(taxel, s);
+  return compute_d_ttc(local.p, local.v, TtcDefinition::kUnsigned).d;
 }
 
 }  // namespace
 
 double time_since_reaching_skin(const ContactEvent& event, const SkinTaxels& true_taxels,
-                                const pps::Stimulus& truth, double clearance, double max_s) {
+                                const Stimulus& truth, double clearance, double max_s) {
   const SkinPart* part = find_part(true_taxels, event.body_part);
   if (!part) return 0.0;
   double back = 0.0;
@@ -31,8 +31,7 @@ double time_since_reaching_skin(const ContactEvent& event, const SkinTaxels& tru
     const auto it = std::find(part->taxel_ids.begin(), part->taxel_ids.end(), id);
     if (it == part->taxel_ids.end()) continue;
     const auto k = static_cast<std::size_t>(it - part->taxel_ids.begin());
-    const pps::TaxelFrameStimulus local =
-        pps::to_taxel_frame({part->positions[k], part->normals[k]}, truth);
+    const TaxelFrameStimulus local = to_taxel_frame({part->positions[k], part->normals[k]}, truth);
     if (local.p.z() < clearance && local.v.z() < 0.0)
       back = std::max(back, (clearance - local.p.z()) / -local.v.z());
   }
@@ -40,15 +39,26 @@ double time_since_reaching_skin(const ContactEvent& event, const SkinTaxels& tru
 }
 
 void TrueOffsets::sync_layout(const SkinTaxels& true_taxels) {
-  std::vector<std::string> labels, parts;
-  for (const auto& p : true_taxels.parts)
+  // Called every tick: compare names and ids (no string building) before rebuilding the labels.
+  const auto same = [&] {
+    if (layout_.size() != true_taxels.parts.size()) return false;
+    for (std::size_t i = 0; i < layout_.size(); ++i)
+      if (layout_[i].first != true_taxels.parts[i].name ||
+          layout_[i].second != true_taxels.parts[i].taxel_ids)
+        return false;
+    return true;
+  };
+  if (same()) return;
+  layout_.clear();
+  labels_.clear();
+  part_of_.clear();
+  for (const auto& p : true_taxels.parts) {
+    layout_.emplace_back(p.name, p.taxel_ids);
     for (int id : p.taxel_ids) {
-      labels.push_back(p.name + "/" + std::to_string(id));
-      parts.push_back(p.name);
+      labels_.push_back(p.name + "/" + std::to_string(id));
+      part_of_.push_back(p.name);
     }
-  if (labels == labels_) return;
-  labels_ = std::move(labels);
-  part_of_ = std::move(parts);
+  }
   index_.clear();
   for (std::size_t i = 0; i < labels_.size(); ++i) index_[labels_[i]] = i;
   sum_.assign(labels_.size(), 0.0);
@@ -56,8 +66,8 @@ void TrueOffsets::sync_layout(const SkinTaxels& true_taxels) {
 }
 
 int TrueOffsets::add_event(const ContactEvent& event, const SkinTaxels& true_taxels,
-                           const SkinTaxels& believed_taxels, const pps::Stimulus& perceived,
-                           const pps::Stimulus& truth) {
+                           const SkinTaxels& believed_taxels, const Stimulus& perceived,
+                           const Stimulus& truth) {
   const SkinPart* t = find_part(true_taxels, event.body_part);
   if (!t) return 0;  // a part this source does not follow
   const SkinPart* b = find_part(believed_taxels, event.body_part);
@@ -101,4 +111,4 @@ std::map<std::string, std::pair<double, int>> TrueOffsets::part_means() const {
   return out;
 }
 
-}  // namespace somasim::plugins
+}  // namespace somasim::pps
