@@ -6,8 +6,8 @@
 
 #include "contact_extraction.hpp"
 #include "contact_history.hpp"
-#include "posture_param.hpp"
 #include "scene_file.hpp"
+#include "somasim/robot/joint_text.hpp"
 #include "somasim/robot/robot_cache.hpp"
 
 namespace somasim::bullet_world {
@@ -141,7 +141,7 @@ void BulletWorld::configure(NodeContext& ctx) {
   }
   Eigen::VectorXd q0;
   try {
-    q0 = parse_posture(ctx.param<std::string>("initial_posture_deg"), *model_);
+    q0 = robot::parse_posture_deg(*model_, ctx.param<std::string>("initial_posture_deg"));
   } catch (const InputError& e) {
     ctx.param_error("initial_posture_deg", e.what());
   }

@@ -5,10 +5,10 @@
 #include <limits>
 #include <sstream>
 
-#include "somasim/control/posture_text.hpp"
 #include "somasim/control/trajectory.hpp"
 #include "somasim/diagnostics.hpp"
 #include "somasim/random_directions.hpp"
+#include "somasim/robot/joint_text.hpp"
 #include "somasim/robot/robot_cache.hpp"
 
 namespace somasim::plugins {
@@ -64,7 +64,7 @@ void DoubleTouch::configure(NodeContext& ctx) {
   position_noise_ = ctx.param<double>("position_noise");
   velocity_noise_ = ctx.param<double>("velocity_noise");
   try {
-    home_ = control::parse_posture_deg(ctx.param<std::string>("home_posture_deg"), *model_);
+    home_ = robot::parse_posture_deg(*model_, ctx.param<std::string>("home_posture_deg"));
   } catch (const InputError& e) {
     ctx.param_error("home_posture_deg", e.what());
   }

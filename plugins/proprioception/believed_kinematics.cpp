@@ -3,7 +3,7 @@
 #include <cmath>
 #include <random>
 
-#include "somasim/robot/joint_offsets.hpp"
+#include "somasim/robot/joint_text.hpp"
 #include "somasim/robot/robot_cache.hpp"
 
 namespace somasim::plugins {

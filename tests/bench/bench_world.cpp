@@ -12,7 +12,7 @@
 #include <benchmark/benchmark.h>
 
 #include "bullet_world.hpp"
-#include "posture_param.hpp"
+#include "somasim/robot/joint_text.hpp"
 #include "somasim/robot/kinematics.hpp"
 #include "somasim/robot/robot_cache.hpp"
 #include "somasim/testing/harness.hpp"
@@ -36,7 +36,7 @@ constexpr int kSolverIterations = 20;  // the plugin's default
 // Ball number k thrown from 25 cm in front of / above the left forearm, hitting it after
 // kFlightTime; removed after one throw period.
 somasim::ObjectSpawn ball(std::uint64_t k, const somasim::robot::RobotModel& model) {
-  const Eigen::VectorXd q = parse_posture(kPosture, model);
+  const Eigen::VectorXd q = somasim::robot::parse_posture_deg(model, kPosture);
   somasim::robot::RobotData data(model);
   somasim::robot::forward_kinematics(model, data, q);
   const Eigen::Vector3d target =
@@ -85,7 +85,7 @@ BENCHMARK(BM_WorldPlugin)
 void BM_RawBulletStep(benchmark::State& state) {
   const bool locked = state.range(0) != 0;
   const auto model = somasim::robot::shared_robot_model(kRobot);
-  const Eigen::VectorXd q0 = parse_posture(kPosture, *model);
+  const Eigen::VectorXd q0 = somasim::robot::parse_posture_deg(*model, kPosture);
   const double dt = 1e-3;
   PhysicsWorld physics(Eigen::Vector3d(0, 0, -9.81), kSolverIterations);
 #ifdef SOMASIM_BENCH_NO_LOCKED

@@ -9,9 +9,9 @@
 #include <gtest/gtest.h>
 
 #include "somasim/control/link_clearance.hpp"
-#include "somasim/control/posture_text.hpp"
 #include "somasim/control/touch_ik.hpp"
 #include "somasim/error.hpp"
+#include "somasim/robot/joint_text.hpp"
 #include "somasim/robot/robot_cache.hpp"
 
 using somasim::control::LinkClearance;
@@ -33,11 +33,11 @@ TouchIk finger_on_forearm(const somasim::control::TouchIkOptions& options = {}) 
 }
 
 Eigen::VectorXd home_posture() {
-  return somasim::control::parse_posture_deg(
+  return somasim::robot::parse_posture_deg(
+      *icub(),
       "l_shoulder_pitch: -60, l_shoulder_roll: 30, l_shoulder_yaw: 30, l_elbow: 55, "
       "l_wrist_prosup: -45, r_shoulder_pitch: -45, r_shoulder_roll: 30, r_shoulder_yaw: 30, "
-      "r_elbow: 70",
-      *icub());
+      "r_elbow: 70");
 }
 
 std::string error_of(const std::function<void()>& f) {
@@ -232,16 +232,16 @@ TEST(LinkClearance, CapsulesBoundTheShapesAndFindTheClosestLinks) {
 TEST(PostureText, ParsesDegreesAndReportsBadPairs) {
   const auto m = icub();
   const Eigen::VectorXd q =
-      somasim::control::parse_posture_deg("l_elbow: 60, r_shoulder_pitch: -30", *m);
+      somasim::robot::parse_posture_deg(*m, "l_elbow: 60, r_shoulder_pitch: -30");
   EXPECT_NEAR(q[m->dof_index("l_elbow")], 60.0 * M_PI / 180.0, 1e-12);
   EXPECT_NEAR(q[m->dof_index("r_shoulder_pitch")], -30.0 * M_PI / 180.0, 1e-12);
   // Unlisted joints: 0 clamped into the limits (the elbow's lower limit is 5.5 deg).
   EXPECT_NEAR(q[m->dof_index("r_elbow")], 5.5 * M_PI / 180.0, 1e-9);
   EXPECT_EQ(q[m->dof_index("torso_yaw")], 0.0);
-  EXPECT_EQ(error_of([&] { somasim::control::parse_posture_deg("l_elbw: 60", *m); }),
-            "unknown joint 'l_elbw' (did you mean 'l_elbow'?)");
-  EXPECT_EQ(error_of([&] { somasim::control::parse_posture_deg("l_elbow 60", *m); }),
-            "expected 'joint: value' pairs separated by commas, got 'l_elbow 60'");
-  EXPECT_EQ(error_of([&] { somasim::control::parse_posture_deg("l_elbow: 200", *m); }),
+  EXPECT_EQ(error_of([&] { somasim::robot::parse_posture_deg(*m, "l_elbw: 60"); }),
+            "unknown joint 'l_elbw' (did you mean 'l_elbow'?) (movable joints of the robot)");
+  EXPECT_EQ(error_of([&] { somasim::robot::parse_posture_deg(*m, "l_elbow 60"); }),
+            "expected 'joint: value', got 'l_elbow 60' (entries separated by ',')");
+  EXPECT_EQ(error_of([&] { somasim::robot::parse_posture_deg(*m, "l_elbow: 200"); }),
             "joint 'l_elbow': 200 deg is outside the limits [5.5, 106]");
 }

@@ -99,7 +99,7 @@ TEST(BulletWorldErrors, UnknownJointInTheInitialPosture) {
       message_of<InputError>([&] { Harness h(world_yaml("initial_posture_deg: 'r_elbw: 30'")); }),
       "<inline>:5:" + std::to_string(44 + kRobot.size()) +
           ": node 'world', key 'params.initial_posture_deg': unknown joint 'r_elbw' (did "
-          "you mean 'r_elbow'?)");
+          "you mean 'r_elbow'?) (movable joints of the robot)");
   EXPECT_EQ(
       message_of<InputError>([&] { Harness h(world_yaml("initial_posture_deg: 'r_elbow: 200'")); }),
       "<inline>:5:" + std::to_string(44 + kRobot.size()) +

@@ -10,9 +10,9 @@
 #include <gtest/gtest.h>
 
 #include "kinematic_world.hpp"
-#include "somasim/control/posture_text.hpp"
 #include "somasim/port_types.hpp"
 #include "somasim/pps/stimulus.hpp"
+#include "somasim/robot/joint_text.hpp"
 #include "somasim/robot/kinematics.hpp"
 #include "somasim/skin/skin_layout.hpp"
 #include "somasim/testing/harness.hpp"
@@ -93,7 +93,7 @@ struct Tick {
 std::vector<Tick> run(Harness& h, bool believed = false,
                       const Eigen::VectorXd& believed_offset = {}, double taxel_shift = 0.0) {
   KinematicWorld w(0.01);
-  w.state.position = somasim::control::parse_posture_deg(kHome, *w.model);
+  w.state.position = somasim::robot::parse_posture_deg(*w.model, kHome);
   Skin skin(*w.model);
   std::vector<Tick> ticks;
   for (int i = 0; i < 20000; ++i) {
@@ -267,7 +267,7 @@ TEST(DoubleTouch, TrueOffsetsArePerceivedMinusTrueDAtTheEvents) {
   const auto model = somasim::robot::shared_robot_model(icub_path());
   Harness h(graph("touches: 1, taxels: '23', move_duration: 0.5, hold: 0.5", true));
   KinematicWorld w(0.01);
-  w.state.position = somasim::control::parse_posture_deg(kHome, *w.model);
+  w.state.position = somasim::robot::parse_posture_deg(*w.model, kHome);
   Skin skin(*w.model);
   Eigen::VectorXd offset = Eigen::VectorXd::Zero(model->num_dofs());
   offset[model->dof_index("r_wrist_pitch")] = -4.0 * M_PI / 180.0;
@@ -418,7 +418,7 @@ TEST(DoubleTouch, RunErrors) {
     // An event on a part the believed taxels lack.
     Harness h(graph("taxels: '23'", true));
     KinematicWorld w(0.01);
-    w.state.position = somasim::control::parse_posture_deg(kHome, *w.model);
+    w.state.position = somasim::robot::parse_posture_deg(*w.model, kHome);
     Skin skin(*w.model);
     h.input<JointState>("state") = w.state;
     h.input<JointState>("believed") = w.state;
