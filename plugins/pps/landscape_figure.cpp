@@ -1,6 +1,7 @@
 #include "landscape_figure.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include <fmt/format.h>
 
@@ -9,8 +10,20 @@
 
 namespace somasim::plugins {
 
+namespace {
+
+std::optional<double> known_offset(const TaxelValues* offsets, const std::string& label) {
+  if (!offsets) return std::nullopt;
+  for (std::size_t i = 0; i < offsets->labels.size() && i < offsets->values.size(); ++i)
+    if (offsets->labels[i] == label && std::isfinite(offsets->values[i])) return offsets->values[i];
+  return std::nullopt;
+}
+
+}  // namespace
+
 void draw_landscapes(NodeContext& ctx, pps::BodyPartLearner& learner,
-                     const std::vector<double>& taxel_ids, const std::string& suffix) {
+                     const std::vector<double>& taxel_ids, const std::string& suffix,
+                     const TaxelValues* true_offsets) {
   std::vector<int> indices;
   if (taxel_ids.empty()) {
     for (int k = 0; k < static_cast<int>(learner.taxels().size()) && k < 4; ++k)
@@ -33,6 +46,8 @@ void draw_landscapes(NodeContext& ctx, pps::BodyPartLearner& learner,
     const bool distance_only = learner.params().model == pps::PpsModel::kDistanceOnly;
     // A distance-only map is constant along its placeholder TTC axis; no Fig 8 line.
     options.regression_line = !distance_only;
+    options.true_offset_m =
+        known_offset(true_offsets, learner.body_part() + "/" + std::to_string(id));
     options.title = fmt::format("{}, taxel {}: {} samples{}{}", learner.body_part(), id, samples,
                                 when, distance_only ? " (distance only)" : "");
     const std::string file = fmt::format("landscape_{}_{}{}.png", learner.body_part(), id,

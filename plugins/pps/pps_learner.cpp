@@ -260,7 +260,7 @@ void PpsLearner::finish(NodeContext& ctx) {
     for (const LearnerPart& p : parts_) states.push_back(pps::learned_state(*p.learner));
     pps::save_learned_parts(states, ctx.output_path(save_name_).string());
   }
-  for (LearnerPart& p : parts_) draw_landscapes(ctx, *p.learner, figure_taxels_, "");
+  for (LearnerPart& p : parts_) draw_landscapes(ctx, *p.learner, figure_taxels_, "", true_offsets_);
 }
 
 }  // namespace somasim::plugins

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "somasim/pps/offset_estimate.hpp"
+#include "somasim/pps/offset_floor.hpp"
 
 namespace somasim::pps {
 namespace {
@@ -28,6 +29,19 @@ void add_regression(figures::HeatmapSpec& spec, const TaxelMap& map) {
   }
   pl.label = fmt::format("regression (Fig 8): D = {:.1f} cm at TTC = 0", 100.0 * *offset);
   pl.color = figures::Color{230, 30, 30};
+  spec.lines.push_back(std::move(pl));
+}
+
+// A vertical line at D = `d_m` over the whole TTC range (nothing when outside the D range).
+void add_vertical(figures::HeatmapSpec& spec, const TaxelMap& map, double d_m, std::string label,
+                  figures::Color color) {
+  const GridSpec& g = map.grid();
+  if (d_m < g.d_min || d_m > g.d_max) return;
+  figures::Polyline pl;
+  pl.x = {100.0 * d_m, 100.0 * d_m};
+  pl.y = {g.ttc_min, g.ttc_max};
+  pl.label = std::move(label);
+  pl.color = color;
   spec.lines.push_back(std::move(pl));
 }
 
@@ -58,6 +72,14 @@ figures::HeatmapSpec landscape_heatmap(const TaxelMap& map, const LandscapeOptio
   spec.y_label = "TTC [s]";
   spec.colorbar_label = "activation";
   if (options.regression_line) add_regression(spec, map);
+  if (options.floor_line)
+    if (const auto floor = estimate_offset_floor(map))
+      add_vertical(spec, map, *floor, fmt::format("floor estimate: {:.1f} cm", 100.0 * *floor),
+                   figures::Color{255, 255, 255});
+  if (options.true_offset_m)
+    add_vertical(spec, map, *options.true_offset_m,
+                 fmt::format("true offset: {:.1f} cm", 100.0 * *options.true_offset_m),
+                 figures::Color{255, 140, 0});
   return spec;
 }
 
