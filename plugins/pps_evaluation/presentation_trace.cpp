@@ -89,7 +89,7 @@ void draw_presentation_figure(const PresentationTrace& trace, const Presentation
   }
   fig::StackedPlotSpec spec;
   spec.title =
-      fmt::format("presentation {}: {} {} toward {} taxel {}", record.id,
+      fmt::format("presentation {}: {} {}, aimed at {} taxel {}", record.id,
                   motion_name(record.motion), record.shape, record.body_part, record.taxel_id);
   spec.x_label = "time since presentation [s]";
   spec.panels = {distance, activation, speed};
