@@ -404,7 +404,7 @@ void ObjectThrower::step(NodeContext& ctx) {
 }
 
 void ObjectThrower::finish(NodeContext& ctx) {
-  ctx.report_metric("approaches", launched_);
+  ctx.report_metric("objects_presented", launched_);
   nlohmann::json per_motion = nlohmann::json::object();
   for (const auto& [motion, n] : per_motion_) per_motion[motion] = n;
   ctx.report_metric("presented_per_motion", per_motion);

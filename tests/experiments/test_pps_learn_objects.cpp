@@ -26,7 +26,7 @@ nlohmann::json without_wall_clock(nlohmann::json m) {
 TEST(PpsLearnObjects, ApproachingObjectsTeachBothPartsAndTheirOffsetsAreEvaluated) {
   const auto run = run_config("pps_learn_objects", kShort, "a");
   ASSERT_EQ(run.metrics["status"], "completed") << run.metrics["error"];
-  EXPECT_EQ(run.metrics["approaches"], 4);
+  EXPECT_EQ(run.metrics["objects_presented"], 4);
   const auto& pps = run.metrics["nodes"]["pps"];
   EXPECT_EQ(pps["events"], 4);
   for (const char* part : {"left_forearm", "right_palm"}) {

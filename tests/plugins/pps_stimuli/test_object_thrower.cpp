@@ -17,7 +17,7 @@ TEST(ObjectThrower, SpawnsMoveTowardTheAimedTaxelFromTheConeAtASpeedInRange) {
               "distance_max: 0.3, speed_min: 0.1, speed_max: 0.2, linger: 0.1"));
   const auto spawns = all_spawns(h);
   ASSERT_EQ(spawns.size(), 12u);
-  EXPECT_EQ(h.metric("t", "approaches"), 12);
+  EXPECT_EQ(h.metric("t", "objects_presented"), 12);
   const SkinPart part = forearm();
   int sphere = 0, box = 0;
   for (const auto& s : spawns) {

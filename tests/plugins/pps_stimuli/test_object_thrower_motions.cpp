@@ -110,7 +110,7 @@ TEST(ObjectThrowerMotions, PartsShapesAndMotionsCycleCylindersShowTheirSide) {
   }
   EXPECT_EQ(h.metric("t", "presented_per_motion"),
             nlohmann::json({{"approach", 4}, {"static", 4}, {"receding", 4}}));
-  EXPECT_EQ(h.metric("t", "approaches"), 12);
+  EXPECT_EQ(h.metric("t", "objects_presented"), 12);
   EXPECT_EQ(h.metric("t", "presented_per_part"),
             nlohmann::json({{"left_forearm", {{"presentations", 6}}},
                             {"right_palm", {{"presentations", 6}}}}));
