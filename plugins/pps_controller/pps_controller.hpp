@@ -9,10 +9,10 @@
 #include <memory>
 #include <string>
 
-#include "part_activations.hpp"
 #include "somasim/control/cartesian_velocity.hpp"
 #include "somasim/plugin.hpp"
 #include "somasim/port_types.hpp"
+#include "somasim/pps/part_activations.hpp"
 #include "somasim/robot/kinematics.hpp"
 #include "somasim/robot_ports.hpp"
 
@@ -42,7 +42,7 @@ class PpsController : public Plugin {
 
   const SkinTaxels* taxels_ = nullptr;
   const TaxelValues* activations_ = nullptr;
-  PartActivations part_activations_;
+  pps::PartActivations part_activations_;
   const JointState* state_ = nullptr;
   JointCommand* command_ = nullptr;
   Eigen::Vector3d* point_ = nullptr;

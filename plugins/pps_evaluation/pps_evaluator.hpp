@@ -13,11 +13,11 @@
 #include <string>
 #include <vector>
 
-#include "../pps_controller/part_activations.hpp"
 #include "presentation_record.hpp"
 #include "presentation_trace.hpp"
 #include "somasim/plugin.hpp"
 #include "somasim/port_types.hpp"
+#include "somasim/pps/part_activations.hpp"
 #include "somasim/robot_ports.hpp"
 #include "surface_distance.hpp"
 
@@ -58,7 +58,7 @@ class PpsEvaluator : public Plugin {
   std::map<std::string, std::size_t> record_of_object_;
   std::map<std::string, ObjectGeometry> geometries_;  ///< by object name, from `spawns`
   std::map<std::uint64_t, PresentationTrace> traces_;
-  std::map<std::string, PartActivations> part_activations_;  ///< by aimed part
+  std::map<std::string, pps::PartActivations> part_activations_;  ///< by aimed part
   std::uint64_t last_event_id_ = 0;
   double last_world_contact_s_ = -1.0;
   std::vector<double> distances_;  ///< scratch: per taxel of the aimed part

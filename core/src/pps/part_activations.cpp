@@ -1,13 +1,12 @@
-#include "part_activations.hpp"
+#include "somasim/pps/part_activations.hpp"
 
 #include <algorithm>
 #include <set>
 #include <unordered_map>
 
-#include "somasim/diagnostics.hpp"
 #include "somasim/error.hpp"
 
-namespace somasim::plugins {
+namespace somasim::pps {
 
 void PartActivations::build_index(const TaxelValues& input, const SkinPart& part,
                                   const std::string& who) {
@@ -17,10 +16,12 @@ void PartActivations::build_index(const TaxelValues& input, const SkinPart& part
     at.emplace(input.labels[i], i);
     parts.insert(input.labels[i].substr(0, input.labels[i].rfind('/')));
   }
-  if (!parts.contains(part.name))
+  if (!parts.contains(part.name)) {
+    std::string names;  // somasim_pps does not link the core's diagnostics (join_names)
+    for (const auto& p : parts) names += (names.empty() ? "" : ", ") + p;
     throw RunError(who + ": 'activations' has no values for skin part '" + part.name +
-                   "' (labels 'part/id' of " +
-                   join_names(std::vector<std::string>(parts.begin(), parts.end())) + ")");
+                   "' (labels 'part/id' of " + names + ")");
+  }
   index_.clear();
   for (int id : part.taxel_ids) {
     const std::string label = part.name + "/" + std::to_string(id);
@@ -56,4 +57,4 @@ std::span<const double> PartActivations::select(const TaxelValues& input, const 
   return values_;
 }
 
-}  // namespace somasim::plugins
+}  // namespace somasim::pps

@@ -1,14 +1,15 @@
 #pragma once
-// The activations of one skin part, picked from a TaxelValues that may carry several parts
-// (labels "part/id", as pps_learner writes them) or, unlabelled, exactly one part's values.
-// Shared by pps_controller and pps_evaluator.
+/// @file
+/// The activations of one skin part, picked from a TaxelValues that may carry several parts
+/// (labels "part/id", as pps_learner writes them) or, unlabelled, exactly one part's values.
+/// Shared by pps_controller and pps_evaluator.
 #include <span>
 #include <string>
 #include <vector>
 
 #include "somasim/port_types.hpp"
 
-namespace somasim::plugins {
+namespace somasim::pps {
 
 class PartActivations {
  public:
@@ -29,4 +30,4 @@ class PartActivations {
   std::vector<double> values_;
 };
 
-}  // namespace somasim::plugins
+}  // namespace somasim::pps
