@@ -11,18 +11,6 @@
 
 namespace somasim::plugins {
 
-const char* motion_name(PresentationMotion motion) {
-  switch (motion) {
-    case PresentationMotion::kApproach:
-      return "approach";
-    case PresentationMotion::kStatic:
-      return "static";
-    case PresentationMotion::kReceding:
-      return "receding";
-  }
-  return "unknown";
-}
-
 namespace {
 
 // Linear interpolation between the order statistics of sorted `v` (non-empty).

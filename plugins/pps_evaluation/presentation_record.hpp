@@ -40,7 +40,4 @@ struct PresentationRecord {
   bool covers(double t) const { return t >= start_s - 1e-9 && (open() || t <= end_s + 1e-9); }
 };
 
-/// "approach", "static", "receding".
-const char* motion_name(PresentationMotion motion);
-
 }  // namespace somasim::plugins

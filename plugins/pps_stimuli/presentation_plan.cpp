@@ -5,18 +5,6 @@
 
 namespace somasim::plugins {
 
-const char* motion_name(PresentationMotion motion) {
-  switch (motion) {
-    case PresentationMotion::kApproach:
-      return "approach";
-    case PresentationMotion::kStatic:
-      return "static";
-    case PresentationMotion::kReceding:
-      return "receding";
-  }
-  return "?";
-}
-
 PlannedObject plan_presentation(PresentationMotion motion, const Eigen::Vector3d& taxel,
                                 const Eigen::Vector3d& normal, const PresentationGeometry& g,
                                 std::mt19937_64& rng,

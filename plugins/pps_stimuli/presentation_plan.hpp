@@ -48,7 +48,4 @@ PlannedObject plan_presentation(PresentationMotion motion, const Eigen::Vector3d
                                 const std::function<bool(const Eigen::Vector3d&)>& clear,
                                 const std::string& part);
 
-/// "approach", "static", "receding".
-const char* motion_name(PresentationMotion motion);
-
 }  // namespace somasim::plugins

@@ -95,6 +95,19 @@ struct ObjectStates {
 /// toward it until it reaches the skin, held still, or moving away from it.
 enum class PresentationMotion : std::uint8_t { kApproach, kStatic, kReceding };
 
+/// "approach", "static" or "receding" (as in parameters, metrics and file names).
+inline const char* motion_name(PresentationMotion motion) {
+  switch (motion) {
+    case PresentationMotion::kApproach:
+      return "approach";
+    case PresentationMotion::kStatic:
+      return "static";
+    case PresentationMotion::kReceding:
+      return "receding";
+  }
+  return "unknown";
+}
+
 /// The object a stimulus source is presenting now (one at a time), for evaluators.
 struct Presentation {
   std::uint64_t id = 0;  ///< 1, 2, ... per producer; 0: nothing presented yet
