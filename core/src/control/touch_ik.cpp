@@ -155,6 +155,15 @@ TouchIkResult TouchIk::solve(const TouchTarget& target, const Eigen::VectorXd& h
   std::vector<bool> frozen(static_cast<std::size_t>(n));
   using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 9, 9>;
   using SmallVec = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 9, 1>;
+  // Keeps q_try (with its errors `now`) when its residual `err` is the lowest so far.
+  const auto keep_if_best = [&](double err, const TouchIkResult& now) {
+    if (err >= best) return;
+    best = err;
+    q_best = q_try;
+    result.position_error = now.position_error;
+    result.axis_error = now.axis_error;
+    result.roll_error = now.roll_error;
+  };
 
   for (int attempt = 0; attempt <= options_.restarts; ++attempt) {
     q_try = q_in;  // the dofs not solved keep their values
@@ -168,13 +177,7 @@ TouchIkResult TouchIk::solve(const TouchTarget& target, const Eigen::VectorXd& h
     for (int it = 0; it < options_.max_iterations; ++it) {
       ++result.iterations;
       TouchIkResult now = errors();
-      if (err < best) {
-        best = err;
-        q_best = q_try;
-        result.position_error = now.position_error;
-        result.axis_error = now.axis_error;
-        result.roll_error = now.roll_error;
-      }
+      keep_if_best(err, now);
       if (converged(now, target)) {
         result.success = true;
         q = q_try;
@@ -237,14 +240,7 @@ TouchIkResult TouchIk::solve(const TouchTarget& target, const Eigen::VectorXd& h
         if (lambda > 1e2) break;  // stalled: next attempt
       }
     }
-    TouchIkResult last = errors();
-    if (err < best) {
-      best = err;
-      q_best = q_try;
-      result.position_error = last.position_error;
-      result.axis_error = last.axis_error;
-      result.roll_error = last.roll_error;
-    }
+    keep_if_best(err, errors());
   }
   q = q_best;
   return result;
