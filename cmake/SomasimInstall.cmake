@@ -8,4 +8,5 @@ configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/somasimConfig.cmake.in
 write_basic_package_version_file(${CMAKE_BINARY_DIR}/somasimConfigVersion.cmake
   COMPATIBILITY SameMinorVersion)
 install(FILES ${CMAKE_BINARY_DIR}/somasimConfig.cmake ${CMAKE_BINARY_DIR}/somasimConfigVersion.cmake
-  ${PROJECT_SOURCE_DIR}/cmake/SomasimPlugin.cmake DESTINATION ${SOMASIM_CMAKE_DIR})
+  ${PROJECT_SOURCE_DIR}/cmake/SomasimPlugin.cmake
+  ${PROJECT_SOURCE_DIR}/cmake/SomasimWarnings.cmake DESTINATION ${SOMASIM_CMAKE_DIR})

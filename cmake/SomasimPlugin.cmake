@@ -1,11 +1,13 @@
 # somasim_add_plugin(NAME SOURCES ... [LIBS ...])
 # Builds a plugin shared library named somasim_<NAME> into the plugin directory
-# of the build tree (and installs it into the plugin directory of the package).
+# of the build tree (and installs it into the plugin directory of the package), warnings on.
+include(${CMAKE_CURRENT_LIST_DIR}/SomasimWarnings.cmake)
 function(somasim_add_plugin name)
   cmake_parse_arguments(ARG "" "" "SOURCES;LIBS" ${ARGN})
   set(target somasim_plugin_${name})
   add_library(${target} MODULE ${ARG_SOURCES})
-  target_link_libraries(${target} PRIVATE somasim::core ${ARG_LIBS})
+  target_link_libraries(${target} PRIVATE somasim::framework ${ARG_LIBS})
+  somasim_enable_warnings(${target})
   # Unresolved symbols are link errors, not load-time surprises.
   target_link_options(${target} PRIVATE -Wl,--no-undefined)
   set_target_properties(${target} PROPERTIES

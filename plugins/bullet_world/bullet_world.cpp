@@ -6,7 +6,8 @@
 
 #include "contact_extraction.hpp"
 #include "contact_history.hpp"
-#include "scene_file.hpp"
+#include "somasim/robot/object_geometry.hpp"
+#include "somasim/robot/scene_file.hpp"
 #include "somasim/robot/joint_text.hpp"
 #include "somasim/robot/robot_cache.hpp"
 
@@ -179,13 +180,13 @@ void BulletWorld::configure(NodeContext& ctx) {
   physics_->world().updateAabbs();
 
   if (const std::string scene = ctx.param<std::string>("scene"); !scene.empty()) {
-    std::vector<SceneObject> objects;
+    std::vector<robot::SceneObject> objects;
     try {
-      objects = load_scene(ctx.resolve_input_path(scene));
+      objects = robot::load_scene(ctx.resolve_input_path(scene));
     } catch (const InputError& e) {
       ctx.param_error("scene", e.what());
     }
-    for (const SceneObject& so : objects) {
+    for (const robot::SceneObject& so : objects) {
       const int i = objects_->add(so.spawn, 0.0);
       const RobotOverlap overlap =
           deepest_robot_overlap(physics_->world(), *robot_, objects_->body(i));
@@ -216,7 +217,7 @@ void BulletWorld::spawn_from_port(NodeContext& ctx, double t) {
     if (!seen_spawns_.insert(s.id).second) continue;
     const std::string what =
         fmt::format("t = {:.3f} s: spawned object '{}' (id {})", t, s.name, s.id);
-    if (const std::string problem = spawn_problem(s); !problem.empty())
+    if (const std::string problem = robot::spawn_problem(s); !problem.empty())
       throw RunError(what + ": " + problem);
     ObjectSpawn resolved = s;
     if (s.shape == ObjectShape::kMesh) resolved.mesh = ctx.resolve_input_path(s.mesh).string();

@@ -29,7 +29,7 @@
 #include "robot_multibody.hpp"
 #include "self_collision_filter.hpp"
 #include "somasim/plugin.hpp"
-#include "somasim/robot_ports.hpp"
+#include "somasim/robot/ports.hpp"
 
 namespace somasim::bullet_world {
 

@@ -8,7 +8,7 @@
 #include <BulletCollision/CollisionShapes/btSphereShape.h>
 
 #include "bullet_math.hpp"
-#include "mesh_loader.hpp"
+#include "somasim/robot/mesh_loader.hpp"
 
 namespace somasim::bullet_world {
 
@@ -44,7 +44,7 @@ btCollisionShape* ShapeStore::make(const robot::Geometry& g, MeshUse mesh_use) {
                               std::to_string(g.mesh_scale.z()) +
                               (mesh_use == MeshUse::kTriangles ? "|tri" : "|hull");
       if (auto it = mesh_cache_.find(key); it != mesh_cache_.end()) return it->second;
-      const TriangleMesh mesh = load_triangle_mesh(g.mesh_file, g.mesh_scale);
+      const robot::TriangleMesh mesh = robot::load_triangle_mesh(g.mesh_file, g.mesh_scale);
       btCollisionShape* shape = nullptr;
       if (mesh_use == MeshUse::kConvexHull) {
         auto hull = std::make_unique<btConvexHullShape>();

@@ -10,7 +10,7 @@
 #include "body_tag.hpp"
 #include "object_manager.hpp"
 #include "robot_multibody.hpp"
-#include "somasim/robot_ports.hpp"
+#include "somasim/robot/ports.hpp"
 
 namespace somasim::bullet_world {
 

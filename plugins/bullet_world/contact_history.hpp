@@ -1,6 +1,6 @@
 #pragma once
 // The `recent` contact history of the world's contacts output (see somasim::Contacts).
-#include "somasim/robot_ports.hpp"
+#include "somasim/robot/ports.hpp"
 
 namespace somasim::bullet_world {
 

@@ -24,7 +24,7 @@
 #include <BulletDynamics/Featherstone/btMultiBodyJointMotor.h>
 
 #include "robot_multibody.hpp"
-#include "somasim/robot_ports.hpp"
+#include "somasim/robot/ports.hpp"
 
 namespace somasim::bullet_world {
 

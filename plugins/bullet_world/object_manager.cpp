@@ -6,68 +6,9 @@
 
 #include "body_tag.hpp"
 #include "bullet_math.hpp"
+#include "somasim/robot/object_geometry.hpp"
 
 namespace somasim::bullet_world {
-namespace {
-
-robot::Geometry geometry_of(const ObjectSpawn& s) {
-  robot::Geometry g;
-  switch (s.shape) {
-    case ObjectShape::kSphere:
-      g.type = robot::GeometryType::Sphere;
-      g.radius = s.size.x();
-      break;
-    case ObjectShape::kBox:
-      g.type = robot::GeometryType::Box;
-      g.size = 2.0 * s.size;
-      break;
-    case ObjectShape::kCylinder:
-      g.type = robot::GeometryType::Cylinder;
-      g.radius = s.size.x();
-      g.length = 2.0 * s.size.y();
-      break;
-    case ObjectShape::kMesh:
-      g.type = robot::GeometryType::Mesh;
-      g.mesh_file = s.mesh;
-      for (int i = 0; i < 3; ++i) g.mesh_scale[i] = s.size[i] > 0 ? s.size[i] : 1.0;
-      break;
-  }
-  return g;
-}
-
-bool finite(const Eigen::Isometry3d& t) {
-  return t.matrix().allFinite();
-}
-
-}  // namespace
-
-std::string spawn_problem(const ObjectSpawn& s) {
-  if (!finite(s.pose) || !s.linear_velocity.allFinite() || !s.size.allFinite() ||
-      !std::isfinite(s.mass))
-    return "has a non-finite pose, velocity, size or mass";
-  switch (s.shape) {
-    case ObjectShape::kSphere:
-      if (s.size.x() <= 0) return fmt::format("sphere radius must be > 0 m, got {}", s.size.x());
-      break;
-    case ObjectShape::kBox:
-      if ((s.size.array() <= 0).any())
-        return fmt::format("box half extents must be > 0 m, got [{}, {}, {}]", s.size.x(),
-                           s.size.y(), s.size.z());
-      break;
-    case ObjectShape::kCylinder:
-      if (s.size.x() <= 0 || s.size.y() <= 0)
-        return fmt::format("cylinder radius and half height must be > 0 m, got {} and {}",
-                           s.size.x(), s.size.y());
-      break;
-    case ObjectShape::kMesh:
-      if (s.mesh.empty()) return "mesh object without a mesh file";
-      if ((s.size.array() < 0).any()) return "mesh scale must not be negative";
-      break;
-  }
-  if (s.motion == ObjectMotion::kDynamic && s.mass <= 0)
-    return fmt::format("dynamic object mass must be > 0 kg, got {}", s.mass);
-  return "";
-}
 
 ObjectManager::ObjectManager(btMultiBodyDynamicsWorld& world, ShapeStore& shapes,
                              const ObjectMaterial& material)
@@ -85,10 +26,13 @@ int ObjectManager::add(const ObjectSpawn& s, double t) {
   o.start_pose = s.pose;
   o.velocity = s.linear_velocity;
   o.spawn_time = t;
+  o.shape = s.shape;
+  o.size = s.size;
+  o.mesh = s.shape == ObjectShape::kMesh ? s.mesh : std::string();
   if (s.remove_after_s > 0) o.remove_time = t + s.remove_after_s;
   // Moving meshes are convex hulls; static ones keep their exact triangles.
   btCollisionShape* shape =
-      shapes_.make(geometry_of(s),
+      shapes_.make(robot::object_geometry(s.shape, s.size, s.mesh),
                    s.motion == ObjectMotion::kStatic ? MeshUse::kTriangles : MeshUse::kConvexHull);
   btVector3 centre;
   btScalar radius = 0;
@@ -172,11 +116,17 @@ void ObjectManager::write_states(ObjectStates& s) const {
   s.linear_velocity.resize(n);
   s.angular_velocity.resize(n);
   s.radius.resize(n);
+  s.shape.resize(n);
+  s.size.resize(n);
+  s.mesh.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     const Object& o = objects_[i];
     s.names[i] = o.name;
     s.present[i] = o.body != nullptr;
     s.radius[i] = o.radius;
+    s.shape[i] = o.shape;
+    s.size[i] = o.size;
+    s.mesh[i] = o.mesh;
     if (o.body) {
       s.poses[i] = to_eigen(o.body->getWorldTransform());
       s.linear_velocity[i] = to_eigen(o.body->getLinearVelocity());

@@ -17,7 +17,7 @@
 #include <LinearMath/btDefaultMotionState.h>
 
 #include "collision_shapes.hpp"
-#include "somasim/robot_ports.hpp"
+#include "somasim/robot/ports.hpp"
 
 namespace somasim::bullet_world {
 
@@ -27,8 +27,6 @@ struct ObjectMaterial {
   double restitution = 0.0;
 };
 
-/// What is wrong with a spawn request ("" when nothing): sizes, mass, non-finite values.
-std::string spawn_problem(const ObjectSpawn& spawn);
 
 class ObjectManager {
  public:
@@ -38,7 +36,7 @@ class ObjectManager {
   ObjectManager(const ObjectManager&) = delete;
   ObjectManager& operator=(const ObjectManager&) = delete;
 
-  /// Adds an object at time `t` [s] (spawn must be valid: see spawn_problem); returns its index.
+  /// Adds an object at time `t` [s] (spawn must be valid: see robot::spawn_problem); returns its index.
   /// Meshes may throw InputError (unreadable file).
   int add(const ObjectSpawn& spawn, double t);
   /// Removes an object (its slot stays).
@@ -70,6 +68,9 @@ class ObjectManager {
     double spawn_time = 0.0;
     double remove_time = std::numeric_limits<double>::infinity();
     double radius = 0.0;
+    ObjectShape shape = ObjectShape::kSphere;
+    Eigen::Vector3d size = Eigen::Vector3d::Zero();
+    std::string mesh;
     std::unique_ptr<btDefaultMotionState> motion_state;
     std::unique_ptr<btRigidBody> body;
     Eigen::Isometry3d last_pose = Eigen::Isometry3d::Identity();

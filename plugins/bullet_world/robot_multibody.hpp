@@ -27,7 +27,7 @@
 #include "collision_shapes.hpp"
 #include "rigid_groups.hpp"
 #include "somasim/robot/robot_model.hpp"
-#include "somasim/robot_ports.hpp"
+#include "somasim/robot/ports.hpp"
 
 namespace somasim::bullet_world {
 

@@ -114,8 +114,8 @@ void DoubleTouch::configure(NodeContext& ctx) {
   if (ctx.is_wired("believed_state")) believed_state_ = &ctx.input<JointState>("believed_state");
   if (ctx.is_wired("believed_taxels")) believed_taxels_ = &ctx.input<SkinTaxels>("believed_taxels");
   command_ = &ctx.output<JointCommand>("command");
-  stimulus_ = &ctx.output<Stimulus>("stimulus");
-  truth_ = &ctx.output<Stimulus>("truth");
+  stimulus_ = &ctx.output<pps::Stimulus>("stimulus");
+  truth_ = &ctx.output<pps::Stimulus>("truth");
   true_offsets_ = &ctx.output<TaxelValues>("true_offsets");
 }
 
@@ -312,10 +312,10 @@ void DoubleTouch::perceive(NodeContext& ctx) {
   have_last_ = true;
 
   const bool present = phase_ == Phase::kApproach || phase_ == Phase::kHold;
-  perceived_clean_ = Stimulus{true, pb, vb, finger_radius_};
-  truth_clean_ = Stimulus{true, pt, vt, finger_radius_};
-  *truth_ = Stimulus{present, pt, vt, finger_radius_};
-  *stimulus_ = Stimulus{present, pb, vb, finger_radius_};
+  perceived_clean_ = pps::Stimulus{pb, vb, finger_radius_, true};
+  truth_clean_ = pps::Stimulus{pt, vt, finger_radius_, true};
+  *truth_ = pps::Stimulus{pt, vt, finger_radius_, present};
+  *stimulus_ = pps::Stimulus{pb, vb, finger_radius_, present};
   auto& rng = ctx.rng();
   std::normal_distribution<double> gauss(0.0, 1.0);
   if (position_noise_ > 0)
@@ -324,8 +324,8 @@ void DoubleTouch::perceive(NodeContext& ctx) {
     for (int i = 0; i < 3; ++i) stimulus_->velocity[i] += velocity_noise_ * gauss(rng);
   if (!present) {
     const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
-    *stimulus_ = Stimulus{false, zero, zero, finger_radius_};
-    *truth_ = Stimulus{false, zero, zero, finger_radius_};
+    *stimulus_ = pps::Stimulus{zero, zero, finger_radius_, false};
+    *truth_ = pps::Stimulus{zero, zero, finger_radius_, false};
   }
 }
 

@@ -32,11 +32,12 @@
 #include <vector>
 
 #include "somasim/plugin.hpp"
-#include "somasim/port_types.hpp"
+#include "somasim/skin/ports.hpp"
+#include "somasim/pps/ports.hpp"
+#include "somasim/robot/ports.hpp"
 #include "somasim/pps/true_offsets.hpp"
 #include "somasim/robot/kinematics.hpp"
 #include "somasim/robot/robot_model.hpp"
-#include "somasim/robot_ports.hpp"
 #include "touch_planner.hpp"
 
 namespace somasim::plugins {
@@ -88,8 +89,8 @@ class DoubleTouch : public Plugin {
   const SkinTaxels* believed_taxels_ = nullptr;  // optional
   const ContactEvents* contacts_ = nullptr;      // optional
   JointCommand* command_ = nullptr;
-  Stimulus* stimulus_ = nullptr;
-  Stimulus* truth_ = nullptr;
+  pps::Stimulus* stimulus_ = nullptr;
+  pps::Stimulus* truth_ = nullptr;
   TaxelValues* true_offsets_ = nullptr;
 
   // Motion.
@@ -107,8 +108,8 @@ class DoubleTouch : public Plugin {
   std::function<double(const Eigen::VectorXd&)> measure_;  // planned distance at a posture
 
   // Perception.
-  Stimulus perceived_clean_;  // noise-free perceived stimulus of this tick
-  Stimulus truth_clean_;      // true stimulus of this tick (also when not presented)
+  pps::Stimulus perceived_clean_;  // noise-free perceived stimulus of this tick
+  pps::Stimulus truth_clean_;      // true stimulus of this tick (also when not presented)
   Eigen::Vector3d last_perceived_ = Eigen::Vector3d::Zero(), last_true_ = Eigen::Vector3d::Zero();
   bool have_last_ = false;
   pps::TrueOffsets offsets_;

@@ -142,8 +142,8 @@ PluginSpec DoubleTouch::spec() {
                       "taxels posed by the believed kinematics (the learner's; for true_offsets)",
                       /*optional=*/true);
   s.output<JointCommand>("command", "position commands (with velocity feed-forward), both arms");
-  s.output<Stimulus>("stimulus", "the fingertip as perceived (present during approach and hold)");
-  s.output<Stimulus>("truth", "the true fingertip (same convention)");
+  s.output<pps::Stimulus>("stimulus", "the fingertip as perceived (present during approach and hold)");
+  s.output<pps::Stimulus>("truth", "the true fingertip (same convention)");
   s.output<TaxelValues>("true_offsets",
                         "per taxel: mean perceived D − true D at the contact events (NaN: never)");
   return s;

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "somasim/plugin.hpp"
-#include "somasim/port_types.hpp"
+#include "somasim/skin/ports.hpp"
 #include "somasim/pps/body_part_learner.hpp"
 
 namespace somasim::plugins {

@@ -6,7 +6,7 @@
 
 #include "learner_part.hpp"
 #include "somasim/plugin.hpp"
-#include "somasim/port_types.hpp"
+#include "somasim/skin/ports.hpp"
 
 namespace somasim::plugins {
 

@@ -47,7 +47,7 @@ PluginSpec PpsLearner::spec() {
       .defaults(std::int64_t{50})
       .at_least(0)
       .describe("taxels with fewer learned samples are left out of offset statistics");
-  s.input<Stimulus>("stimulus", "perceived stimulus (root frame), sampled at this node's rate");
+  s.input<pps::Stimulus>("stimulus", "perceived stimulus (root frame), sampled at this node's rate");
   s.input<SkinTaxels>("taxels", "taxel poses in the root frame");
   s.input<ContactEvents>("contacts", "skin contact events (unwired: no learning)", true);
   s.input<TaxelValues>("true_offsets",
@@ -70,7 +70,7 @@ void PpsLearner::configure(NodeContext& ctx) {
   figure_taxels_ = ctx.param<std::vector<double>>("figure_taxels");
   for (double e : ctx.param<std::vector<double>>("snapshot_events"))
     snapshot_after_.push_back(static_cast<std::size_t>(e));
-  stimulus_ = &ctx.input<Stimulus>("stimulus");
+  stimulus_ = &ctx.input<pps::Stimulus>("stimulus");
   skin_ = &ctx.input<SkinTaxels>("taxels");
   contacts_ = ctx.is_wired("contacts") ? &ctx.input<ContactEvents>("contacts") : nullptr;
   true_offsets_ = ctx.is_wired("true_offsets") ? &ctx.input<TaxelValues>("true_offsets") : nullptr;

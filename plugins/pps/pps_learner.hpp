@@ -8,7 +8,8 @@
 
 #include "learner_part.hpp"
 #include "somasim/plugin.hpp"
-#include "somasim/port_types.hpp"
+#include "somasim/skin/ports.hpp"
+#include "somasim/pps/ports.hpp"
 #include "somasim/pps/body_part_learner.hpp"
 
 namespace somasim::plugins {
@@ -35,7 +36,7 @@ class PpsLearner : public Plugin {
   bool learn_ = true;
   int min_samples_ = 0;
   std::vector<double> figure_taxels_;
-  const Stimulus* stimulus_ = nullptr;
+  const pps::Stimulus* stimulus_ = nullptr;
   const SkinTaxels* skin_ = nullptr;
   const ContactEvents* contacts_ = nullptr;
   const TaxelValues* true_offsets_ = nullptr;

@@ -16,9 +16,10 @@
 #include "presentation_record.hpp"
 #include "presentation_trace.hpp"
 #include "somasim/plugin.hpp"
-#include "somasim/port_types.hpp"
+#include "somasim/skin/ports.hpp"
+#include "somasim/pps/ports.hpp"
+#include "somasim/robot/ports.hpp"
 #include "somasim/pps/part_activations.hpp"
-#include "somasim/robot_ports.hpp"
 #include "surface_distance.hpp"
 
 namespace somasim::plugins {

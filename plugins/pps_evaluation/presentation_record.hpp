@@ -7,7 +7,8 @@
 #include <limits>
 #include <string>
 
-#include "somasim/robot_ports.hpp"
+#include "somasim/pps/ports.hpp"
+#include "somasim/robot/ports.hpp"
 
 namespace somasim::plugins {
 

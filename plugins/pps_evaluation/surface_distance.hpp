@@ -5,7 +5,7 @@
 // which gives a lower bound of the true distance (conservative for "the object stayed away").
 #include <Eigen/Geometry>
 
-#include "somasim/robot_ports.hpp"
+#include "somasim/robot/ports.hpp"
 
 namespace somasim::plugins {
 

@@ -144,8 +144,8 @@ PluginSpec ObjectThrower::spec() {
                       "the perceived D of true_offsets; unwired: the true taxels",
                       /*optional=*/true);
   s.output<ObjectSpawns>("spawns", "objects to add to the world");
-  s.output<Stimulus>("stimulus", "the object as the robot perceives it (root frame)");
-  s.output<Stimulus>("truth", "the object's true centre and velocity (root frame)");
+  s.output<pps::Stimulus>("stimulus", "the object as the robot perceives it (root frame)");
+  s.output<pps::Stimulus>("truth", "the object's true centre and velocity (root frame)");
   s.output<Presentation>("presentation", "the object presented now (motion, aimed taxel)");
   s.output<TaxelValues>("true_offsets",
                         "per taxel 'part/id': mean perceived D − true D over its contact events "
@@ -247,8 +247,8 @@ void ObjectThrower::configure(NodeContext& ctx) {
   believed_taxels_ =
       ctx.is_wired("believed_taxels") ? &ctx.input<SkinTaxels>("believed_taxels") : nullptr;
   spawns_ = &ctx.output<ObjectSpawns>("spawns");
-  stimulus_ = &ctx.output<Stimulus>("stimulus");
-  truth_ = &ctx.output<Stimulus>("truth");
+  stimulus_ = &ctx.output<pps::Stimulus>("stimulus");
+  truth_ = &ctx.output<pps::Stimulus>("truth");
   presentation_ = &ctx.output<Presentation>("presentation");
   true_offsets_out_ = &ctx.output<TaxelValues>("true_offsets");
 }
@@ -330,8 +330,8 @@ void ObjectThrower::launch(NodeContext& ctx) {
 }
 
 void ObjectThrower::perceive(NodeContext& ctx) {
-  *truth_ = Stimulus{};
-  *stimulus_ = Stimulus{};
+  *truth_ = pps::Stimulus{};
+  *stimulus_ = pps::Stimulus{};
   if (!presentation_->active) return;
   int obj = -1;
   for (std::size_t i = 0; i < objects_->names.size(); ++i)

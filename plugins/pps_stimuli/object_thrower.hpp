@@ -22,10 +22,11 @@
 #include "believed_vision.hpp"
 #include "presentation_plan.hpp"
 #include "somasim/plugin.hpp"
-#include "somasim/port_types.hpp"
+#include "somasim/skin/ports.hpp"
+#include "somasim/pps/ports.hpp"
+#include "somasim/robot/ports.hpp"
 #include "somasim/pps/true_offsets.hpp"
 #include "somasim/robot/robot_model.hpp"
-#include "somasim/robot_ports.hpp"
 
 namespace somasim::plugins {
 
@@ -59,8 +60,8 @@ class ObjectThrower : public Plugin {
   const ContactEvents* contacts_ = nullptr;      // optional
   const SkinTaxels* believed_taxels_ = nullptr;  // optional
   ObjectSpawns* spawns_ = nullptr;
-  Stimulus* stimulus_ = nullptr;
-  Stimulus* truth_ = nullptr;
+  pps::Stimulus* stimulus_ = nullptr;
+  pps::Stimulus* truth_ = nullptr;
   Presentation* presentation_ = nullptr;
   TaxelValues* true_offsets_out_ = nullptr;
 

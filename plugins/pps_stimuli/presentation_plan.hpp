@@ -15,7 +15,8 @@
 
 #include <Eigen/Geometry>
 
-#include "somasim/robot_ports.hpp"
+#include "somasim/pps/ports.hpp"
+#include "somasim/robot/ports.hpp"
 
 namespace somasim::plugins {
 

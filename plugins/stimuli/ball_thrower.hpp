@@ -11,9 +11,9 @@
 #include <random>
 
 #include "somasim/plugin.hpp"
-#include "somasim/port_types.hpp"
+#include "somasim/skin/ports.hpp"
+#include "somasim/robot/ports.hpp"
 #include "somasim/robot/robot_model.hpp"
-#include "somasim/robot_ports.hpp"
 
 namespace somasim::plugins {
 

@@ -79,8 +79,8 @@ PluginSpec TaxelThrower::spec() {
       .describe("perceived velocity noise, std per axis");
   s.add_double("offset").unit_is("m").defaults(0.0).range(-1, 1).describe(
       "systematic error of the perceived position along the normal (Fig 3: -0.10)");
-  s.output<Stimulus>("stimulus", "the stimulus as perceived (root frame)");
-  s.output<Stimulus>("truth", "the true object state (root frame)");
+  s.output<pps::Stimulus>("stimulus", "the stimulus as perceived (root frame)");
+  s.output<pps::Stimulus>("truth", "the true object state (root frame)");
   s.output<SkinTaxels>("taxels", "the one taxel, as a skin part");
   s.output<ContactEvents>("contacts", "a contact event at each landing (taxel touched on hits)");
   s.output<double>("distance", "true distance of the object centre from the taxel centre [m]");
@@ -111,8 +111,8 @@ void TaxelThrower::configure(NodeContext& ctx) {
   position_noise_ = ctx.param<double>("position_noise");
   velocity_noise_ = ctx.param<double>("velocity_noise");
   offset_ = ctx.param<double>("offset");
-  perceived_ = &ctx.output<Stimulus>("stimulus");
-  truth_ = &ctx.output<Stimulus>("truth");
+  perceived_ = &ctx.output<pps::Stimulus>("stimulus");
+  truth_ = &ctx.output<pps::Stimulus>("truth");
   taxels_ = &ctx.output<SkinTaxels>("taxels");
   contacts_ = &ctx.output<ContactEvents>("contacts");
   distance_ = &ctx.output<double>("distance");

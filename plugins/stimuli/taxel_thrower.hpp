@@ -12,7 +12,8 @@
 #include <random>
 
 #include "somasim/plugin.hpp"
-#include "somasim/port_types.hpp"
+#include "somasim/skin/ports.hpp"
+#include "somasim/pps/ports.hpp"
 
 namespace somasim::plugins {
 
@@ -43,8 +44,8 @@ class TaxelThrower : public Plugin {
   double position_noise_ = 0, velocity_noise_ = 0, offset_ = 0, radius_ = 0;
   std::string body_part_;
   // ports
-  Stimulus* perceived_ = nullptr;
-  Stimulus* truth_ = nullptr;
+  pps::Stimulus* perceived_ = nullptr;
+  pps::Stimulus* truth_ = nullptr;
   SkinTaxels* taxels_ = nullptr;
   ContactEvents* contacts_ = nullptr;
   double* distance_ = nullptr;

@@ -16,10 +16,11 @@
 
 #include <string>
 
-#include "somasim/port_types.hpp"
+#include "somasim/skin/ports.hpp"
+#include "somasim/pps/ports.hpp"
+#include "somasim/robot/ports.hpp"
 #include "somasim/robot/kinematics.hpp"
 #include "somasim/robot/robot_cache.hpp"
-#include "somasim/robot_ports.hpp"
 #include "somasim/testing/harness.hpp"
 
 namespace {
@@ -96,7 +97,7 @@ void BM_SkinLearnerTick(benchmark::State& state) {
   somasim::robot::RobotData data(*model);
   somasim::robot::forward_kinematics(*model, data, q);
   h.input<somasim::LinkPoses>("links").poses = data.link_poses;
-  auto& stimulus = h.input<somasim::Stimulus>("stimulus");
+  auto& stimulus = h.input<somasim::pps::Stimulus>("stimulus");
   auto& contacts = h.input<somasim::Contacts>("contacts");
   h.step();
   const auto& skin = h.output<somasim::SkinTaxels>("skin.taxels");

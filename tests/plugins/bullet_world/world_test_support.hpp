@@ -9,7 +9,7 @@
 #include <Eigen/Geometry>
 
 #include "somasim/robot/robot_model.hpp"
-#include "somasim/robot_ports.hpp"
+#include "somasim/robot/ports.hpp"
 #include "somasim/testing/harness.hpp"
 
 namespace world_test {

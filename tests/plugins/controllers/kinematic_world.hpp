@@ -7,7 +7,7 @@
 
 #include "somasim/robot/robot_cache.hpp"
 #include "somasim/robot/robot_model.hpp"
-#include "somasim/robot_ports.hpp"
+#include "somasim/robot/ports.hpp"
 
 namespace somasim::testing {
 

@@ -2,7 +2,7 @@
 // size mismatches.
 #include <gtest/gtest.h>
 
-#include "somasim/robot_ports.hpp"
+#include "somasim/robot/ports.hpp"
 #include "somasim/testing/harness.hpp"
 
 using somasim::JointCommand;

@@ -6,6 +6,7 @@
 
 #include "kinematic_world.hpp"
 #include "somasim/control/joint_target.hpp"
+#include "somasim/robot/ports.hpp"
 #include "somasim/port_types.hpp"
 #include "somasim/testing/harness.hpp"
 

@@ -10,7 +10,9 @@
 #include <gtest/gtest.h>
 
 #include "kinematic_world.hpp"
-#include "somasim/port_types.hpp"
+#include "somasim/skin/ports.hpp"
+#include "somasim/pps/ports.hpp"
+#include "somasim/robot/ports.hpp"
 #include "somasim/pps/stimulus.hpp"
 #include "somasim/robot/joint_text.hpp"
 #include "somasim/robot/kinematics.hpp"
@@ -23,7 +25,7 @@ using somasim::JointCommand;
 using somasim::JointState;
 using somasim::SkinPart;
 using somasim::SkinTaxels;
-using somasim::Stimulus;
+using somasim::pps::Stimulus;
 using somasim::TaxelValues;
 using somasim::testing::Harness;
 using somasim::testing::icub_path;
@@ -300,8 +302,8 @@ TEST(DoubleTouch, TrueOffsetsArePerceivedMinusTrueDAtTheEvents) {
       // The node's perception at the event, noise-free: believed and true fingertip.
       const auto [bt, ba] = finger(*model, w.state.position + offset);
       const auto [tt, ta] = finger(*model, w.state.position);
-      perceived = Stimulus{true, bt - kRadius * ba, Eigen::Vector3d::Zero(), kRadius};
-      truth = Stimulus{true, tt - kRadius * ta, Eigen::Vector3d::Zero(), kRadius};
+      perceived = Stimulus{bt - kRadius * ba, Eigen::Vector3d::Zero(), kRadius, true};
+      truth = Stimulus{tt - kRadius * ta, Eigen::Vector3d::Zero(), kRadius, true};
       const auto& out = h.output<TaxelValues>("t.true_offsets");
       ASSERT_EQ(out.labels.size(), 32u);
       EXPECT_EQ(out.labels[23], "left_forearm/23");

@@ -4,13 +4,15 @@
 #include <filesystem>
 #include <fstream>
 
+#include "somasim/skin/ports.hpp"
+#include "somasim/pps/ports.hpp"
 #include "somasim/port_types.hpp"
 #include "somasim/pps/map_io.hpp"
 #include "somasim/testing/harness.hpp"
 
 using somasim::ContactEvents;
 using somasim::SkinTaxels;
-using somasim::Stimulus;
+using somasim::pps::Stimulus;
 using somasim::TaxelValues;
 using somasim::testing::Harness;
 

@@ -8,6 +8,8 @@
 #include <gtest/gtest.h>
 
 #include "kinematic_world.hpp"
+#include "somasim/skin/ports.hpp"
+#include "somasim/robot/ports.hpp"
 #include "somasim/port_types.hpp"
 #include "somasim/robot/kinematics.hpp"
 #include "somasim/testing/harness.hpp"

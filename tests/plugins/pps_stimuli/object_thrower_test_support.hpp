@@ -7,10 +7,11 @@
 
 #include <gtest/gtest.h>
 
-#include "somasim/port_types.hpp"
+#include "somasim/skin/ports.hpp"
+#include "somasim/pps/ports.hpp"
+#include "somasim/robot/ports.hpp"
 #include "somasim/robot/kinematics.hpp"
 #include "somasim/robot/robot_cache.hpp"
-#include "somasim/robot_ports.hpp"
 #include "somasim/testing/harness.hpp"
 
 namespace object_thrower_test {
@@ -21,7 +22,7 @@ using somasim::ObjectSpawns;
 using somasim::ObjectStates;
 using somasim::SkinPart;
 using somasim::SkinTaxels;
-using somasim::Stimulus;
+using somasim::pps::Stimulus;
 using somasim::testing::Harness;
 
 inline const std::string kRobot = std::string(SOMASIM_SOURCE_DIR) + "/assets/robots/icub_v1.yaml";

@@ -6,10 +6,10 @@
 
 #include <gtest/gtest.h>
 
-#include "somasim/port_types.hpp"
+#include "somasim/skin/ports.hpp"
+#include "somasim/robot/ports.hpp"
 #include "somasim/robot/kinematics.hpp"
 #include "somasim/robot/robot_cache.hpp"
-#include "somasim/robot_ports.hpp"
 #include "somasim/testing/harness.hpp"
 
 using somasim::InputError;

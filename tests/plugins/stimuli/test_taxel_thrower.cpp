@@ -1,11 +1,12 @@
 // taxel_thrower: throws, hit rule, perceived offset and noise, stop, determinism.
 #include <gtest/gtest.h>
 
-#include "somasim/port_types.hpp"
+#include "somasim/skin/ports.hpp"
+#include "somasim/pps/ports.hpp"
 #include "somasim/testing/harness.hpp"
 
 using somasim::ContactEvents;
-using somasim::Stimulus;
+using somasim::pps::Stimulus;
 using somasim::testing::Harness;
 
 namespace {
