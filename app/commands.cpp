@@ -107,9 +107,11 @@ int cmd_describe(const CommonOptions& common, const std::string& name) {
   fmt::print("{}\n  {}\n  library: {}\n\nparameters:\n", spec->name(), spec->doc(),
              spec->library_path);
   for (const auto& p : spec->params()) {
-    const std::string type = p.type == ParamType::DoubleList && p.list_size
-                                 ? fmt::format("a list of {} numbers", *p.list_size)
-                                 : std::string(param_type_name(p.type));
+    std::string type = param_type_name(p.type);
+    if (p.type == ParamType::DoubleList && p.list_size)
+      type = fmt::format("a list of {} numbers", *p.list_size);
+    if (p.type == ParamType::StringList && p.list_size)
+      type = fmt::format("a list of {} words", *p.list_size);
     std::string line = fmt::format("  {:<24} {}", p.name, type);
     if (!p.unit.empty()) line += " [" + p.unit + "]";
     line += p.default_value ? ", default " + param_value_str(*p.default_value) : ", required";
@@ -125,7 +127,8 @@ int cmd_describe(const CommonOptions& common, const std::string& name) {
     for (const auto& p : spec->ports())
       if (p.direction == dir) {
         any = true;
-        fmt::print("  {:<24} {}{}\n      {}\n", p.name, p.type->name,
+        fmt::print("  {:<24} {}{}{}\n      {}\n", p.name, p.type->name,
+                   p.type->header.empty() ? "" : " (" + p.type->header + ")",
                    p.optional ? " (optional)" : "", p.doc);
       }
     if (!any) fmt::print("  (none)\n");

@@ -9,7 +9,7 @@
 #include "somasim/robot/object_geometry.hpp"
 #include "somasim/robot/scene_file.hpp"
 #include "somasim/robot/joint_text.hpp"
-#include "somasim/robot/robot_cache.hpp"
+#include "somasim/robot/experiment_robot.hpp"
 
 namespace somasim::bullet_world {
 
@@ -18,17 +18,16 @@ PluginSpec BulletWorld::spec() {
                "Physics (Bullet, double precision): the robot as a fixed-base btMultiBody with "
                "joint motors and limits, gravity, self-collision (adjacent links filtered), "
                "static/dynamic/kinematic objects and contacts. One fixed step per tick.");
-  s.add_string("robot").describe(
-      "robot description file (assets/robots/README.md), relative to the experiment file");
+  robot::add_robot_param(s);
   s.add_string("initial_posture_deg")
       .defaults(std::string(""))
       .describe(
           "initial joint values held by the motors, 'joint: value, ...' in degrees (prismatic: "
           "m); unlisted joints start at 0 clamped into their limits");
-  s.add_string("locked_joints")
-      .defaults(std::string(""))
+  s.add_string_list("locked_joints")
+      .defaults(std::vector<std::string>{})
       .describe(
-          "joints fixed at their initial value (space- or comma-separated names, or 'all'): "
+          "joints fixed at their initial value (names, or 'all'): "
           "folded into rigid bodies, no dynamics and no motor; a command on them stops the run. "
           "With 'all' the robot is static collision geometry (fastest; contacts still reported)");
   s.add_list("gravity")
@@ -135,11 +134,7 @@ PluginSpec BulletWorld::spec() {
 }
 
 void BulletWorld::configure(NodeContext& ctx) {
-  try {
-    model_ = robot::shared_robot_model(ctx.resolve_input_path(ctx.param<std::string>("robot")));
-  } catch (const InputError& e) {
-    ctx.param_error("robot", e.what());
-  }
+  model_ = robot::experiment_robot(ctx);
   Eigen::VectorXd q0;
   try {
     q0 = robot::parse_posture_deg(*model_, ctx.param<std::string>("initial_posture_deg"));
@@ -148,7 +143,7 @@ void BulletWorld::configure(NodeContext& ctx) {
   }
   std::vector<bool> locked;
   try {
-    locked = parse_locked_joints(ctx.param<std::string>("locked_joints"), *model_);
+    locked = parse_locked_joints(ctx.param<std::vector<std::string>>("locked_joints"), *model_);
   } catch (const InputError& e) {
     ctx.param_error("locked_joints", e.what());
   }

@@ -33,13 +33,10 @@ RigidGroups::RigidGroups(const robot::RobotModel& model, const std::vector<bool>
   }
 }
 
-std::vector<bool> parse_locked_joints(const std::string& text, const robot::RobotModel& model) {
+std::vector<bool> parse_locked_joints(const std::vector<std::string>& names,
+                                      const robot::RobotModel& model) {
   std::vector<bool> locked(model.num_dofs(), false);
-  std::string spaced = text;
-  for (char& c : spaced)
-    if (c == ',') c = ' ';
-  std::istringstream words(spaced);
-  for (std::string name; words >> name;) {
+  for (const std::string& name : names) {
     if (name == "all")
       locked.assign(model.num_dofs(), true);
     else

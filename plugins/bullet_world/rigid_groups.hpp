@@ -29,9 +29,10 @@ struct RigidGroups {
   std::vector<int> body_of_rep;
 };
 
-/// The `locked_joints` parameter: joint names separated by spaces and/or commas, or `all`
+/// The `locked_joints` parameter: joint names, or `all`
 /// (every dof). Returns a per-dof mask. InputError for unknown or fixed joints (with a
 /// suggestion), to be prefixed by the parameter's location.
-std::vector<bool> parse_locked_joints(const std::string& text, const robot::RobotModel& model);
+std::vector<bool> parse_locked_joints(const std::vector<std::string>& names,
+                                      const robot::RobotModel& model);
 
 }  // namespace somasim::bullet_world

@@ -1,20 +1,22 @@
 #include "cartesian_velocity.hpp"
 
-#include <cmath>
+#include "somasim/robot/experiment_robot.hpp"
 
-#include "robot_param.hpp"
+#include <cmath>
+#include "somasim/units.hpp"
+
 
 namespace somasim::plugins {
 
 namespace {
-constexpr double kDeg = M_PI / 180.0;
+constexpr double kDeg = kRadPerDeg;
 }
 
 PluginSpec CartesianVelocity::spec() {
   PluginSpec s("cartesian_velocity",
                "Moves a point of any link of a chain at a commanded Cartesian velocity: damped "
                "pseudo-inverse of the point's Jacobian, joint- and velocity-limit aware.");
-  add_robot_param(s);
+  robot::add_robot_param(s);
   s.add_string("chain")
       .defaults(std::string())
       .describe(
@@ -75,7 +77,7 @@ PluginSpec CartesianVelocity::spec() {
 }
 
 void CartesianVelocity::configure(NodeContext& ctx) {
-  auto model = load_robot_param(ctx);
+  auto model = robot::experiment_robot(ctx);
   const auto chain_name = ctx.param<std::string>("chain");
   const auto tip = ctx.param<std::string>("tip");
   const auto base = ctx.param<std::string>("base");
@@ -140,7 +142,7 @@ void CartesianVelocity::configure(NodeContext& ctx) {
 
 void CartesianVelocity::step(NodeContext& ctx) {
   if (state_->position.size() == 0) return;  // the world has not reported yet
-  check_joint_state(ctx, controller_->model(), state_->position, state_->velocity);
+  robot::check_joint_state(ctx, controller_->model(), state_->position, state_->velocity);
   if (!velocity_->allFinite())
     throw RunError(ctx.node_name() + ": non-finite commanded velocity on port 'velocity'");
   controller_->compute(state_->position, *velocity_, ctx.period_s(), *command_);

@@ -7,6 +7,7 @@
 
 #include "somasim/control/cartesian_velocity.hpp"
 #include "somasim/plugin.hpp"
+#include "somasim/port_types.hpp"
 #include "somasim/robot/ports.hpp"
 
 namespace somasim::plugins {

@@ -1,11 +1,13 @@
 #include "joint_trajectory.hpp"
 
+#include "somasim/robot/experiment_robot.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <set>
 #include <sstream>
+#include "somasim/units.hpp"
 
-#include "robot_param.hpp"
 
 namespace somasim::plugins {
 
@@ -13,10 +15,10 @@ namespace {
 
 // Degrees for revolute joints, metres for prismatic ones.
 double to_joint_units(const robot::Joint& j, double value) {
-  return j.type == robot::JointType::Prismatic ? value : value * M_PI / 180.0;
+  return j.type == robot::JointType::Prismatic ? value : deg_to_rad(value);
 }
 double from_joint_units(const robot::Joint& j, double value) {
-  return j.type == robot::JointType::Prismatic ? value : value * 180.0 / M_PI;
+  return j.type == robot::JointType::Prismatic ? value : rad_to_deg(value);
 }
 
 }  // namespace
@@ -25,11 +27,11 @@ PluginSpec JointTrajectoryController::spec() {
   PluginSpec s("joint_trajectory",
                "Joint-space trajectories (linear or minimum-jerk) through YAML waypoints or to "
                "targets on the `target` port; position commands with velocity feed-forward.");
-  add_robot_param(s);
-  s.add_string("joints")
-      .defaults(std::string())
+  robot::add_robot_param(s);
+  s.add_string_list("joints")
+      .defaults(std::vector<std::string>{})
       .describe(
-          "controlled joints, space-separated (e.g. \"r_shoulder_pitch r_shoulder_roll r_elbow\")");
+          "controlled joints (e.g. [r_shoulder_pitch, r_shoulder_roll, r_elbow])");
   s.add_list("targets_deg")
       .unit_is("deg")
       .defaults(std::vector<double>{})
@@ -61,9 +63,9 @@ PluginSpec JointTrajectoryController::spec() {
 }
 
 void JointTrajectoryController::configure(NodeContext& ctx) {
-  model_ = load_robot_param(ctx);
+  model_ = robot::experiment_robot(ctx);
   profile_ = control::parse_profile(ctx.param<std::string>("profile"));
-  tolerance_ = ctx.param<double>("done_tolerance_deg") * M_PI / 180.0;
+  tolerance_ = deg_to_rad(ctx.param<double>("done_tolerance_deg"));
   read_waypoints(ctx);
   state_ = &ctx.input<JointState>("state");
   if (ctx.is_wired("target")) target_ = &ctx.input<JointTarget>("target");
@@ -77,9 +79,8 @@ void JointTrajectoryController::configure(NodeContext& ctx) {
 }
 
 void JointTrajectoryController::read_waypoints(NodeContext& ctx) {
-  std::istringstream names(ctx.param<std::string>("joints"));
   std::set<int> seen;
-  for (std::string name; names >> name;) {
+  for (const std::string& name : ctx.param<std::vector<std::string>>("joints")) {
     int dof = -1;
     try {
       dof = model_->dof_index(name);
@@ -160,7 +161,7 @@ void JointTrajectoryController::step(NodeContext& ctx) {
   const JointState& state = *state_;
   const double t = ctx.time_s();
   if (state.position.size() == 0) return;  // the world has not reported yet
-  check_joint_state(ctx, *model_, state.position, state.velocity);
+  robot::check_joint_state(ctx, *model_, state.position, state.velocity);
   if (!started_) {
     started_ = true;
     active_dofs_ = joint_dofs_;

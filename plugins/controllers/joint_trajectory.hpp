@@ -19,6 +19,7 @@
 #include "somasim/control/joint_target.hpp"
 #include "somasim/control/trajectory.hpp"
 #include "somasim/plugin.hpp"
+#include "somasim/port_types.hpp"
 #include "somasim/robot/ports.hpp"
 #include "somasim/robot/robot_model.hpp"
 

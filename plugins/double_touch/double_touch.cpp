@@ -9,13 +9,14 @@
 #include "somasim/diagnostics.hpp"
 #include "somasim/random_directions.hpp"
 #include "somasim/robot/joint_text.hpp"
-#include "somasim/robot/robot_cache.hpp"
+#include "somasim/robot/experiment_robot.hpp"
+#include "somasim/units.hpp"
 
 namespace somasim::plugins {
 
 namespace {
 
-constexpr double kDeg = M_PI / 180.0;
+constexpr double kDeg = kRadPerDeg;
 
 Eigen::Vector3d vec3(const std::vector<double>& v) {
   return {v[0], v[1], v[2]};
@@ -24,7 +25,7 @@ Eigen::Vector3d vec3(const std::vector<double>& v) {
 }  // namespace
 
 void DoubleTouch::configure(NodeContext& ctx) {
-  model_ = robot::shared_robot_model(ctx.resolve_input_path(ctx.param<std::string>("robot")));
+  model_ = robot::experiment_robot(ctx);
   true_data_ = std::make_unique<robot::RobotData>(*model_);
   believed_data_ = std::make_unique<robot::RobotData>(*model_);
 
@@ -50,14 +51,14 @@ void DoubleTouch::configure(NodeContext& ctx) {
   const Eigen::Vector3d side = vec3(ctx.param<std::vector<double>>("effector_side"));
   limb_axis_ = vec3(ctx.param<std::vector<double>>("limb_axis"));
   const Eigen::Vector3d side_link = effector_.pose.linear() * side;
-  finger_tilt_ = ctx.param<double>("finger_tilt") * kDeg;
+  finger_tilt_ = ctx.param<double>("finger_tilt_deg") * kDeg;
 
   touches_ = ctx.param<int>("touches");
   speed_min_ = ctx.param<double>("speed_min");
   speed_max_ = ctx.param<double>("speed_max");
   if (speed_max_ < speed_min_) ctx.param_error("speed_max", "must not be less than speed_min");
   position_jitter_ = ctx.param<double>("position_jitter");
-  normal_jitter_ = ctx.param<double>("normal_jitter") * kDeg;
+  normal_jitter_ = ctx.param<double>("normal_jitter_deg") * kDeg;
   move_duration_ = ctx.param<double>("move_duration");
   hold_ = ctx.param<double>("hold");
   finger_radius_ = ctx.param<double>("finger_radius");
@@ -68,8 +69,7 @@ void DoubleTouch::configure(NodeContext& ctx) {
   } catch (const InputError& e) {
     ctx.param_error("home_posture_deg", e.what());
   }
-  std::istringstream list(ctx.param<std::string>("taxels"));
-  for (std::string t; list >> t;) {
+  for (const std::string& t : ctx.param<std::vector<std::string>>("taxels")) {
     std::size_t used = 0;
     int id = -1;
     try {
@@ -87,7 +87,7 @@ void DoubleTouch::configure(NodeContext& ctx) {
   po.press_depth = ctx.param<double>("press_depth");
   po.step = ctx.param<double>("approach_step");
   po.align_distance = ctx.param<double>("align_distance");
-  po.max_tilt = ctx.param<double>("max_tilt") * kDeg;
+  po.max_tilt = ctx.param<double>("max_tilt_deg") * kDeg;
   po.clearance = ctx.param<double>("clearance");
   try {
     control::TouchIkOptions io;
@@ -198,7 +198,7 @@ bool DoubleTouch::plan_touch(NodeContext& ctx) {
     }
   }
   throw RunError("no touch could be planned in " + std::to_string(kAttempts) +
-                 " draws (lower position_jitter or normal_jitter)");
+                 " draws (lower position_jitter or normal_jitter_deg)");
 }
 
 void DoubleTouch::start_transfer(double now, const Eigen::VectorXd& goal) {

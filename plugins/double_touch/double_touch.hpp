@@ -5,10 +5,10 @@
 //
 // Each touch: a taxel of `body_part` is drawn (at random among the reachable ones, or in turn
 // from `taxels`), its point jittered along the skin (`position_jitter`) and its approach direction
-// within `normal_jitter` of the normal. TouchPlanner solves the postures for the fingertip at the
+// within `normal_jitter_deg` of the normal. TouchPlanner solves the postures for the fingertip at the
 // point + d·n, d from `start_distance` down to −`press_depth` (finger along −n leaning
-// `finger_tilt` across the limb so that the longer middle finger stays off the skin, within
-// `align_distance`; free to lean up to `max_tilt` farther out; torso held): both arms present
+// `finger_tilt_deg` across the limb so that the longer middle finger stays off the skin, within
+// `align_distance`; free to lean up to `max_tilt_deg` farther out; torso held): both arms present
 // the limb, which then stays nearly still while the fingertip's arm follows the normal. Taxels
 // that are unreachable or where the arms would come too close elsewhere are redrawn. The arms
 // move (minimum jerk, joint space, `move_duration`) to the start of the approach, the fingertip

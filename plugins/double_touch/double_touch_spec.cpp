@@ -1,6 +1,8 @@
 // double_touch's parameters and ports.
 #include "double_touch.hpp"
 
+#include "somasim/robot/experiment_robot.hpp"
+
 namespace somasim::plugins {
 
 namespace {
@@ -21,7 +23,7 @@ PluginSpec DoubleTouch::spec() {
                "taxels of the left forearm along their normals (both arms solved together), "
                "approaching from start_distance at speed_min..speed_max, again and again; the "
                "stimulus is the fingertip from the believed kinematics (proprioception) + noise.");
-  s.add_string("robot").describe("robot description file (kinematics, skin parts)");
+  robot::add_robot_param(s);
   s.add_string("body_part")
       .defaults(std::string("left_forearm"))
       .describe("the skin part touched (its link is moved by the other arm's joints)");
@@ -37,12 +39,12 @@ PluginSpec DoubleTouch::spec() {
       .defaults(std::vector<double>{0, 1, 0})
       .describe(
           "direction from the touching finger toward the other fingers (effector frame); they "
-          "are kept across the limb (perpendicular to limb_axis) and lifted by finger_tilt");
+          "are kept across the limb (perpendicular to limb_axis) and lifted by finger_tilt_deg");
   s.add_list("limb_axis")
       .size(3)
       .defaults(std::vector<double>{0, 1, 0})
       .describe("the touched limb's long axis in its link frame; zero: the hand's roll is free");
-  s.add_double("finger_tilt")
+  s.add_double("finger_tilt_deg")
       .unit_is("deg")
       .defaults(25.0)
       .range(0.0, 60.0)
@@ -54,9 +56,9 @@ PluginSpec DoubleTouch::spec() {
       .defaults(0.0065)
       .range(0.0, 0.1)
       .describe("stimulus radius: the ball inscribed in the fingertip");
-  s.add_string("taxels")
-      .defaults(std::string(""))
-      .describe("space-separated taxel ids touched in turn; '' = random reachable taxels");
+  s.add_string_list("taxels")
+      .defaults(std::vector<std::string>{})
+      .describe("taxel ids touched in turn; empty = random reachable taxels");
   s.add_int("touches")
       .defaults(std::int64_t{20})
       .range(1, 100000)
@@ -77,8 +79,8 @@ PluginSpec DoubleTouch::spec() {
       .range(0.0, 1.0)
       .describe(
           "within this distance of the skin the finger keeps its orientation (axis, tilt, "
-          "fingers across the limb); farther out it may lean, up to max_tilt at start_distance");
-  s.add_double("max_tilt")
+          "fingers across the limb); farther out it may lean, up to max_tilt_deg at start_distance");
+  s.add_double("max_tilt_deg")
       .unit_is("deg")
       .defaults(60.0)
       .range(0.0, 90.0)
@@ -103,7 +105,7 @@ PluginSpec DoubleTouch::spec() {
       .defaults(0.003)
       .range(0.0, 0.05)
       .describe("aimed point: Gaussian σ per tangential axis around the taxel");
-  s.add_double("normal_jitter")
+  s.add_double("normal_jitter_deg")
       .unit_is("deg")
       .defaults(5.0)
       .range(0.0, 45.0)

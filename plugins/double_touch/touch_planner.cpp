@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include <fmt/format.h>
+#include "somasim/units.hpp"
 
 namespace somasim::plugins {
 
@@ -133,7 +134,7 @@ bool TouchPlanner::solve_at(const control::TouchTarget& target, const Eigen::Vec
   if (!r.success) {
     detail =
         fmt::format("no posture at {:.3f} m from the skin (residual {:.1f} mm, axis {:.1f} deg)", d,
-                    1000.0 * r.position_error, r.axis_error * 180.0 / M_PI);
+                    1000.0 * r.position_error, rad_to_deg(r.axis_error));
     return false;
   }
   if (clearance(q, &detail) < options_.clearance) return false;
@@ -197,7 +198,7 @@ PlanResult TouchPlanner::plan(const control::TouchTarget& target, const Eigen::V
                 fmt::format(
                     "no posture of both arms at {:.3f} m from the skin (residual {:.1f} mm, axis "
                     "{:.1f} deg)",
-                    d_present, 1000.0 * r.position_error, r.axis_error * 180.0 / M_PI);
+                    d_present, 1000.0 * r.position_error, rad_to_deg(r.axis_error));
       continue;
     }
     std::vector<double> out, in;  // from d_present outwards / inwards

@@ -1,6 +1,7 @@
 #include "learner_params.hpp"
 
 #include <cmath>
+#include "somasim/units.hpp"
 
 namespace somasim::plugins {
 
@@ -40,7 +41,7 @@ void declare_learner_params(PluginSpec& s) {
       .describe(
           "receptive field: cone around the normal, or the released code's cone mirrored "
           "below the skin plus a cylinder near it");
-  s.add_double("rf_half_angle")
+  s.add_double("rf_half_angle_deg")
       .unit_is("deg")
       .defaults(50.0)
       .range(0, 90)
@@ -78,7 +79,7 @@ pps::LearnerParams read_learner_params(const NodeContext& ctx) {
   pps::parse_kernel_anchor(ctx.param<std::string>("kernel_anchor"), p.parzen.anchor);
   p.rf.shape = ctx.param<std::string>("rf_shape") == "cone" ? pps::RfShape::kCone
                                                             : pps::RfShape::kConeMirroredCylinder;
-  p.rf.half_angle_rad = ctx.param<double>("rf_half_angle") * M_PI / 180.0;
+  p.rf.half_angle_rad = deg_to_rad(ctx.param<double>("rf_half_angle_deg"));
   p.rf.range_m = ctx.param<double>("rf_range");
   p.buffer.horizon_s = ctx.param<double>("buffer_horizon");
   p.buffer.reset_after_s = ctx.param<double>("buffer_reset");

@@ -16,8 +16,8 @@ PluginSpec PpsLearner::spec() {
   PluginSpec s("pps_learner",
                "Peripersonal-space learner (Roncone et al. 2016): per taxel (D, TTC) counts "
                "learned from buffered stimuli at skin contacts; Parzen-smoothed activations.");
-  s.add_string("body_part")
-      .defaults(std::string("taxel"))
+  s.add_string_list("body_part")
+      .defaults(std::vector<std::string>{"taxel"})
       .describe(
           "the skin part(s) whose taxels learn: one or several space-separated names in the "
           "'taxels' input, e.g. \"left_forearm right_palm\" (one learner per part)");
@@ -80,8 +80,7 @@ void PpsLearner::configure(NodeContext& ctx) {
 }
 
 void PpsLearner::parse_body_parts(NodeContext& ctx) {
-  std::istringstream in(ctx.param<std::string>("body_part"));
-  for (std::string name; in >> name;) {
+  for (const std::string& name : ctx.param<std::vector<std::string>>("body_part")) {
     for (const LearnerPart& p : parts_)
       if (p.name == name) ctx.param_error("body_part", "lists '" + name + "' twice");
     parts_.emplace_back().name = name;

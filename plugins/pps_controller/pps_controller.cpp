@@ -4,12 +4,13 @@
 #include <cmath>
 
 #include "somasim/diagnostics.hpp"
-#include "somasim/robot/robot_cache.hpp"
+#include "somasim/robot/experiment_robot.hpp"
+#include "somasim/units.hpp"
 
 namespace somasim::plugins {
 
 namespace {
-constexpr double kDeg = M_PI / 180.0;
+constexpr double kDeg = kRadPerDeg;
 constexpr double kTimeEps = 1e-9;
 }  // namespace
 
@@ -18,9 +19,7 @@ PluginSpec PpsController::spec() {
                "Avoids or reaches what the peripersonal-space activations announce: taxels above "
                "the threshold vote a point P and normal N; that point of the arm moves along -N "
                "(avoid) or +N (reach) through a Cartesian velocity controller on the chain.");
-  s.add_string("robot").describe(
-      "robot description file (relative to the experiment file), e.g. "
-      "../assets/robots/icub_v1.yaml; the same file as the world's");
+  robot::add_robot_param(s);
   s.add_string("chain").describe("the named chain that moves (e.g. left_arm)");
   s.add_string("base")
       .defaults(std::string(""))
@@ -91,11 +90,7 @@ PluginSpec PpsController::spec() {
 }
 
 void PpsController::configure(NodeContext& ctx) {
-  try {
-    model_ = robot::shared_robot_model(ctx.resolve_input_path(ctx.param<std::string>("robot")));
-  } catch (const InputError& e) {
-    ctx.param_error("robot", e.what());
-  }
+  model_ = robot::experiment_robot(ctx);
   control::ChainSelection chain;
   try {
     chain = control::select_chain(*model_, ctx.param<std::string>("chain"));

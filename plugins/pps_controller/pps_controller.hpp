@@ -11,6 +11,7 @@
 
 #include "somasim/control/cartesian_velocity.hpp"
 #include "somasim/plugin.hpp"
+#include "somasim/port_types.hpp"
 #include "somasim/skin/ports.hpp"
 #include "somasim/robot/ports.hpp"
 #include "somasim/pps/part_activations.hpp"

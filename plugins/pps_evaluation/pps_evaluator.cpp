@@ -43,8 +43,8 @@ PluginSpec PpsEvaluator::spec() {
       .defaults(0.4)
       .range(0, 1)
       .describe("activation threshold of a trigger (the controllers' threshold)");
-  s.add_string("velocity_parts")
-      .defaults(std::string(""))
+  s.add_string_list("velocity_parts")
+      .defaults(std::vector<std::string>{})
       .describe(
           "space-separated skin parts, the i-th is the part whose controller's velocity is "
           "wired to velocity_i (e.g. 'left_forearm right_palm'); '-' skips an input");
@@ -84,8 +84,8 @@ void PpsEvaluator::configure(NodeContext& ctx) {
   figure_ids_ = ctx.param<std::vector<double>>("figure_presentations");
   figure_taxels_ = ctx.param<int>("figure_taxels");
   csv_name_ = ctx.param<std::string>("csv");
-  std::istringstream in(ctx.param<std::string>("velocity_parts"));
-  for (std::string p; in >> p;) velocity_parts_.push_back(p == "-" ? "" : p);
+  for (const std::string& p : ctx.param<std::vector<std::string>>("velocity_parts"))
+    velocity_parts_.push_back(p == "-" ? "" : p);
   if (velocity_parts_.size() > static_cast<std::size_t>(kVelocityInputs))
     ctx.param_error("velocity_parts",
                     fmt::format("{} parts named, but there are only {} velocity "

@@ -16,6 +16,7 @@
 #include "presentation_record.hpp"
 #include "presentation_trace.hpp"
 #include "somasim/plugin.hpp"
+#include "somasim/port_types.hpp"
 #include "somasim/skin/ports.hpp"
 #include "somasim/pps/ports.hpp"
 #include "somasim/robot/ports.hpp"

@@ -8,18 +8,12 @@
 
 #include "somasim/diagnostics.hpp"
 #include "somasim/robot/clearance.hpp"
-#include "somasim/robot/robot_cache.hpp"
+#include "somasim/robot/experiment_robot.hpp"
+#include "somasim/units.hpp"
 
 namespace somasim::plugins {
 
 namespace {
-
-std::vector<std::string> words(const std::string& s) {
-  std::istringstream in(s);
-  std::vector<std::string> out;
-  for (std::string w; in >> w;) out.push_back(w);
-  return out;
-}
 
 // Radius of a sphere around the centre that holds the whole object [m].
 double bounding_radius(ObjectShape shape, double size, double half_height) {
@@ -41,18 +35,18 @@ PluginSpec ObjectThrower::spec() {
                "parts - approaching, static or receding - and publishes each as the robot "
                "perceives it (ground truth + noise, seen through the believed head/eye "
                "kinematics), and the offset each touched taxel should learn.");
-  s.add_string("robot").describe("robot description file (skin parts, kinematics)");
-  s.add_string("parts")
-      .defaults(std::string("left_forearm right_palm"))
-      .describe("space-separated skin parts to aim at, in turn");
-  s.add_string("shapes")
-      .defaults(std::string("sphere box"))
+  robot::add_robot_param(s);
+  s.add_string_list("parts")
+      .defaults(std::vector<std::string>{"left_forearm", "right_palm"})
+      .describe("skin parts to aim at, in turn");
+  s.add_string_list("shapes")
+      .defaults(std::vector<std::string>{"sphere", "box"})
       .describe(
           "space-separated object shapes (sphere, box, cylinder), in turn (with two parts, "
           "'sphere sphere box box' gives each part both)");
-  s.add_string("motions")
-      .defaults(std::string("approach"))
-      .describe("space-separated motions (approach, static, receding), in turn");
+  s.add_string_list("motions")
+      .defaults(std::vector<std::string>{"approach"})
+      .describe("motions (approach, static, receding), in turn");
   s.add_double("size")
       .unit_is("m")
       .defaults(0.025)
@@ -94,7 +88,7 @@ PluginSpec ObjectThrower::spec() {
       .defaults(2.0)
       .range(0.01, 1000)
       .describe("how long a static object stays");
-  s.add_double("cone").unit_is("deg").defaults(45.0).range(0, 89).describe(
+  s.add_double("cone_deg").unit_is("deg").defaults(45.0).range(0, 89).describe(
       "start directions within this angle of the aimed taxel's normal");
   s.add_double("speed_min")
       .unit_is("m/s")
@@ -154,7 +148,7 @@ PluginSpec ObjectThrower::spec() {
 }
 
 void ObjectThrower::read_lists(NodeContext& ctx) {
-  parts_ = words(ctx.param<std::string>("parts"));
+  parts_ = ctx.param<std::vector<std::string>>("parts");
   if (parts_.empty()) ctx.param_error("parts", "expected at least one skin part name");
   std::vector<std::string> known;
   for (const auto& patch : model_->skin_patches()) known.push_back(patch.body_part);
@@ -164,7 +158,7 @@ void ObjectThrower::read_lists(NodeContext& ctx) {
                                    "; the robot's skin parts: " + join_names(known));
 
   const std::vector<std::string> shape_names = {"sphere", "box", "cylinder"};
-  for (const auto& s : words(ctx.param<std::string>("shapes"))) {
+  for (const auto& s : ctx.param<std::vector<std::string>>("shapes")) {
     const auto it = std::find(shape_names.begin(), shape_names.end(), s);
     if (it == shape_names.end())
       ctx.param_error("shapes", "unknown shape '" + s + "'" + did_you_mean(s, shape_names) +
@@ -175,7 +169,7 @@ void ObjectThrower::read_lists(NodeContext& ctx) {
   if (shapes_.empty()) ctx.param_error("shapes", "expected at least one shape (sphere, box)");
 
   const std::vector<std::string> motion_names = {"approach", "static", "receding"};
-  for (const auto& m : words(ctx.param<std::string>("motions"))) {
+  for (const auto& m : ctx.param<std::vector<std::string>>("motions")) {
     const auto it = std::find(motion_names.begin(), motion_names.end(), m);
     if (it == motion_names.end())
       ctx.param_error("motions", "unknown motion '" + m + "'" + did_you_mean(m, motion_names) +
@@ -189,11 +183,7 @@ void ObjectThrower::read_lists(NodeContext& ctx) {
 }
 
 void ObjectThrower::configure(NodeContext& ctx) {
-  try {
-    model_ = robot::shared_robot_model(ctx.resolve_input_path(ctx.param<std::string>("robot")));
-  } catch (const InputError& e) {
-    ctx.param_error("robot", e.what());
-  }
+  model_ = robot::experiment_robot(ctx);
   read_lists(ctx);
 
   auto& g = geometry_;
@@ -209,7 +199,7 @@ void ObjectThrower::configure(NodeContext& ctx) {
   if (g.receding_start_max < g.receding_start_min)
     ctx.param_error("receding_start_max", "must not be less than receding_start_min");
   g.static_duration = ctx.param<double>("static_duration");
-  g.cone_rad = ctx.param<double>("cone") * M_PI / 180.0;
+  g.cone_rad = deg_to_rad(ctx.param<double>("cone_deg"));
   g.speed_min = ctx.param<double>("speed_min");
   g.speed_max = ctx.param<double>("speed_max");
   if (g.speed_max < g.speed_min) ctx.param_error("speed_max", "must not be less than speed_min");

@@ -24,7 +24,7 @@ PlannedObject plan_presentation(PresentationMotion motion, const Eigen::Vector3d
     if (attempt == 100)
       throw RunError(std::string("no start point clear of the robot for a ") + motion_name(motion) +
                      " object aimed at '" + part + "' (raise '" +
-                     (receding ? "receding_start_min" : "distance_min") + "' or lower 'cone')");
+                     (receding ? "receding_start_min" : "distance_min") + "' or lower 'cone_deg')");
   }
   PlannedObject out;
   out.start = target + distance * dir;

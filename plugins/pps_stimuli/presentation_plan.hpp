@@ -4,7 +4,7 @@
 //
 // The object's centre is referred to the TARGET, one contact distance (`size`: sphere radius,
 // half edge of a cube facing the taxel with a face, radius of a cylinder facing it with its side)
-// above the taxel along its outward normal n; a direction `dir` is drawn within `cone` of n.
+// above the taxel along its outward normal n; a direction `dir` is drawn within `cone_deg` of n.
 //   approach: starts at target + d·dir, d in distance_min..max, moves at −speed·dir and reaches
 //             the target (the surface touches the taxel) after d / speed; removed `linger` later.
 //   static:   placed at target + d·dir, d in distance_min..max, still for static_duration.

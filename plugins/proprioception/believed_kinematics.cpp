@@ -4,7 +4,8 @@
 #include <random>
 
 #include "somasim/robot/joint_text.hpp"
-#include "somasim/robot/robot_cache.hpp"
+#include "somasim/robot/experiment_robot.hpp"
+#include "somasim/units.hpp"
 
 namespace somasim::plugins {
 
@@ -13,7 +14,7 @@ PluginSpec BelievedKinematics::spec() {
                "What the robot believes of its own body: the true joint values plus injected "
                "offsets and encoder noise, the link poses and skin taxel poses they give "
                "(forward kinematics of the robot model).");
-  s.add_string("robot").describe("robot description file (kinematics; relative to the experiment)");
+  robot::add_robot_param(s);
   s.add_string("joint_offsets_deg")
       .defaults(std::string(""))
       .describe(
@@ -38,17 +39,13 @@ PluginSpec BelievedKinematics::spec() {
 }
 
 void BelievedKinematics::configure(NodeContext& ctx) {
-  try {
-    model_ = robot::shared_robot_model(ctx.resolve_input_path(ctx.param<std::string>("robot")));
-  } catch (const InputError& e) {
-    ctx.param_error("robot", e.what());
-  }
+  model_ = robot::experiment_robot(ctx);
   try {
     offsets_ = robot::parse_joint_offsets(*model_, ctx.param<std::string>("joint_offsets_deg"));
   } catch (const InputError& e) {
     ctx.param_error("joint_offsets_deg", e.what());
   }
-  const double sigma = ctx.param<double>("encoder_noise_deg") * M_PI / 180.0;
+  const double sigma = deg_to_rad(ctx.param<double>("encoder_noise_deg"));
   for (int d = 0; d < model_->num_dofs(); ++d)
     noise_sigma_.push_back(
         model_->joint(model_->dof_joint(d)).type == robot::JointType::Revolute ? sigma : 0.0);

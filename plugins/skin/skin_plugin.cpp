@@ -11,7 +11,7 @@
 #include "somasim/diagnostics.hpp"
 #include "somasim/figures/figure.hpp"
 #include "somasim/robot/kinematics.hpp"
-#include "somasim/robot/robot_cache.hpp"
+#include "somasim/robot/experiment_robot.hpp"
 #include "somasim/skin/layout_file.hpp"
 
 namespace somasim::plugins {
@@ -45,12 +45,11 @@ PluginSpec SkinPlugin::spec() {
                "files), grouped into virtual taxels (modules); contact points -> taxel pressures "
                "-> one contact event per body part and contact episode (pressure over threshold "
                "on more than min_taxels taxels); virtual taxel poses in the root frame.");
-  s.add_string("robot").describe("robot description file (relative to the experiment file)");
-  s.add_string("parts")
-      .defaults(std::string(""))
+  robot::add_robot_param(s);
+  s.add_string_list("parts")
+      .defaults(std::vector<std::string>{})
       .describe(
-          "body parts with skin, comma-separated (names of the robot's skin patches); "
-          "'' = all");
+          "body parts with skin (names of the robot's skin patches); empty = all");
   s.add_double("spacing").unit_is("m").defaults(0.0).range(0.0, 1.0).describe(
       "distance between neighbouring physical taxels; 0 = each patch's own");
   s.add_int("group_size")
@@ -104,7 +103,7 @@ PluginSpec SkinPlugin::spec() {
 }
 
 void SkinPlugin::configure(NodeContext& ctx) {
-  model_ = robot::shared_robot_model(ctx.resolve_input_path(ctx.param<std::string>("robot")));
+  model_ = robot::experiment_robot(ctx);
   response_params_.contact_radius = ctx.param<double>("contact_radius");
   response_params_.model = ctx.param<std::string>("pressure_model") == "kernel"
                                ? skin::PressureModel::kKernel
@@ -149,7 +148,7 @@ void SkinPlugin::select_parts(NodeContext& ctx) {
                                "; robot '" + model_->name() + "' has skin on: " +
                                (available.empty() ? "nothing" : join_names(available)));
   };
-  std::vector<std::string> names = split_list(ctx.param<std::string>("parts"));
+  std::vector<std::string> names = ctx.param<std::vector<std::string>>("parts");
   if (names.empty()) names = available;
   for (const auto& name : names) {
     for (const auto& p : parts_)

@@ -8,7 +8,8 @@
 #include "somasim/diagnostics.hpp"
 #include "somasim/random_directions.hpp"
 #include "somasim/robot/clearance.hpp"
-#include "somasim/robot/robot_cache.hpp"
+#include "somasim/robot/experiment_robot.hpp"
+#include "somasim/units.hpp"
 
 namespace somasim::plugins {
 
@@ -16,10 +17,10 @@ PluginSpec BallThrower::spec() {
   PluginSpec s("ball_thrower",
                "Throws balls at skin parts one at a time and checks against the physics ground "
                "truth that a ball touching a part yields a skin contact event on that part.");
-  s.add_string("robot").describe("robot description file (link names of the skin parts)");
-  s.add_string("parts")
-      .defaults(std::string("left_forearm right_palm"))
-      .describe("space-separated skin parts to aim at, in turn");
+  robot::add_robot_param(s);
+  s.add_string_list("parts")
+      .defaults(std::vector<std::string>{"left_forearm", "right_palm"})
+      .describe("skin parts to aim at, in turn");
   s.add_int("throws")
       .defaults(std::int64_t{40})
       .range(1, 1000000)
@@ -29,7 +30,7 @@ PluginSpec BallThrower::spec() {
       .defaults(0.25)
       .range(0.05, 5)
       .describe("start distance from the aimed taxel");
-  s.add_double("cone").unit_is("deg").defaults(40.0).range(0, 89).describe(
+  s.add_double("cone_deg").unit_is("deg").defaults(40.0).range(0, 89).describe(
       "start directions within this angle of the taxel normal");
   s.add_double("flight_time")
       .unit_is("s")
@@ -67,9 +68,8 @@ PluginSpec BallThrower::spec() {
 }
 
 void BallThrower::configure(NodeContext& ctx) {
-  model_ = robot::shared_robot_model(ctx.resolve_input_path(ctx.param<std::string>("robot")));
-  std::istringstream in(ctx.param<std::string>("parts"));
-  for (std::string p; in >> p;) parts_.push_back(p);
+  model_ = robot::experiment_robot(ctx);
+  parts_ = ctx.param<std::vector<std::string>>("parts");
   if (parts_.empty()) ctx.param_error("parts", "expected at least one skin part name");
   std::vector<std::string> known;
   for (const auto& patch : model_->skin_patches()) {
@@ -81,7 +81,7 @@ void BallThrower::configure(NodeContext& ctx) {
                                    "; the robot's skin parts: " + join_names(known));
   throws_ = ctx.param<int>("throws");
   distance_ = ctx.param<double>("distance");
-  cone_rad_ = ctx.param<double>("cone") * M_PI / 180.0;
+  cone_rad_ = deg_to_rad(ctx.param<double>("cone_deg"));
   flight_time_ = ctx.param<double>("flight_time");
   lifetime_ = ctx.param<double>("ball_lifetime");
   radius_ = ctx.param<double>("ball_radius");
@@ -116,7 +116,7 @@ void BallThrower::launch(NodeContext& ctx) {
     if (robot::point_clear_of_robot(*model_, link_poses_->poses, start, radius_ + 0.01)) break;
     if (attempt == 100)
       throw RunError("no start point clear of the robot for a ball aimed at '" + part +
-                     "' (lower 'distance' or 'cone')");
+                     "' (lower 'distance' or 'cone_deg')");
   }
   const Eigen::Vector3d g(0, 0, gravity_);
   const double t = flight_time_;

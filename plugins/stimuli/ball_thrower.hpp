@@ -3,7 +3,7 @@
 // the physics ground truth, that every ball touching a part produces a skin contact event there.
 //
 // For each throw a target part is drawn (cycling through `parts`), then a random taxel of that
-// part; the ball starts `distance` away along a direction within `cone` of the taxel's outward
+// part; the ball starts `distance` away along a direction within `cone_deg` of the taxel's outward
 // normal and flies ballistically (gravity included) so that, undisturbed, its surface reaches the
 // taxel after `flight_time`. It is removed after `ball_lifetime`, then the next one follows.
 #include <map>

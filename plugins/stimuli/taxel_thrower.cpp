@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include <Eigen/Geometry>
+#include "somasim/units.hpp"
 
 namespace somasim::plugins {
 namespace {
@@ -43,7 +44,7 @@ PluginSpec TaxelThrower::spec() {
       .defaults(0.30)
       .range(0, 10)
       .describe("farthest start of a throw");
-  s.add_double("start_cone")
+  s.add_double("start_cone_deg")
       .unit_is("deg")
       .defaults(45.0)
       .range(0, 89)
@@ -101,7 +102,7 @@ void TaxelThrower::configure(NodeContext& ctx) {
   start_distance_max_ = ctx.param<double>("start_distance_max");
   if (start_distance_max_ < start_distance_min_)
     ctx.param_error("start_distance_max", "must not be less than start_distance_min");
-  start_cone_rad_ = ctx.param<double>("start_cone") * M_PI / 180.0;
+  start_cone_rad_ = deg_to_rad(ctx.param<double>("start_cone_deg"));
   landing_sigma_ = ctx.param<double>("landing_sigma");
   speed_min_ = ctx.param<double>("speed_min");
   speed_max_ = ctx.param<double>("speed_max");

@@ -3,7 +3,7 @@
 //
 // One taxel sits at `taxel_position` with outward normal `taxel_normal` on an infinite skin
 // plane (root frame). Objects are "thrown" one after the other: each starts at a distance in
-// [start_distance_min, start_distance_max] within `start_cone` of the normal, and flies in a
+// [start_distance_min, start_distance_max] within `start_cone_deg` of the normal, and flies in a
 // straight line at a constant speed drawn from [speed_min, speed_max] to a landing point on the
 // skin plane drawn from a Gaussian of `landing_sigma` per axis around the taxel. Landing
 // within `hit_radius` of the taxel centre is a hit (the taxel is touched); elsewhere the part
@@ -12,6 +12,7 @@
 #include <random>
 
 #include "somasim/plugin.hpp"
+#include "somasim/port_types.hpp"
 #include "somasim/skin/ports.hpp"
 #include "somasim/pps/ports.hpp"
 

@@ -14,7 +14,7 @@
 #include "bullet_world.hpp"
 #include "somasim/robot/joint_text.hpp"
 #include "somasim/robot/kinematics.hpp"
-#include "somasim/robot/robot_cache.hpp"
+#include "somasim/robot/robot_loader.hpp"
 #include "somasim/testing/harness.hpp"
 
 namespace {
@@ -57,11 +57,10 @@ somasim::ObjectSpawn ball(std::uint64_t k, const somasim::robot::RobotModel& mod
 
 void BM_WorldPlugin(benchmark::State& state) {
   const bool locked = state.range(0) != 0;
-  const auto model = somasim::robot::shared_robot_model(kRobot);
+  const auto model = somasim::robot::load_robot_model_shared(kRobot);
   somasim::testing::Harness h(
-      "base_rate_hz: 1000\nnodes:\n  world: {plugin: bullet_world, "
-      "params: {robot: " +
-      kRobot + ", initial_posture_deg: '" + kPosture + "'" +
+      "base_rate_hz: 1000\nrobots: {icub: " + kRobot +
+      "}\nnodes:\n  world: {plugin: bullet_world, params: {initial_posture_deg: '" + kPosture + "'" +
       (locked ? ", locked_joints: all" : "") + "}, inputs: {spawns: harness.spawns}}\n");
   auto& spawns = h.input<somasim::ObjectSpawns>("spawns");
   std::uint64_t step = 0, contacts = 0;
@@ -84,7 +83,7 @@ BENCHMARK(BM_WorldPlugin)
 
 void BM_RawBulletStep(benchmark::State& state) {
   const bool locked = state.range(0) != 0;
-  const auto model = somasim::robot::shared_robot_model(kRobot);
+  const auto model = somasim::robot::load_robot_model_shared(kRobot);
   const Eigen::VectorXd q0 = somasim::robot::parse_posture_deg(*model, kPosture);
   const double dt = 1e-3;
   PhysicsWorld physics(Eigen::Vector3d(0, 0, -9.81), kSolverIterations);

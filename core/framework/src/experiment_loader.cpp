@@ -21,9 +21,9 @@ using detail::LocationMap;
 
 namespace {
 
-const std::vector<std::string> kTopKeys = {"experiment",       "description",  "seed",
-                                           "duration_s",       "base_rate_hz", "base_dir",
-                                           "plugin_libraries", "nodes",        "record"};
+const std::vector<std::string> kTopKeys = {
+    "experiment",       "description", "seed",  "duration_s", "base_rate_hz", "base_dir",
+    "plugin_libraries", "robots",      "nodes", "record"};
 const std::vector<std::string> kNodeKeys = {"plugin", "rate_hz", "params", "inputs", "description"};
 const std::vector<std::string> kWireKeys = {"from", "delayed"};
 
@@ -176,6 +176,7 @@ class Loader {
     exp_.base_rate_hz = read_number(root, "base_rate_hz", 1000.0, 1e-9, false);
     if (const YAML::Node b = root["base_dir"]; b) exp_.base_dir = read_string(root, "base_dir", "");
     read_libraries(root);
+    read_robots(root);
     read_nodes(root);
     read_records(root);
   }
@@ -243,6 +244,47 @@ class Loader {
         error(item, "", "plugin_libraries", e.what());
       }
     }
+  }
+
+  // --- robots ----------------------------------------------------------------------------
+  // NAME: FILE; the file must exist (the robot library reads it when a node first asks).
+  void read_robots(const YAML::Node& root) {
+    const YAML::Node robots = root["robots"];
+    if (!robots) return;
+    if (!robots.IsMap()) {
+      error(robots, "", "robots",
+            "expected a map of robot names to description files, got " + describe_yaml(robots));
+      return;
+    }
+    for (const auto& kv : robots) {
+      const std::string name = kv.first.IsScalar() ? kv.first.Scalar() : "";
+      if (!valid_name(name)) {
+        error(kv.first, "", "robots",
+              "robot names are letters, digits and '_', got " + describe_yaml(kv.first));
+        continue;
+      }
+      if (!kv.second.IsScalar() || kv.second.Scalar().empty()) {
+        error(kv.second, "", "robots." + name,
+              "expected a robot description file, got " + describe_yaml(kv.second));
+        continue;
+      }
+      fs::path file = kv.second.Scalar();
+      if (file.is_relative()) file = exp_.base_dir / file;
+      file = file.lexically_normal();
+      std::error_code ec;
+      if (!fs::is_regular_file(file, ec)) {
+        error(kv.second, "", "robots." + name,
+              "robot description file '" + file.string() + "' does not exist");
+        continue;
+      }
+      exp_.robots.push_back({name, file, locs_.of(kv.second)});
+    }
+  }
+
+  static bool valid_name(const std::string& name) {
+    return !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
+      return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+    });
   }
 
   // --- nodes -----------------------------------------------------------------------------
@@ -463,6 +505,12 @@ Experiment load_experiment_file(const fs::path& file, PluginRegistry& registry,
 const NodeSpec* Experiment::find_node(const std::string& name) const {
   for (const auto& n : nodes)
     if (n.name == name) return &n;
+  return nullptr;
+}
+
+const RobotSpec* Experiment::find_robot(const std::string& name) const {
+  for (const auto& r : robots)
+    if (r.name == name) return &r;
   return nullptr;
 }
 

@@ -12,6 +12,10 @@ void emit_value(YAML::Emitter& out, const ParamValue& v) {
     out << YAML::Flow << YAML::BeginSeq;
     for (double d : *list) out << fmt::format("{}", d);
     out << YAML::EndSeq;
+  } else if (const auto* words = std::get_if<std::vector<std::string>>(&v)) {
+    out << YAML::Flow << YAML::BeginSeq;
+    for (const auto& w : *words) out << YAML::DoubleQuoted << w;
+    out << YAML::EndSeq;
   } else if (const auto* s = std::get_if<std::string>(&v)) {
     out << YAML::DoubleQuoted << *s;
   } else {
@@ -33,6 +37,11 @@ std::string Experiment::resolved_yaml() const {
     out << YAML::Key << "plugin_libraries" << YAML::Value << YAML::BeginSeq;
     for (const auto& l : plugin_libraries) out << l;
     out << YAML::EndSeq;
+  }
+  if (!robots.empty()) {
+    out << YAML::Key << "robots" << YAML::Value << YAML::BeginMap;
+    for (const auto& r : robots) out << YAML::Key << r.name << YAML::Value << r.file.string();
+    out << YAML::EndMap;
   }
   out << YAML::Key << "nodes" << YAML::Value << YAML::BeginMap;
   for (const auto& n : nodes) {

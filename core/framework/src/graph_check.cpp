@@ -3,8 +3,16 @@
 #include <algorithm>
 #include <map>
 
+#include <fmt/format.h>
+
 namespace somasim::detail {
 namespace {
+
+std::string library_of(const Experiment& exp, const std::string& node) {
+  const NodeSpec* n = exp.find_node(node);
+  return n && n->spec && !n->spec->library_path.empty() ? n->spec->library_path : "built in";
+}
+
 
 std::vector<std::string> node_names(const Experiment& exp) {
   std::vector<std::string> names;
@@ -57,6 +65,14 @@ void check_inputs(const Experiment& exp, Diagnostics& diags, bool allow_harness)
         diags.add(w.where, n.name, key,
                   "type mismatch: input '" + w.port + "' takes '" + in->type->name + "' but '" +
                       w.from_node + "." + w.from_port + "' gives '" + out->type->name + "'");
+      else if (out && out->type->size_of != in->type->size_of)
+        diags.add(w.where, n.name, key,
+                  fmt::format("type '{}' is {} bytes in '{}' ({}) but {} bytes in '{}' ({}): the "
+                              "two plugin libraries were built against different definitions "
+                              "of it; rebuild both against this somasim",
+                              in->type->name, out->type->size_of, w.from_node,
+                              library_of(exp, w.from_node), in->type->size_of, n.name,
+                              n.spec->library_path.empty() ? "built in" : n.spec->library_path));
     }
     for (const auto& p : n.spec->ports()) {
       if (p.direction != PortDirection::Input || p.optional) continue;
@@ -79,10 +95,10 @@ void check_inputs(const Experiment& exp, Diagnostics& diags, bool allow_harness)
 void check_records(const Experiment& exp, Diagnostics& diags) {
   for (const auto& r : exp.records) {
     const PortSpec* out = resolve_output(exp, r.node, r.port, r.where, "", "record", diags);
-    if (out && !out->type->csv_columns)
+    if (out && !out->type->make_recorder)
       diags.add(r.where, "", "record",
                 "port '" + r.node + "." + r.port + "' of type '" + out->type->name +
-                    "' cannot be recorded to CSV");
+                    "' cannot be recorded (its type has neither CSV columns nor a recorder)");
   }
 }
 

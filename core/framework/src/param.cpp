@@ -17,6 +17,8 @@ const char* param_type_name(ParamType type) {
       return "a string";
     case ParamType::DoubleList:
       return "a list of numbers";
+    case ParamType::StringList:
+      return "a list of words";
   }
   return "?";
 }
@@ -28,6 +30,9 @@ std::string param_value_str(const ParamValue& value) {
     std::string operator()(double d) const { return fmt::format("{}", d); }
     std::string operator()(const std::string& s) const { return s; }
     std::string operator()(const std::vector<double>& l) const {
+      return fmt::format("[{}]", fmt::join(l, ", "));
+    }
+    std::string operator()(const std::vector<std::string>& l) const {
       return fmt::format("[{}]", fmt::join(l, ", "));
     }
   };

@@ -131,7 +131,8 @@ std::string PluginRegistry::search_report() {
   if (search_path_.empty()) out += " (empty search path)";
   for (const auto& dir : search_path_) {
     std::error_code ec;
-    out += " " + dir.string();
+    out += ' ';  // (not `" " + dir.string()`: GCC 12 warns falsely on it, -Wrestrict)
+    out += dir.string();
     if (!fs::is_directory(dir, ec)) {
       out += " (not a directory);";
       continue;

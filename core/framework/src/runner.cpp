@@ -137,7 +137,7 @@ RunReport run_experiment(const Experiment& exp, const RunOptions& options) {
   for (const auto& [node, values] : sim.node_metrics().items())
     for (const auto& [k, v] : values.items()) {
       const bool clash = count[k] > 1 || m.contains(k);
-      m[clash ? node + "." + k : k] = v;
+      m[clash ? fmt::format("{}.{}", node, k) : k] = v;
     }
   m["nodes"] = sim.node_metrics();
   write_metrics(options.out_dir / "metrics.json", m);

@@ -59,10 +59,11 @@ void Simulation::configure() {
           storage = harness_ports_.back().storage.get();
         }
       } else {
-        void* producer = runtime_of(w.from_node).outputs.at(w.from_port).get();
+        const NodeRuntime& producer_node = runtime_of(w.from_node);
+        void* producer = producer_node.outputs.at(w.from_port).get();
         storage = producer;
         if (w.delayed) {
-          delayed_.push_back({in->type, producer, in->type->create()});
+          delayed_.push_back({in->type, &producer_node, producer, in->type->create()});
           storage = delayed_.back().buffer.get();
         }
       }
@@ -82,9 +83,8 @@ void Simulation::start() {
     for (auto& n : nodes_) {
       if (n->spec.name != r.node) continue;
       const PortSpec* out = n->spec.spec->find_port(r.port, PortDirection::Output);
-      auto rec = std::make_unique<CsvRecorder>(out_dir_ / (r.node + "." + r.port + ".csv"),
-                                               *out->type, n->outputs.at(r.port).get());
-      rec->set_node(r.node);
+      auto rec = out->type->make_recorder(*out->type, n->outputs.at(r.port).get(),
+                                          {out_dir_, r.node + "." + r.port});
       n->recorders.push_back(rec.get());  // indexed per node: no scan in step()
       recorders_.push_back(std::move(rec));
     }
@@ -112,13 +112,14 @@ bool Simulation::step() {
   for (NodeRuntime* n : ordered_) {
     if (n->next_tick != tick_) continue;
     n->next_tick += n->spec.period_ticks;
+    n->last_step_tick = tick_;
     try {
       n->plugin->step(n->context);
     } catch (...) {
       current_node_ = n->spec.name;
       throw;
     }
-    for (CsvRecorder* r : n->recorders) r->write(t);
+    for (PortRecorder* r : n->recorders) r->write(t);
   }
   copy_delayed();
   ++tick_;
@@ -126,7 +127,8 @@ bool Simulation::step() {
 }
 
 void Simulation::copy_delayed() {
-  for (auto& d : delayed_) d.type->copy(d.buffer.get(), d.producer);
+  for (auto& d : delayed_)
+    if (d.producer_node->last_step_tick == tick_) d.type->copy(d.buffer.get(), d.producer);
 }
 
 std::string Simulation::finish() {
@@ -242,6 +244,32 @@ void NodeContext::param_error(const std::string& param, const std::string& messa
   const SourceLocation where = it != rt_.spec.param_locations.end() ? it->second : rt_.spec.where;
   throw InputError(where.str() + ": node '" + rt_.spec.name + "', key 'params." + param +
                    "': " + message);
+}
+
+const RobotSpec& NodeContext::robot_spec(const std::string& param) const {
+  const std::string name = params().get<std::string>(param);
+  const auto& robots = rt_.sim.experiment().robots;
+  std::string declared;
+  for (const RobotSpec& r : robots) declared += (declared.empty() ? "'" : ", '") + r.name + "'";
+  if (name.empty()) {
+    if (robots.size() == 1) return robots.front();
+    param_error(param, robots.empty()
+                           ? "no robot: declare one in the experiment's 'robots:' section "
+                             "(NAME: description file)"
+                           : "the experiment declares several robots (" + declared +
+                                 "): name one");
+  }
+  if (const RobotSpec* r = rt_.sim.experiment().find_robot(name)) return *r;
+  param_error(param, "no robot '" + name + "' in the experiment's 'robots:' section" +
+                         (robots.empty() ? std::string(" (it declares none)")
+                                         : " (declared: " + declared + ")"));
+}
+
+std::shared_ptr<const void> NodeContext::run_shared_erased(
+    const std::string& key, const std::function<std::shared_ptr<const void>()>& make) {
+  auto& slot = rt_.sim.run_shared_[key];
+  if (!slot) slot = make();
+  return slot;
 }
 
 void* NodeContext::port_storage(const std::string& port, PortDirection direction,

@@ -1,5 +1,6 @@
 #include "yaml_values.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -67,6 +68,8 @@ std::string expectation(const ParamSpec& spec) {
   std::string e = param_type_name(spec.type);
   if (spec.type == ParamType::DoubleList && spec.list_size)
     e = fmt::format("a list of {} numbers", *spec.list_size);
+  if (spec.type == ParamType::StringList && spec.list_size)
+    e = fmt::format("a list of {} words", *spec.list_size);
   if (!spec.unit.empty()) e += " [" + spec.unit + "]";
   if (spec.min && spec.max)
     e += fmt::format(" in [{}, {}]", *spec.min, *spec.max);
@@ -82,6 +85,54 @@ std::string expectation(const ParamSpec& spec) {
 }
 
 namespace {
+
+// Words of a StringList given as one scalar: separated by spaces, tabs, newlines or commas.
+std::vector<std::string> split_words(const std::string& text) {
+  std::vector<std::string> words;
+  std::string word;
+  for (char c : text) {
+    if (c == ' ' || c == ',' || c == '\t' || c == '\n' || c == '\r') {
+      if (!word.empty()) words.push_back(word);
+      word.clear();
+    } else {
+      word += c;
+    }
+  }
+  if (!word.empty()) words.push_back(word);
+  return words;
+}
+
+std::optional<ParamValue> to_string_list(const YAML::Node& node, const ParamSpec& spec,
+                                         std::string& problem) {
+  std::vector<std::string> list;
+  if (node.IsScalar()) {
+    list = split_words(node.Scalar());
+  } else if (node.IsSequence()) {
+    for (const auto& item : node) {
+      if (!item.IsScalar() || item.Scalar().empty() ||
+          split_words(item.Scalar()) != std::vector<std::string>{item.Scalar()}) {
+        problem = "expected " + expectation(spec) + ", got an element " + describe_yaml(item);
+        return std::nullopt;
+      }
+      list.push_back(item.Scalar());
+    }
+  } else if (!node.IsNull()) {
+    problem = "expected " + expectation(spec) + ", got " + describe_yaml(node);
+    return std::nullopt;
+  }
+  for (const auto& word : list)
+    if (!spec.choices.empty() &&
+        std::find(spec.choices.begin(), spec.choices.end(), word) == spec.choices.end()) {
+      problem = "expected " + expectation(spec) + ", got an element '" + word + "'";
+      return std::nullopt;
+    }
+  if (spec.list_size && list.size() != *spec.list_size) {
+    problem = fmt::format("expected {}, got {} words", expectation(spec), list.size());
+    return std::nullopt;
+  }
+  return list;
+}
+
 bool check_number(double v, const ParamSpec& spec, const std::string& raw, std::string& problem) {
   if (!std::isfinite(v)) {
     problem = "expected a finite number, got '" + raw + "'";
@@ -98,6 +149,7 @@ bool check_number(double v, const ParamSpec& spec, const std::string& raw, std::
 std::optional<ParamValue> to_param_value(const YAML::Node& node, const ParamSpec& spec,
                                          std::string& problem) {
   const std::string got = describe_yaml(node);
+  if (spec.type == ParamType::StringList) return to_string_list(node, spec, problem);
   if (spec.type == ParamType::DoubleList) {
     if (!node.IsSequence()) {
       problem = "expected " + expectation(spec) + ", got " + got;
@@ -148,6 +200,7 @@ std::optional<ParamValue> to_param_value(const YAML::Node& node, const ParamSpec
       }
       return text;
     case ParamType::DoubleList:
+    case ParamType::StringList:
       break;
   }
   problem = "expected " + expectation(spec) + ", got " + got;

@@ -10,6 +10,7 @@
 
 #include "somasim/diagnostics.hpp"
 #include "somasim/error.hpp"
+#include "somasim/units.hpp"
 
 namespace somasim::robot {
 namespace {
@@ -59,7 +60,7 @@ void for_each_joint_value(const RobotModel& model, const std::string& text,
     if (given[static_cast<std::size_t>(dof)])
       throw InputError("joint '" + name + "' is given twice");
     given[static_cast<std::size_t>(dof)] = true;
-    use(dof, revolute ? v * M_PI / 180.0 : v, value);
+    use(dof, revolute ? deg_to_rad(v) : v, value);
   }
 }
 
@@ -81,7 +82,7 @@ Eigen::VectorXd parse_posture_deg(const RobotModel& model, const std::string& te
     const double lo = model.lower_limits()[dof], hi = model.upper_limits()[dof];
     if (v < lo - 1e-9 || v > hi + 1e-9) {
       const bool revolute = is_revolute(model, dof);
-      const double scale = revolute ? M_PI / 180.0 : 1.0;
+      const double scale = revolute ? kRadPerDeg : 1.0;
       throw InputError(fmt::format("joint '{}': {} {} is outside the limits [{:g}, {:g}]",
                                    model.joint(model.dof_joint(dof)).name, value,
                                    revolute ? "deg" : "m", lo / scale, hi / scale));

@@ -84,4 +84,8 @@ RobotModel load_robot_model(const fs::path& file) {
   return parse_robot_model(text, file.string(), file.parent_path());
 }
 
+std::shared_ptr<const RobotModel> load_robot_model_shared(const fs::path& file) {
+  return std::make_shared<const RobotModel>(load_robot_model(file));
+}
+
 }  // namespace somasim::robot

@@ -18,11 +18,12 @@
 #include "somasim/diagnostics.hpp"
 #include "somasim/error.hpp"
 #include "somasim/robot/robot_loader.hpp"
+#include "somasim/units.hpp"
 
 namespace somasim::robot::detail {
 namespace fs = std::filesystem;
 
-inline constexpr double kDeg = M_PI / 180.0;
+inline constexpr double kDeg = kRadPerDeg;
 
 inline std::string in_quotes(const std::string& s) {
   return "'" + s + "'";

@@ -7,6 +7,7 @@
 #include <cstdlib>
 
 #include <fmt/format.h>
+#include "somasim/units.hpp"
 
 namespace somasim::robot::detail {
 
@@ -237,7 +238,7 @@ std::optional<Eigen::Isometry3d> YamlReader::pose(const YAML::Node& map, const s
   const auto rpy = numbers(n, "rpy_deg", item, path + ".", false, 3, "deg");
   if ((n["xyz"] && !xyz) || (n["rpy_deg"] && !rpy)) return std::nullopt;
   if (xyz) out.translation() = *xyz;
-  if (rpy) out.linear() = rpy_rotation(*rpy * M_PI / 180.0);
+  if (rpy) out.linear() = rpy_rotation(rpy->unaryExpr([](double d) { return deg_to_rad(d); }));
   return out;
 }
 

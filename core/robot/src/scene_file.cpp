@@ -11,6 +11,7 @@
 #include "somasim/diagnostics.hpp"
 #include "somasim/error.hpp"
 #include "somasim/robot/object_geometry.hpp"
+#include "somasim/units.hpp"
 
 namespace somasim::robot {
 namespace fs = std::filesystem;
@@ -195,7 +196,7 @@ class SceneReader {
     if (n["xyz"])
       if (auto v = vec3(n["xyz"], item, "xyz")) xyz = *v;
     if (n["rpy_deg"])
-      if (auto v = vec3(n["rpy_deg"], item, "rpy_deg")) rpy = *v * (M_PI / 180.0);
+      if (auto v = vec3(n["rpy_deg"], item, "rpy_deg")) rpy = *v * kRadPerDeg;
     s.pose = Eigen::Isometry3d::Identity();
     s.pose.translation() = xyz;
     s.pose.linear() = (Eigen::AngleAxisd(rpy.z(), Eigen::Vector3d::UnitZ()) *

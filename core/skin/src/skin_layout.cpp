@@ -8,11 +8,12 @@
 #include <fmt/format.h>
 
 #include "somasim/error.hpp"
+#include "somasim/units.hpp"
 
 namespace somasim::skin {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
+constexpr double kDeg = kRadPerDeg;
 
 double patch_param(const robot::SkinPatch& patch, const std::string& key) {
   const auto it = patch.params.find(key);

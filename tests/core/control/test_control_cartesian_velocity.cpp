@@ -6,14 +6,14 @@
 
 #include "somasim/control/cartesian_velocity.hpp"
 #include "somasim/error.hpp"
-#include "somasim/robot/robot_cache.hpp"
+#include "somasim/robot/robot_loader.hpp"
 
 using namespace somasim;
 using control::CartesianVelocityController;
 
 namespace {
 std::shared_ptr<const robot::RobotModel> icub() {
-  return robot::shared_robot_model(std::string(SOMASIM_SOURCE_DIR) + "/assets/robots/icub_v1.yaml");
+  return robot::load_robot_model_shared(std::string(SOMASIM_SOURCE_DIR) + "/assets/robots/icub_v1.yaml");
 }
 Eigen::VectorXd mid(const robot::RobotModel& m) {
   return 0.5 * (m.lower_limits() + m.upper_limits());

@@ -12,7 +12,7 @@
 #include "somasim/control/touch_ik.hpp"
 #include "somasim/error.hpp"
 #include "somasim/robot/joint_text.hpp"
-#include "somasim/robot/robot_cache.hpp"
+#include "somasim/robot/robot_loader.hpp"
 
 using somasim::control::LinkClearance;
 using somasim::control::TouchIk;
@@ -23,7 +23,7 @@ namespace {
 const std::string kRobot = std::string(SOMASIM_SOURCE_DIR) + "/assets/robots/icub_v1.yaml";
 
 std::shared_ptr<const somasim::robot::RobotModel> icub() {
-  return somasim::robot::shared_robot_model(kRobot);
+  return somasim::robot::load_robot_model_shared(kRobot);
 }
 
 TouchIk finger_on_forearm(const somasim::control::TouchIkOptions& options = {}) {

@@ -7,7 +7,7 @@
 #include <set>
 
 #include "somasim/error.hpp"
-#include "somasim/robot/robot_cache.hpp"
+#include "somasim/robot/robot_loader.hpp"
 #include "somasim/skin/skin_layout.hpp"
 
 using somasim::robot::SkinPatch;
@@ -236,7 +236,7 @@ TEST(SkinLayout, BadPatchesAreInputErrors) {
 
 TEST(SkinLayout, IcubPatchesGenerate) {
   const auto model =
-      somasim::robot::shared_robot_model(SOMASIM_SOURCE_DIR "/assets/robots/icub_v1.yaml");
+      somasim::robot::load_robot_model_shared(SOMASIM_SOURCE_DIR "/assets/robots/icub_v1.yaml");
   for (const auto& patch : model->skin_patches()) {
     const SkinLayout l = generate_layout(patch);
     EXPECT_GT(l.size(), 3u) << patch.body_part;

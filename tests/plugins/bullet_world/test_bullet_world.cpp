@@ -302,6 +302,17 @@ TEST(BulletWorld, SceneObjectsIncludingMeshesStandAndCarry) {
   // Bounding radii are conservative (Bullet's bounding sphere of the shape's box).
   EXPECT_GE(o.radius[3], std::sqrt(0.02 * 0.02 + 0.03 * 0.03));
   EXPECT_LT(o.radius[3], std::sqrt(0.02 * 0.02 + 0.03 * 0.03) + 0.01);
+  // The shapes travel with the objects, so that others than the physics can draw them.
+  using somasim::ObjectShape;
+  EXPECT_EQ(o.shape, (std::vector<ObjectShape>{ObjectShape::kMesh, ObjectShape::kMesh,
+                                               ObjectShape::kSphere, ObjectShape::kCylinder,
+                                               ObjectShape::kBox}));
+  EXPECT_EQ(o.mesh[0], m);
+  EXPECT_EQ(o.mesh[2], "");
+  EXPECT_EQ(o.size[1], Eigen::Vector3d(0.02, 0.02, 0.02));
+  EXPECT_EQ(o.size[2].x(), 0.02);                          // sphere: radius
+  EXPECT_EQ(o.size[3].head<2>(), Eigen::Vector2d(0.02, 0.03));  // cylinder: radius, half height
+  EXPECT_EQ(o.size[4], Eigen::Vector3d(0.05, 0.05, 0.05));      // box: half extents
   h.finish();
   EXPECT_EQ(h.metric("world", "objects_spawned"), 5);
 }

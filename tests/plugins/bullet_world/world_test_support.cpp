@@ -11,19 +11,20 @@
 #include "somasim/robot/inverse_kinematics.hpp"
 #include "somasim/robot/kinematic_chain.hpp"
 #include "somasim/robot/kinematics.hpp"
-#include "somasim/robot/robot_cache.hpp"
+#include "somasim/robot/robot_loader.hpp"
 
 namespace world_test {
 namespace fs = std::filesystem;
 using somasim::robot::RobotModel;
 
 std::shared_ptr<const RobotModel> icub() {
-  return somasim::robot::shared_robot_model(kRobot);
+  return somasim::robot::load_robot_model_shared(kRobot);
 }
 
 std::string world_yaml(const std::string& params, bool wire_inputs) {
-  std::string y = "base_rate_hz: 1000\nnodes:\n  world:\n    plugin: bullet_world\n";
-  y += "    params: {robot: " + kRobot + (params.empty() ? "" : ", " + params) + "}\n";
+  std::string y = "base_rate_hz: 1000\nrobots: {icub: " + kRobot +
+                  "}\nnodes:\n  world:\n    plugin: bullet_world\n";
+  y += "    params: {" + params + "}\n";
   if (wire_inputs) y += "    inputs: {commands: harness.cmd, spawns: harness.spawns}\n";
   return y;
 }

@@ -23,8 +23,8 @@ constexpr double kRate = 100.0;
 constexpr double kDeg = M_PI / 180.0;
 
 std::string graph(const std::string& params) {
-  return "base_rate_hz: 100\nnodes:\n  cv: {plugin: cartesian_velocity, params: {robot: " +
-         somasim::testing::icub_path() + ", " + params +
+  return "base_rate_hz: 100\nrobots: {icub: " + somasim::testing::icub_path() +
+         "}\nnodes:\n  cv: {plugin: cartesian_velocity, params: {" + params +
          "}, inputs: {state: harness.state, velocity: harness.v}}\n";
 }
 

@@ -23,8 +23,8 @@ constexpr double kDeg = M_PI / 180.0;
 constexpr double kRate = 100.0;
 
 std::string graph(const std::string& params, bool with_target = false) {
-  return "base_rate_hz: 100\nnodes:\n  traj: {plugin: joint_trajectory, params: {robot: " +
-         somasim::testing::icub_path() + ", " + params + "}, inputs: {state: harness.state" +
+  return "base_rate_hz: 100\nrobots: {icub: " + somasim::testing::icub_path() +
+         "}\nnodes:\n  traj: {plugin: joint_trajectory, params: {" + params + "}, inputs: {state: harness.state" +
          (with_target ? ", target: harness.target" : "") + "}}\n";
 }
 

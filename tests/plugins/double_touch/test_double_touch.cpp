@@ -40,7 +40,8 @@ const char* kHome =
 constexpr double kRadius = 0.0065;
 
 std::string graph(const std::string& params, bool believed = false) {
-  return "base_rate_hz: 100\nnodes:\n  t: {plugin: double_touch, params: {robot: " + icub_path() +
+  return "base_rate_hz: 100\nrobots: {icub: " + icub_path() +
+         "}\nnodes:\n  t: {plugin: double_touch, params: {robot: icub" +
          (params.empty() ? "" : ", " + params) +
          "}, inputs: {state: harness.state, taxels: harness.taxels, contacts: harness.contacts" +
          (believed ? ", believed_state: harness.believed, believed_taxels: harness.btaxels" : "") +
@@ -128,7 +129,7 @@ std::string error_of(const std::string& yaml) {
 
 TEST(DoubleTouch, FingertipPressesTheChosenTaxelsAlongTheirNormals) {
   Harness h(graph(
-      "touches: 2, taxels: '23 11', position_jitter: 0, normal_jitter: 0, move_duration: 0.5, "
+      "touches: 2, taxels: '23 11', position_jitter: 0, normal_jitter_deg: 0, move_duration: 0.5, "
       "hold: 0.2, press_depth: 0.003, start_distance: 0.2"));
   const auto ticks = run(h);
   EXPECT_EQ(h.finish(), "");
@@ -141,7 +142,7 @@ TEST(DoubleTouch, FingertipPressesTheChosenTaxelsAlongTheirNormals) {
   // The stand-in world has no skin: no touch reached it.
   EXPECT_EQ(h.metric("t", "touches_reached_skin"), 0);
 
-  const auto model = somasim::robot::shared_robot_model(icub_path());
+  const auto model = somasim::robot::load_robot_model_shared(icub_path());
   Skin skin(*model);
   for (int k = 0; k < 2; ++k) {
     const int id = per_touch[static_cast<std::size_t>(k)]["taxel"];
@@ -166,11 +167,11 @@ TEST(DoubleTouch, FingertipPressesTheChosenTaxelsAlongTheirNormals) {
 
 TEST(DoubleTouch, ApproachesAtASpeedInRangeAlongTheNormal) {
   Harness h(
-      graph("touches: 3, taxels: '19', position_jitter: 0, normal_jitter: 0, move_duration: 0.5, "
+      graph("touches: 3, taxels: '19', position_jitter: 0, normal_jitter_deg: 0, move_duration: 0.5, "
             "hold: 0.1, speed_min: 0.08, speed_max: 0.12"));
   const auto ticks = run(h);
   EXPECT_EQ(h.finish(), "");
-  const auto model = somasim::robot::shared_robot_model(icub_path());
+  const auto model = somasim::robot::load_robot_model_shared(icub_path());
   Skin skin(*model);
   const auto per_touch = h.metric("t", "per_touch");
   ASSERT_EQ(per_touch.size(), 3u);
@@ -216,7 +217,7 @@ TEST(DoubleTouch, ApproachesAtASpeedInRangeAlongTheNormal) {
 }
 
 TEST(DoubleTouch, StimulusIsTheBelievedFingertipPlusNoise) {
-  const auto model = somasim::robot::shared_robot_model(icub_path());
+  const auto model = somasim::robot::load_robot_model_shared(icub_path());
   Eigen::VectorXd offset = Eigen::VectorXd::Zero(model->num_dofs());
   offset[model->dof_index("r_elbow")] = 5.0 * M_PI / 180.0;
   offset[model->dof_index("l_elbow")] = -3.0 * M_PI / 180.0;
@@ -266,7 +267,7 @@ TEST(DoubleTouch, StimulusIsTheBelievedFingertipPlusNoise) {
 }
 
 TEST(DoubleTouch, TrueOffsetsArePerceivedMinusTrueDAtTheEvents) {
-  const auto model = somasim::robot::shared_robot_model(icub_path());
+  const auto model = somasim::robot::load_robot_model_shared(icub_path());
   Harness h(graph("touches: 1, taxels: '23', move_duration: 0.5, hold: 0.5", true));
   KinematicWorld w(0.01);
   w.state.position = somasim::robot::parse_posture_deg(*w.model, kHome);

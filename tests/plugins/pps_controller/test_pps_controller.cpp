@@ -28,8 +28,8 @@ constexpr double kRate = 100.0;
 constexpr double kDt = 1.0 / kRate;
 
 std::string graph(const std::string& params) {
-  return "base_rate_hz: 100\nnodes:\n  pc: {plugin: pps_controller, params: {robot: " +
-         somasim::testing::icub_path() + ", chain: left_arm, body_part: left_forearm, " + params +
+  return "base_rate_hz: 100\nrobots: {icub: " + somasim::testing::icub_path() +
+         "}\nnodes:\n  pc: {plugin: pps_controller, params: {robot: icub, chain: left_arm, body_part: left_forearm, " + params +
          "}, inputs: {taxels: harness.taxels, activations: harness.act, state: "
          "harness.state}}\n";
 }

@@ -11,7 +11,7 @@
 #include "somasim/pps/ports.hpp"
 #include "somasim/robot/ports.hpp"
 #include "somasim/robot/kinematics.hpp"
-#include "somasim/robot/robot_cache.hpp"
+#include "somasim/robot/robot_loader.hpp"
 #include "somasim/testing/harness.hpp"
 
 namespace object_thrower_test {
@@ -31,7 +31,8 @@ inline const std::string kRobot = std::string(SOMASIM_SOURCE_DIR) + "/assets/rob
 // optional wires.
 inline std::string thrower(const std::string& params, const std::string& inputs = "") {
   const bool parts = params.rfind("parts:", 0) == 0;
-  return "base_rate_hz: 20\nnodes:\n  t: {plugin: object_thrower, params: {robot: " + kRobot +
+  return "base_rate_hz: 20\nrobots: {icub: " + kRobot +
+         "}\nnodes:\n  t: {plugin: object_thrower, params: {robot: icub" +
          (parts ? "" : ", parts: left_forearm") + (params.empty() ? "" : ", " + params) +
          "}, inputs: {taxels: harness.taxels, state: harness.state, objects: harness.objects" +
          (inputs.empty() ? "" : ", " + inputs) + "}}\n";
@@ -51,7 +52,7 @@ inline SkinPart forearm() {
 }
 
 inline int dofs() {
-  return somasim::robot::shared_robot_model(kRobot)->num_dofs();
+  return somasim::robot::load_robot_model_shared(kRobot)->num_dofs();
 }
 
 inline void feed_world(Harness& h) {

@@ -13,7 +13,7 @@ using somasim::ObjectMotion;
 
 TEST(ObjectThrower, SpawnsMoveTowardTheAimedTaxelFromTheConeAtASpeedInRange) {
   Harness h(
-      thrower("approaches: 12, pause: 0, size: 0.02, cone: 30, distance_min: 0.2, "
+      thrower("approaches: 12, pause: 0, size: 0.02, cone_deg: 30, distance_min: 0.2, "
               "distance_max: 0.3, speed_min: 0.1, speed_max: 0.2, linger: 0.1"));
   const auto spawns = all_spawns(h);
   ASSERT_EQ(spawns.size(), 12u);
@@ -70,8 +70,8 @@ TEST(ObjectThrower, NoiseIsAddedToThePerception) {
 
 TEST(ObjectThrower, UnknownPartNamesTheRobotsParts) {
   const std::string msg = error_of(
-      "nodes:\n  t: {plugin: object_thrower, params: {robot: " + kRobot +
-      ", parts: left_forarm}, inputs: {taxels: harness.taxels, state: harness.state, objects: "
+      "robots: {icub: " + kRobot +
+      "}\nnodes:\n  t: {plugin: object_thrower, params: {parts: left_forarm}, inputs: {taxels: harness.taxels, state: harness.state, objects: "
       "harness.objects}}\n");
   EXPECT_NE(msg.find("node 't', key 'params.parts': unknown skin part 'left_forarm' (did you "
                      "mean 'left_forearm'?); the robot's skin parts: left_forearm, right_palm"),

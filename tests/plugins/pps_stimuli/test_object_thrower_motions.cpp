@@ -41,7 +41,7 @@ std::string at_third_param() {
 
 TEST(ObjectThrowerMotions, StaticObjectsStandStillInFrontOfATaxel) {
   Harness h(
-      thrower("motions: static, approaches: 6, pause: 0, size: 0.02, cone: 30, distance_min: 0.1, "
+      thrower("motions: static, approaches: 6, pause: 0, size: 0.02, cone_deg: 30, distance_min: 0.1, "
               "distance_max: 0.2, static_duration: 1.5"));
   const auto spawns = all_spawns(h);
   ASSERT_EQ(spawns.size(), 6u);
@@ -56,7 +56,7 @@ TEST(ObjectThrowerMotions, StaticObjectsStandStillInFrontOfATaxel) {
 
 TEST(ObjectThrowerMotions, RecedingObjectsMoveAwayFromATaxelForDistanceMax) {
   Harness h(thrower(
-      "motions: receding, approaches: 6, pause: 0, size: 0.02, cone: 30, receding_start_min: "
+      "motions: receding, approaches: 6, pause: 0, size: 0.02, cone_deg: 30, receding_start_min: "
       "0.03, receding_start_max: 0.06, distance_max: 0.25, speed_min: 0.1, speed_max: 0.2"));
   const auto spawns = all_spawns(h);
   ASSERT_EQ(spawns.size(), 6u);
@@ -172,7 +172,7 @@ TEST(ObjectThrowerMotions, ThePresentationSaysWhatIsPresentedAndWhen) {
 // Taxels on the real left forearm of the robot (arm raised as in pps_learn_objects): start
 // points are tested against the robot's collision shapes when link_poses is wired.
 TEST(ObjectThrowerMotions, StartPointsAreClearOfTheRobotForEveryMotion) {
-  const auto model = somasim::robot::shared_robot_model(kRobot);
+  const auto model = somasim::robot::load_robot_model_shared(kRobot);
   somasim::robot::RobotData data(*model);
   Eigen::VectorXd q = Eigen::VectorXd::Zero(model->num_dofs());
   q[model->dof_index("l_shoulder_pitch")] = -40 * M_PI / 180;
@@ -195,7 +195,7 @@ TEST(ObjectThrowerMotions, StartPointsAreClearOfTheRobotForEveryMotion) {
   }
   const std::string params =
       "motions: static receding approach, shapes: sphere box, approaches: 30, pause: 0, size: "
-      "0.02, cone: 60, distance_min: 0.0, distance_max: 0.2, receding_start_min: 0.0, "
+      "0.02, cone_deg: 60, distance_min: 0.0, distance_max: 0.2, receding_start_min: 0.0, "
       "receding_start_max: 0.15, static_duration: 0.05";
   auto starts = [&](bool wired) {
     Harness h(thrower(params, wired ? "link_poses: harness.poses" : ""));

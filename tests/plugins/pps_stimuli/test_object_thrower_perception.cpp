@@ -20,7 +20,7 @@ namespace {
 
 // Believed joint values: all zero but `joint` at `deg`.
 Eigen::VectorXd believed_q(const std::string& joint, double deg) {
-  const auto model = robot::shared_robot_model(kRobot);
+  const auto model = robot::load_robot_model_shared(kRobot);
   Eigen::VectorXd q = Eigen::VectorXd::Zero(model->num_dofs());
   q[model->dof_index(joint)] = deg * M_PI / 180.0;
   return q;
@@ -28,7 +28,7 @@ Eigen::VectorXd believed_q(const std::string& joint, double deg) {
 
 // p' = T_b · T_t⁻¹ for `link` (true joint values all zero).
 Eigen::Isometry3d vision_map(const std::string& link, const Eigen::VectorXd& qb) {
-  const auto model = robot::shared_robot_model(kRobot);
+  const auto model = robot::load_robot_model_shared(kRobot);
   robot::RobotData t(*model), b(*model);
   robot::forward_kinematics(*model, t, Eigen::VectorXd::Zero(model->num_dofs()));
   robot::forward_kinematics(*model, b, qb);
@@ -89,7 +89,7 @@ TEST(ObjectThrowerPerception, UnknownVisionLinkSuggestsTheNearest) {
 // Believed taxels 2 cm out along their normals, an object moving along the aimed taxel's
 // normal: at any instant the perceived D is the true D − 2 cm, so the true offset is −0.02.
 TEST(ObjectThrowerPerception, TaxelsBelievedOutAlongTheirNormalsShowThatShift) {
-  Harness h(thrower("approaches: 1, cone: 0",
+  Harness h(thrower("approaches: 1, cone_deg: 0",
                     "contacts: harness.contacts, believed_taxels: harness.believed_taxels"));
   feed_world(h);
   SkinPart shifted = forearm();
@@ -170,7 +170,7 @@ TEST(ObjectThrowerPerception, ContactsOutsideTheObjectsLifetimeTeachNothing) {
 // point would then be −|p| (p_z < 0) and the perceived +|p'|; the offsets are taken as the
 // ball reached the skin instead (0.1 mm above its plane).
 TEST(ObjectThrowerPerception, ALateContactIsTakenWhereTheObjectReachedTheSkin) {
-  Harness h(thrower("approaches: 1, cone: 0, size: 0.025",
+  Harness h(thrower("approaches: 1, cone_deg: 0, size: 0.025",
                     "contacts: harness.contacts, believed_taxels: harness.believed_taxels"));
   feed_world(h);
   SkinPart flat = forearm();
@@ -210,7 +210,7 @@ TEST(ObjectThrowerPerception, ALateContactIsTakenWhereTheObjectReachedTheSkin) {
 // Labels for every taxel of every part of the true taxels input, parts in input order; an
 // event on the second part fills only its taxel.
 TEST(ObjectThrowerPerception, TrueOffsetsCoverEveryPartInInputOrder) {
-  Harness h(thrower("parts: right_palm, approaches: 1, cone: 0", "contacts: harness.contacts"));
+  Harness h(thrower("parts: right_palm, approaches: 1, cone_deg: 0", "contacts: harness.contacts"));
   feed_world(h);
   SkinPart palm = forearm();
   palm.name = "right_palm";

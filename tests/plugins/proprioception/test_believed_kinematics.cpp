@@ -9,7 +9,7 @@
 #include "somasim/skin/ports.hpp"
 #include "somasim/robot/ports.hpp"
 #include "somasim/robot/kinematics.hpp"
-#include "somasim/robot/robot_cache.hpp"
+#include "somasim/robot/robot_loader.hpp"
 #include "somasim/testing/harness.hpp"
 
 using somasim::InputError;
@@ -26,11 +26,12 @@ namespace {
 const std::string kRobot = std::string(SOMASIM_SOURCE_DIR) + "/assets/robots/icub_v1.yaml";
 
 std::shared_ptr<const robot::RobotModel> icub() {
-  return robot::shared_robot_model(kRobot);
+  return robot::load_robot_model_shared(kRobot);
 }
 
 std::string believed(const std::string& params) {
-  return "base_rate_hz: 20\nnodes:\n  bk: {plugin: believed_kinematics, params: {robot: " + kRobot +
+  return "base_rate_hz: 20\nrobots: {icub: " + kRobot +
+         "}\nnodes:\n  bk: {plugin: believed_kinematics, params: {robot: icub" +
          (params.empty() ? "" : ", " + params) +
          "}, inputs: {state: harness.state, taxels: harness.taxels}}\n";
 }
@@ -223,8 +224,8 @@ TEST(BelievedKinematics, AJointStateOfAnotherRobotFailsTheRun) {
 
 // Without skin taxels wired, the state and the link poses are still published.
 TEST(BelievedKinematics, TaxelsAreOptional) {
-  Harness h("base_rate_hz: 20\nnodes:\n  bk: {plugin: believed_kinematics, params: {robot: " +
-            kRobot + ", joint_offsets_deg: 'neck_yaw: 2'}, inputs: {state: harness.state}}\n");
+  Harness h("base_rate_hz: 20\nrobots: {icub: " + kRobot +
+            "}\nnodes:\n  bk: {plugin: believed_kinematics, params: {joint_offsets_deg: 'neck_yaw: 2'}, inputs: {state: harness.state}}\n");
   h.input<JointState>("state").position = posture();
   ASSERT_TRUE(h.step());
   const auto model = icub();

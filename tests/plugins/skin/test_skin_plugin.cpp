@@ -9,7 +9,7 @@
 #include "somasim/skin/ports.hpp"
 #include "somasim/robot/ports.hpp"
 #include "somasim/robot/kinematics.hpp"
-#include "somasim/robot/robot_cache.hpp"
+#include "somasim/robot/robot_loader.hpp"
 #include "somasim/skin/skin_layout.hpp"
 #include "somasim/testing/harness.hpp"
 
@@ -26,7 +26,7 @@ const std::string kRobot = SOMASIM_SOURCE_DIR "/assets/robots/icub_v1.yaml";
 
 // The skin node with the test's defaults; `params` ("key: value, ...") adds or overrides.
 std::string graph(const std::string& params = "") {
-  std::map<std::string, std::string> p = {{"robot", kRobot},
+  std::map<std::string, std::string> p = {{"robot", "icub"},
                                           {"spacing", "0.005"},
                                           {"group_size", "10"},
                                           {"contact_radius", "0.008"},
@@ -44,12 +44,13 @@ std::string graph(const std::string& params = "") {
   }
   std::string list;
   for (const auto& [k, v] : p) list += (list.empty() ? "" : ", ") + k + ": " + v;
-  return "base_rate_hz: 50\nnodes:\n  skin:\n    plugin: skin\n    params: {" + list +
+  return "base_rate_hz: 50\nrobots: {icub: " + kRobot +
+         "}\nnodes:\n  skin:\n    plugin: skin\n    params: {" + list +
          "}\n    inputs: {link_poses: harness.links, contacts: harness.contacts}\n";
 }
 
 const somasim::robot::RobotModel& model() {
-  static const auto m = somasim::robot::shared_robot_model(kRobot);
+  static const auto m = somasim::robot::load_robot_model_shared(kRobot);
   return *m;
 }
 

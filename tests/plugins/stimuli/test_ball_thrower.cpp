@@ -7,8 +7,9 @@ using somasim::testing::Harness;
 
 namespace {
 std::string thrower(const std::string& parts) {
-  return std::string("nodes:\n  t: {plugin: ball_thrower, params: {robot: ") + SOMASIM_SOURCE_DIR +
-         "/assets/robots/icub_v1.yaml, parts: '" + parts +
+  return std::string("robots: {icub: ") + SOMASIM_SOURCE_DIR +
+         "/assets/robots/icub_v1.yaml}\nnodes:\n  t: {plugin: ball_thrower, params: {parts: '" +
+         parts +
          "'}, inputs: {taxels: harness.taxels, link_poses: harness.poses, objects: "
          "harness.objects, contacts: harness.contacts, skin_events: harness.events}}\n";
 }

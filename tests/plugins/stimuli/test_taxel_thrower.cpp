@@ -50,7 +50,7 @@ TEST(TaxelThrower, LandingOnTheTaxelIsAlwaysAHitAndFarAwayNever) {
 }
 
 TEST(TaxelThrower, ApproachesFromTheStartZoneAtTheDrawnSpeed) {
-  Harness h(thrower("throws: 1, landing_sigma: 0, speed_min: 0.1, speed_max: 0.1, start_cone: 0"));
+  Harness h(thrower("throws: 1, landing_sigma: 0, speed_min: 0.1, speed_max: 0.1, start_cone_deg: 0"));
   ASSERT_TRUE(h.step());
   const Stimulus& s = h.output<Stimulus>("t.truth");
   EXPECT_TRUE(s.present);

@@ -11,6 +11,8 @@
 ///   base_rate_hz: 1000          # scheduler tick [Hz], default 1000
 ///   base_dir: /abs/dir          # relative paths in params resolve here; default: file's dir
 ///   plugin_libraries: [lib.so]  # extra plugin libraries loaded by path (relative to base_dir)
+///   robots:                     # the robots of the experiment: NAME: description file
+///     icub: ../assets/robots/icub_v1.yaml   # (relative to base_dir); loaded once per run
 ///   nodes:
 ///     NAME:
 ///       plugin: PLUGIN          # required
@@ -56,6 +58,14 @@ struct NodeSpec {
   SourceLocation where;
 };
 
+/// A robot of the experiment (`robots:` section). Plugins name it in their `robot` parameter;
+/// the robot library loads the file once per run (somasim/robot/experiment_robot.hpp).
+struct RobotSpec {
+  std::string name;
+  std::filesystem::path file;  ///< resolved against base_dir
+  SourceLocation where;        ///< the entry in the file
+};
+
 struct RecordSpec {
   std::string node, port;
   SourceLocation where;
@@ -85,11 +95,13 @@ struct Experiment {
   double duration_s = 0.0;
   double base_rate_hz = 1000.0;
   std::vector<std::string> plugin_libraries;
-  std::vector<NodeSpec> nodes;  ///< in file order
+  std::vector<RobotSpec> robots;  ///< in file order
+  std::vector<NodeSpec> nodes;    ///< in file order
   std::vector<int> order;       ///< indices into `nodes`, topological order of inputs
   std::vector<RecordSpec> records;
 
   const NodeSpec* find_node(const std::string& name) const;
+  const RobotSpec* find_robot(const std::string& name) const;
   /// The experiment with every default filled in: running it again repeats this run exactly.
   std::string resolved_yaml() const;
   /// The graph in Graphviz DOT (delayed edges dashed).

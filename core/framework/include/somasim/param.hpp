@@ -13,13 +13,16 @@
 
 namespace somasim {
 
-enum class ParamType { Bool, Int, Double, String, DoubleList };
+enum class ParamType { Bool, Int, Double, String, DoubleList, StringList };
 
 /// Human-readable type name used in messages and docs ("a number", "a list of numbers", ...).
 const char* param_type_name(ParamType type);
 
-/// A parameter value. Int is 64-bit; DoubleList is a YAML sequence of numbers.
-using ParamValue = std::variant<bool, std::int64_t, double, std::string, std::vector<double>>;
+/// A parameter value. Int is 64-bit; DoubleList is a YAML sequence of numbers; StringList is a
+/// YAML sequence of words or, for convenience on the command line, one string of words
+/// separated by spaces or commas (`parts: left_forearm right_palm`).
+using ParamValue = std::variant<bool, std::int64_t, double, std::string, std::vector<double>,
+                                std::vector<std::string>>;
 
 /// Renders a value for messages, docs and the resolved experiment file.
 std::string param_value_str(const ParamValue& value);
@@ -32,8 +35,8 @@ struct ParamSpec {
   std::string unit;                         ///< SI unit, e.g. "m", "s", "rad", "m/s"; "" if none
   std::optional<ParamValue> default_value;  ///< nullopt: the parameter is required
   std::optional<double> min, max;           ///< inclusive range for numbers (each list element)
-  std::vector<std::string> choices;         ///< allowed values of a String parameter, if fixed
-  std::optional<std::size_t> list_size;     ///< required length of a DoubleList
+  std::vector<std::string> choices;  ///< allowed values of a String (StringList element), if fixed
+  std::optional<std::size_t> list_size;  ///< required length of a list
   std::string doc;
 
   ParamSpec& unit_is(std::string u) {
@@ -74,7 +77,8 @@ class Params {
   Params() = default;
   explicit Params(std::map<std::string, ParamValue> values) : values_(std::move(values)) {}
 
-  /// Typed access. T is bool, std::int64_t, int, double, std::string or std::vector<double>.
+  /// Typed access. T is bool, std::int64_t, int, double, std::string, std::vector<double> or
+  /// std::vector<std::string>.
   /// Asking for an undeclared name or a wrong type is a bug in the plugin (aborts).
   template <class T>
   T get(const std::string& name) const;

@@ -9,6 +9,7 @@
 /// where `MyPlugin` derives from somasim::Plugin and has `static PluginSpec spec()`.
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <random>
 #include <string>
@@ -23,6 +24,7 @@
 namespace somasim {
 
 class NodeRuntime;  // the framework's per-node state (opaque to plugins)
+struct RobotSpec;
 
 /// Everything a node may use. The same context is passed to every phase; port references
 /// obtained in configure() stay valid for the whole run (data is shared, not copied).
@@ -75,7 +77,25 @@ class NodeContext {
   /// Throws InputError naming the node and parameter, with the parameter's file location.
   [[noreturn]] void param_error(const std::string& param, const std::string& message) const;
 
+  /// The robot named by this node's string parameter `param` in the experiment's `robots:`
+  /// section; an empty name picks the experiment's only robot. InputError (located at the
+  /// parameter) when there is no such robot. Domain libraries build on this (the robot
+  /// library's experiment_robot() loads the model once per run).
+  const RobotSpec& robot_spec(const std::string& param) const;
+
+  /// A value shared by every node of this run, made by `make` on the first request for `key`
+  /// and kept until the run ends (e.g. a robot model loaded once per run). Not thread-safe:
+  /// call it from configure().
+  template <class T>
+  std::shared_ptr<const T> run_shared(const std::string& key,
+                                      const std::function<std::shared_ptr<const T>()>& make) {
+    return std::static_pointer_cast<const T>(run_shared_erased(
+        key, [&make]() -> std::shared_ptr<const void> { return make(); }));
+  }
+
  private:
+  std::shared_ptr<const void> run_shared_erased(
+      const std::string& key, const std::function<std::shared_ptr<const void>()>& make);
   void* port_storage(const std::string& port, PortDirection direction,
                      const PortTypeInfo& type) const;
   NodeRuntime& rt_;

@@ -34,6 +34,7 @@ class PluginSpec {
   ParamSpec& add_double(const std::string& name) { return add(name, ParamType::Double); }
   ParamSpec& add_string(const std::string& name) { return add(name, ParamType::String); }
   ParamSpec& add_list(const std::string& name) { return add(name, ParamType::DoubleList); }
+  ParamSpec& add_string_list(const std::string& name) { return add(name, ParamType::StringList); }
 
   template <class T>
   PluginSpec& input(std::string name, std::string doc, bool optional = false) {

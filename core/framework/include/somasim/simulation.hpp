@@ -5,9 +5,12 @@
 /// One base tick of 1/base_rate_hz seconds; node i steps at ticks k with
 /// k % period_ticks(i) == 0, in the topological order of its inputs. Delayed inputs read the
 /// producer's value at the end of the previous base tick. Nothing here depends on wall time
-/// or thread count, so the same experiment and seed give the same results.
+/// or thread count, so the same experiment and seed give the same results. A delayed input is
+/// copied (PortTypeInfo::copy) only at the end of the ticks its producer stepped in: outputs
+/// change only in step(), so the value read is the same and slow producers cost nothing.
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -21,7 +24,6 @@
 namespace somasim {
 
 class NodeRuntime;
-class CsvRecorder;
 
 class Simulation {
  public:
@@ -70,6 +72,7 @@ class Simulation {
   std::vector<NodeRuntime*> ordered_;                // in exp_.order (step order)
   struct DelayedEdge {
     const PortTypeInfo* type;
+    const NodeRuntime* producer_node;  // copied only at the end of a tick it stepped in
     void* producer;
     std::shared_ptr<void> buffer;
   };
@@ -80,7 +83,8 @@ class Simulation {
     std::shared_ptr<void> storage;
   };
   std::vector<HarnessPort> harness_ports_;
-  std::vector<std::unique_ptr<CsvRecorder>> recorders_;
+  std::vector<std::unique_ptr<PortRecorder>> recorders_;
+  std::map<std::string, std::shared_ptr<const void>> run_shared_;  // NodeContext::run_shared
   nlohmann::ordered_json metrics_ = nlohmann::ordered_json::object();
   std::int64_t tick_ = 0;
   std::int64_t total_ticks_ = 0;

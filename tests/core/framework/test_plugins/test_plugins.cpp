@@ -1,8 +1,63 @@
 // Small plugins used by the core's tests (scheduler, loader, runner). Not installed.
+#include <fstream>
+#include <memory>
 #include <random>
 
+#include "somasim/experiment.hpp"
 #include "somasim/plugin.hpp"
 #include "somasim/port_types.hpp"
+
+namespace somasim::test {
+
+/// A port value whose storage is shared by `operator=` (as a cv::Mat's is): only the deep copy
+/// hook keeps a delayed edge's buffer apart from the producer's value. Counts its copies.
+struct SharedBuffer {
+  std::shared_ptr<std::vector<double>> values = std::make_shared<std::vector<double>>();
+};
+inline int g_buffer_copies = 0;
+
+/// Records a SharedBuffer as `<stem>.txt`, one line "t: v1 v2 ..." per producer step.
+class BufferRecorder final : public PortRecorder {
+ public:
+  BufferRecorder(const SharedBuffer* value, const RecordTarget& target)
+      : value_(value), out_(target.dir / (target.stem + ".txt")) {}
+  void write(double time_s) override {
+    out_ << time_s << ":";
+    for (double v : *value_->values) out_ << " " << v;
+    out_ << "\n";
+  }
+  void flush() override { out_.flush(); }
+
+ private:
+  const SharedBuffer* value_;
+  std::ofstream out_;
+};
+
+/// A type named like the framework's "scalar" but of another size (an ABI mismatch).
+struct WideScalar {
+  double value = 0, extra = 0;
+};
+
+}  // namespace somasim::test
+
+namespace somasim {
+template <>
+struct PortTraits<test::SharedBuffer> {
+  static constexpr const char* name = "test_shared_buffer";
+  static void copy(test::SharedBuffer& dst, const test::SharedBuffer& src) {
+    ++test::g_buffer_copies;
+    dst.values = std::make_shared<std::vector<double>>(*src.values);
+  }
+  static std::unique_ptr<PortRecorder> recorder(const test::SharedBuffer* value,
+                                                const RecordTarget& target) {
+    return std::make_unique<test::BufferRecorder>(value, target);
+  }
+};
+template <>
+struct PortTraits<test::WideScalar> {
+  static constexpr const char* name = "scalar";
+};
+}  // namespace somasim
 
 namespace somasim::test {
 
@@ -100,9 +155,107 @@ class VectorSink : public Plugin {
   void step(NodeContext&) override {}
 };
 
+/// Writes its step count into a SharedBuffer, in place (the storage stays the same).
+class BufferSource : public Plugin {
+ public:
+  static PluginSpec spec() {
+    PluginSpec s("buffer_source", "Counts its steps into a shared buffer (test plugin).");
+    s.output<SharedBuffer>("buffer", "{steps so far}");
+    return s;
+  }
+  void configure(NodeContext& ctx) override { out_ = &ctx.output<SharedBuffer>("buffer"); }
+  void step(NodeContext&) override { out_->values->assign(1, ++steps_); }
+
+ private:
+  SharedBuffer* out_ = nullptr;
+  double steps_ = 0;
+};
+
+/// Reads a SharedBuffer; reports what it saw at each step and the copies made so far.
+class BufferSink : public Plugin {
+ public:
+  static PluginSpec spec() {
+    PluginSpec s("buffer_sink", "Reads a shared buffer (test plugin).");
+    s.input<SharedBuffer>("in", "any buffer");
+    return s;
+  }
+  void configure(NodeContext& ctx) override {
+    in_ = &ctx.input<SharedBuffer>("in");
+    g_buffer_copies = 0;
+  }
+  void step(NodeContext&) override {
+    seen_.push_back(in_->values->empty() ? -1.0 : in_->values->front());
+  }
+  void finish(NodeContext& ctx) override {
+    ctx.report_metric("seen", seen_);
+    ctx.report_metric("copies", g_buffer_copies);
+  }
+
+ private:
+  const SharedBuffer* in_ = nullptr;
+  std::vector<double> seen_;
+};
+
+/// Outputs a WideScalar under the name "scalar" (for the size check of the wiring).
+class WideSource : public Plugin {
+ public:
+  static PluginSpec spec() {
+    PluginSpec s("wide_source", "Outputs a 'scalar' of the wrong size (test plugin).");
+    s.output<WideScalar>("value", "not really a scalar");
+    return s;
+  }
+  void configure(NodeContext&) override {}
+  void step(NodeContext&) override {}
+};
+
+/// Reports its list parameter and the robot it names (for the loader's tests).
+class ListAndRobot : public Plugin {
+ public:
+  static PluginSpec spec() {
+    PluginSpec s("list_and_robot", "Reports a word list and a robot (test plugin).");
+    s.add_string_list("words")
+        .defaults(std::vector<std::string>{"a", "b"})
+        .describe("any words");
+    s.add_string_list("colours")
+        .defaults(std::vector<std::string>{})
+        .one_of({"red", "green"})
+        .describe("words from a fixed set");
+    s.add_string("robot").defaults(std::string()).describe("a robot name ('' = the only one)");
+    s.add_bool("use_robot").defaults(false).describe("look the robot up in configure()");
+    return s;
+  }
+  void configure(NodeContext& ctx) override {
+    words_ = ctx.param<std::vector<std::string>>("words");
+    if (ctx.param<bool>("use_robot")) {
+      robot_file_ = ctx.robot_spec("robot").file.filename().string();
+      // One value per run and key, whichever node asks first.
+      shared_ = ctx.run_shared<int>("test:shared", [] {
+        ++g_makes;
+        return std::make_shared<const int>(g_makes);
+      });
+    }
+  }
+  void step(NodeContext&) override {}
+  void finish(NodeContext& ctx) override {
+    ctx.report_metric("words", words_);
+    ctx.report_metric("robot_file", robot_file_);
+    ctx.report_metric("shared", shared_ ? *shared_ : 0);
+  }
+  static inline int g_makes = 0;
+
+ private:
+  std::vector<std::string> words_;
+  std::string robot_file_;
+  std::shared_ptr<const int> shared_;
+};
+
 }  // namespace somasim::test
 
 SOMASIM_PLUGIN_LIBRARY(registrar) {
+  registrar.add<somasim::test::BufferSource>();
+  registrar.add<somasim::test::BufferSink>();
+  registrar.add<somasim::test::WideSource>();
+  registrar.add<somasim::test::ListAndRobot>();
   registrar.add<somasim::test::Counter>();
   registrar.add<somasim::test::Adder>();
   registrar.add<somasim::test::VectorSink>();

@@ -49,6 +49,7 @@ struct Presentation {
 template <>
 struct PortTraits<Presentation> {
   static constexpr const char* name = "presentation";
+  static constexpr const char* header = "somasim/pps/ports.hpp";
   static std::vector<std::string> csv_columns(const Presentation&) {
     return {"id", "active", "motion (0 approach, 1 static, 2 receding)", "taxel_id", "speed [m/s]"};
   }
@@ -64,6 +65,7 @@ struct PortTraits<Presentation> {
 template <>
 struct PortTraits<pps::Stimulus> {
   static constexpr const char* name = "stimulus";
+  static constexpr const char* header = "somasim/pps/ports.hpp";
   static std::vector<std::string> csv_columns(const pps::Stimulus&) {
     return {"present", "x [m]", "y [m]", "z [m]", "vx [m/s]", "vy [m/s]", "vz [m/s]", "radius [m]"};
   }

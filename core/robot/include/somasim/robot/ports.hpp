@@ -100,6 +100,7 @@ struct ObjectStates {
 template <>
 struct PortTraits<JointState> {
   static constexpr const char* name = "joint_state";
+  static constexpr const char* header = "somasim/robot/ports.hpp";
   static std::vector<std::string> csv_columns(const JointState& s) {
     std::vector<std::string> c;
     for (int i = 0; i < s.position.size(); ++i) c.push_back("q" + std::to_string(i) + " [rad]");
@@ -114,22 +115,27 @@ struct PortTraits<JointState> {
 template <>
 struct PortTraits<JointCommand> {
   static constexpr const char* name = "joint_command";
+  static constexpr const char* header = "somasim/robot/ports.hpp";
 };
 template <>
 struct PortTraits<LinkPoses> {
   static constexpr const char* name = "link_poses";
+  static constexpr const char* header = "somasim/robot/ports.hpp";
 };
 template <>
 struct PortTraits<Contacts> {
   static constexpr const char* name = "contacts";
+  static constexpr const char* header = "somasim/robot/ports.hpp";
 };
 template <>
 struct PortTraits<ObjectSpawns> {
   static constexpr const char* name = "object_spawns";
+  static constexpr const char* header = "somasim/robot/ports.hpp";
 };
 template <>
 struct PortTraits<ObjectStates> {
   static constexpr const char* name = "object_states";
+  static constexpr const char* header = "somasim/robot/ports.hpp";
 };
 
 }  // namespace somasim

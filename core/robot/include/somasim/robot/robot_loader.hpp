@@ -5,6 +5,7 @@
 /// says what was expected and suggests the nearest valid name; all errors of a file are
 /// collected and thrown together as one InputError.
 #include <filesystem>
+#include <memory>
 #include <string>
 
 #include "somasim/robot/robot_model.hpp"
@@ -14,6 +15,10 @@ namespace somasim::robot {
 /// Loads a robot description file. Relative paths inside it (extends, mesh files) are relative
 /// to the file's directory.
 RobotModel load_robot_model(const std::filesystem::path& file);
+
+/// The same, as a shared immutable model (for tools and tests; plugins get the experiment's
+/// robots through experiment_robot.hpp, which loads each once per run).
+std::shared_ptr<const RobotModel> load_robot_model_shared(const std::filesystem::path& file);
 
 /// Parses description text; `display_name` is used in messages, `base_dir` resolves relative
 /// paths.

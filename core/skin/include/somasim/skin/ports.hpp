@@ -51,16 +51,19 @@ struct TaxelValues {
 template <>
 struct PortTraits<SkinTaxels> {
   static constexpr const char* name = "skin_taxels";
+  static constexpr const char* header = "somasim/skin/ports.hpp";
 };
 
 template <>
 struct PortTraits<ContactEvents> {
   static constexpr const char* name = "contact_events";
+  static constexpr const char* header = "somasim/skin/ports.hpp";
 };
 
 template <>
 struct PortTraits<TaxelValues> {
   static constexpr const char* name = "taxel_values";
+  static constexpr const char* header = "somasim/skin/ports.hpp";
   static std::vector<std::string> csv_columns(const TaxelValues& v) { return v.labels; }
   static void csv_write(const TaxelValues& v, std::string& row) {
     for (double x : v.values) csv_append(row, x);

@@ -1,0 +1,30 @@
+#pragma once
+/// @file
+/// The robots of an experiment, as plugins reach them. An experiment declares its robots once
+/// (`robots: {icub: ../assets/robots/icub_v1.yaml}`); a plugin names one in its `robot`
+/// parameter (empty: the experiment's only robot). Each robot is loaded once per run and the
+/// same immutable model is shared by every node of that run (the world, the skin, the
+/// controllers see one model); nothing outlives the run.
+#include <memory>
+#include <string>
+
+#include "somasim/plugin.hpp"
+#include "somasim/robot/robot_model.hpp"
+
+namespace somasim::robot {
+
+/// Declares the string parameter `name` (default "robot") that names the robot a plugin uses.
+ParamSpec& add_robot_param(PluginSpec& spec, const std::string& name = "robot");
+
+/// The model of the robot named by the node's parameter `param`. InputError when the name is
+/// not in the experiment's `robots:` section (located at the parameter) or when the file does
+/// not load (located at the `robots:` entry, with the loader's message).
+std::shared_ptr<const RobotModel> experiment_robot(NodeContext& ctx,
+                                                   const std::string& param = "robot");
+
+/// RunError unless a joint state has one position and one velocity per dof of `model` and
+/// finite positions (for plugins that read a JointState input).
+void check_joint_state(const NodeContext& ctx, const RobotModel& model,
+                       const Eigen::VectorXd& position, const Eigen::VectorXd& velocity);
+
+}  // namespace somasim::robot
