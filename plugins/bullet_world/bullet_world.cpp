@@ -6,10 +6,10 @@
 
 #include "contact_extraction.hpp"
 #include "contact_history.hpp"
+#include "somasim/robot/experiment_robot.hpp"
+#include "somasim/robot/joint_text.hpp"
 #include "somasim/robot/object_geometry.hpp"
 #include "somasim/robot/scene_file.hpp"
-#include "somasim/robot/joint_text.hpp"
-#include "somasim/robot/experiment_robot.hpp"
 
 namespace somasim::bullet_world {
 
@@ -61,7 +61,7 @@ PluginSpec BulletWorld::spec() {
       .defaults(std::string(""))
       .describe(
           "optional scene file with objects present from t = 0 (format in "
-          "plugins/bullet_world/scene_file.hpp), relative to the experiment file");
+          "somasim/robot/scene_file.hpp), relative to the experiment file");
   s.add_double("friction")
       .defaults(0.8)
       .range(0, 10)

@@ -27,7 +27,6 @@ struct ObjectMaterial {
   double restitution = 0.0;
 };
 
-
 class ObjectManager {
  public:
   ObjectManager(btMultiBodyDynamicsWorld& world, ShapeStore& shapes,
@@ -36,8 +35,8 @@ class ObjectManager {
   ObjectManager(const ObjectManager&) = delete;
   ObjectManager& operator=(const ObjectManager&) = delete;
 
-  /// Adds an object at time `t` [s] (spawn must be valid: see robot::spawn_problem); returns its index.
-  /// Meshes may throw InputError (unreadable file).
+  /// Adds an object at time `t` [s] (spawn must be valid: see robot::spawn_problem); returns its
+  /// index. Meshes may throw InputError (unreadable file).
   int add(const ObjectSpawn& spawn, double t);
   /// Removes an object (its slot stays).
   void remove(int index);

@@ -26,8 +26,8 @@
 
 #include "collision_shapes.hpp"
 #include "rigid_groups.hpp"
-#include "somasim/robot/robot_model.hpp"
 #include "somasim/robot/ports.hpp"
+#include "somasim/robot/robot_model.hpp"
 
 namespace somasim::bullet_world {
 

@@ -5,7 +5,6 @@
 #include <cmath>
 #include "somasim/units.hpp"
 
-
 namespace somasim::plugins {
 
 namespace {

@@ -8,7 +8,6 @@
 #include <sstream>
 #include "somasim/units.hpp"
 
-
 namespace somasim::plugins {
 
 namespace {
@@ -30,8 +29,7 @@ PluginSpec JointTrajectoryController::spec() {
   robot::add_robot_param(s);
   s.add_string_list("joints")
       .defaults(std::vector<std::string>{})
-      .describe(
-          "controlled joints (e.g. [r_shoulder_pitch, r_shoulder_roll, r_elbow])");
+      .describe("controlled joints (e.g. [r_shoulder_pitch, r_shoulder_roll, r_elbow])");
   s.add_list("targets_deg")
       .unit_is("deg")
       .defaults(std::vector<double>{})

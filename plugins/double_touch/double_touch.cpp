@@ -8,8 +8,8 @@
 #include "somasim/control/trajectory.hpp"
 #include "somasim/diagnostics.hpp"
 #include "somasim/random_directions.hpp"
-#include "somasim/robot/joint_text.hpp"
 #include "somasim/robot/experiment_robot.hpp"
+#include "somasim/robot/joint_text.hpp"
 #include "somasim/units.hpp"
 
 namespace somasim::plugins {

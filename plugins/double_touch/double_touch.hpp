@@ -1,12 +1,13 @@
 #pragma once
-// double_touch: tactile-motor PPS learning by self-touch (Roncone et al. 2016; PAPERS.md A,
-// experiment 2). The right index fingertip touches chosen taxels of the left forearm, again and
-// again, and is the stimulus the skin learns from, perceived through proprioception.
+// double_touch: tactile-motor PPS learning by self-touch (Roncone et al. 2016, Learning
+// peripersonal space representation through artificial skin for avoidance and reaching with whole
+// body surface, experiment 2). The right index fingertip touches chosen taxels of the left forearm,
+// again and again, and is the stimulus the skin learns from, perceived through proprioception.
 //
 // Each touch: a taxel of `body_part` is drawn (at random among the reachable ones, or in turn
 // from `taxels`), its point jittered along the skin (`position_jitter`) and its approach direction
-// within `normal_jitter_deg` of the normal. TouchPlanner solves the postures for the fingertip at the
-// point + d·n, d from `start_distance` down to −`press_depth` (finger along −n leaning
+// within `normal_jitter_deg` of the normal. TouchPlanner solves the postures for the fingertip at
+// the point + d·n, d from `start_distance` down to −`press_depth` (finger along −n leaning
 // `finger_tilt_deg` across the limb so that the longer middle finger stays off the skin, within
 // `align_distance`; free to lean up to `max_tilt_deg` farther out; torso held): both arms present
 // the limb, which then stays nearly still while the fingertip's arm follows the normal. Taxels
@@ -32,12 +33,12 @@
 #include <vector>
 
 #include "somasim/plugin.hpp"
-#include "somasim/skin/ports.hpp"
 #include "somasim/pps/ports.hpp"
-#include "somasim/robot/ports.hpp"
 #include "somasim/pps/true_offsets.hpp"
 #include "somasim/robot/kinematics.hpp"
+#include "somasim/robot/ports.hpp"
 #include "somasim/robot/robot_model.hpp"
+#include "somasim/skin/ports.hpp"
 #include "touch_planner.hpp"
 
 namespace somasim::plugins {

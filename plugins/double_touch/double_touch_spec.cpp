@@ -79,7 +79,8 @@ PluginSpec DoubleTouch::spec() {
       .range(0.0, 1.0)
       .describe(
           "within this distance of the skin the finger keeps its orientation (axis, tilt, "
-          "fingers across the limb); farther out it may lean, up to max_tilt_deg at start_distance");
+          "fingers across the limb); farther out it may lean, up to max_tilt_deg at "
+          "start_distance");
   s.add_double("max_tilt_deg")
       .unit_is("deg")
       .defaults(60.0)
@@ -144,7 +145,8 @@ PluginSpec DoubleTouch::spec() {
                       "taxels posed by the believed kinematics (the learner's; for true_offsets)",
                       /*optional=*/true);
   s.output<JointCommand>("command", "position commands (with velocity feed-forward), both arms");
-  s.output<pps::Stimulus>("stimulus", "the fingertip as perceived (present during approach and hold)");
+  s.output<pps::Stimulus>("stimulus",
+                          "the fingertip as perceived (present during approach and hold)");
   s.output<pps::Stimulus>("truth", "the true fingertip (same convention)");
   s.output<TaxelValues>("true_offsets",
                         "per taxel: mean perceived D − true D at the contact events (NaN: never)");

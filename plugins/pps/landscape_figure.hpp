@@ -5,8 +5,8 @@
 #include <vector>
 
 #include "somasim/plugin.hpp"
-#include "somasim/skin/ports.hpp"
 #include "somasim/pps/body_part_learner.hpp"
+#include "somasim/skin/ports.hpp"
 
 namespace somasim::plugins {
 

@@ -5,8 +5,10 @@
 
 namespace somasim::plugins {
 
-/// Declares the learning parameters (grid, Parzen variant, RF, TTC definition, buffer).
-/// Defaults are the paper text's; PAPERS.md A lists the released code's values.
+/// Declares the learning parameters (grid, Parzen variant, RF, TTC definition, buffer). Defaults
+/// are the paper text's (Roncone et al. 2016, Learning peripersonal space representation through
+/// artificial skin for avoidance and reaching with whole body surface); a parameter's description
+/// gives the released code's value where it differs.
 void declare_learner_params(PluginSpec& spec);
 
 /// Reads them back (after validation by the loader); InputError for inconsistent values.

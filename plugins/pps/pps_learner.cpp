@@ -47,7 +47,8 @@ PluginSpec PpsLearner::spec() {
       .defaults(std::int64_t{50})
       .at_least(0)
       .describe("taxels with fewer learned samples are left out of offset statistics");
-  s.input<pps::Stimulus>("stimulus", "perceived stimulus (root frame), sampled at this node's rate");
+  s.input<pps::Stimulus>("stimulus",
+                         "perceived stimulus (root frame), sampled at this node's rate");
   s.input<SkinTaxels>("taxels", "taxel poses in the root frame");
   s.input<ContactEvents>("contacts", "skin contact events (unwired: no learning)", true);
   s.input<TaxelValues>("true_offsets",
@@ -145,10 +146,12 @@ void PpsLearner::check_figure_taxels(NodeContext& ctx) const {
     bool found = false;
     for (const LearnerPart& p : parts_)
       found = found || p.learner->index_of(static_cast<int>(id)) >= 0;
-    if (!found)
+    if (!found) {
+      std::string names;
+      for (const LearnerPart& p : parts_) names += (names.empty() ? "" : " ") + p.name;
       ctx.param_error("figure_taxels", "taxel id " + std::to_string(static_cast<int>(id)) +
-                                           " is on none of the parts (" +
-                                           ctx.param<std::string>("body_part") + ")");
+                                           " is on none of the parts (" + names + ")");
+    }
   }
 }
 

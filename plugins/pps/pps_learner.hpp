@@ -9,9 +9,9 @@
 #include "learner_part.hpp"
 #include "somasim/plugin.hpp"
 #include "somasim/port_types.hpp"
-#include "somasim/skin/ports.hpp"
-#include "somasim/pps/ports.hpp"
 #include "somasim/pps/body_part_learner.hpp"
+#include "somasim/pps/ports.hpp"
+#include "somasim/skin/ports.hpp"
 
 namespace somasim::plugins {
 

@@ -1,7 +1,8 @@
 #pragma once
-// pps_controller: exploitation of a learned peripersonal space (PAPERS.md A, issue 4). Taxels
-// of one body part (picked by label from a possibly multi-part activations input) whose
-// activation exceeds `threshold` vote a point P and a normal N
+// pps_controller: exploitation of a learned peripersonal space (issue 4; Roncone et al. 2016,
+// Learning peripersonal space representation through artificial skin for avoidance and reaching
+// with whole body surface). Taxels of one body part (picked by label from a possibly multi-part
+// activations input) whose activation exceeds `threshold` vote a point P and a normal N
 // (activation-weighted, root frame); control::CartesianVelocityController moves that point of
 // the arm at `speed` along −N (avoid) or +N (reach). Keeps moving `persistence` s after the last
 // above-threshold tick, returns to the start posture (joint space) `return_after` s after it,
@@ -12,10 +13,10 @@
 #include "somasim/control/cartesian_velocity.hpp"
 #include "somasim/plugin.hpp"
 #include "somasim/port_types.hpp"
-#include "somasim/skin/ports.hpp"
-#include "somasim/robot/ports.hpp"
 #include "somasim/pps/part_activations.hpp"
 #include "somasim/robot/kinematics.hpp"
+#include "somasim/robot/ports.hpp"
+#include "somasim/skin/ports.hpp"
 
 namespace somasim::plugins {
 

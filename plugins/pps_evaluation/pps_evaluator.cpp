@@ -266,7 +266,7 @@ void PpsEvaluator::finish(NodeContext& ctx) {
   for (const auto& [id, trace] : traces_) {
     if (trace.time_s.empty()) continue;
     const auto it = std::find_if(records_.begin(), records_.end(),
-                                 [&](const PresentationRecord& r) { return r.id == id; });
+                                 [&id = id](const PresentationRecord& r) { return r.id == id; });
     draw_presentation_figure(trace, *it, threshold_, figure_taxels_,
                              ctx.figure_path(fmt::format("presentation_{}_{}_{}.png", id,
                                                          motion_name(it->motion), it->body_part)));

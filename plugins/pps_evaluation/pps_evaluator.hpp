@@ -1,6 +1,8 @@
 #pragma once
-// pps_evaluator: scores PPS avoidance and reaching (issue 4, PAPERS.md A "Exploitation") with the
-// simulation's ground truth. For every object a stimulus source presents (`presentation`) it
+// pps_evaluator: scores PPS avoidance and reaching (issue 4; "Exploitation" in Roncone et al. 2016,
+// Learning peripersonal space representation through artificial skin for avoidance and reaching
+// with whole body surface) with the simulation's ground truth. For every object a stimulus source
+// presents (`presentation`) it
 // records whether a taxel of the aimed skin part went above `threshold` while the object was in
 // the world (a trigger; for static and receding objects a false one), the true distance from the
 // object's surface to the part's nearest taxel at the first trigger and its minimum over the
@@ -17,10 +19,10 @@
 #include "presentation_trace.hpp"
 #include "somasim/plugin.hpp"
 #include "somasim/port_types.hpp"
-#include "somasim/skin/ports.hpp"
+#include "somasim/pps/part_activations.hpp"
 #include "somasim/pps/ports.hpp"
 #include "somasim/robot/ports.hpp"
-#include "somasim/pps/part_activations.hpp"
+#include "somasim/skin/ports.hpp"
 #include "surface_distance.hpp"
 
 namespace somasim::plugins {

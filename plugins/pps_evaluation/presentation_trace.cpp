@@ -49,7 +49,10 @@ void draw_presentation_figure(const PresentationTrace& trace, const Presentation
   distance.y_label = "distance [cm]";
   activation.y_label = "activation";
   activation.y_range = fig::Range{0.0, 1.05};
-  activation.hlines.push_back({threshold, fmt::format("threshold {:.2f}", threshold)});
+  fig::RefLine threshold_line;
+  threshold_line.value = threshold;
+  threshold_line.label = fmt::format("threshold {:.2f}", threshold);
+  activation.hlines.push_back(threshold_line);
   speed.y_label = "arm speed [m/s]";
   for (std::size_t k : order) {
     fig::Series d, a;

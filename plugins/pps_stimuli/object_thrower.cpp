@@ -88,8 +88,11 @@ PluginSpec ObjectThrower::spec() {
       .defaults(2.0)
       .range(0.01, 1000)
       .describe("how long a static object stays");
-  s.add_double("cone_deg").unit_is("deg").defaults(45.0).range(0, 89).describe(
-      "start directions within this angle of the aimed taxel's normal");
+  s.add_double("cone_deg")
+      .unit_is("deg")
+      .defaults(45.0)
+      .range(0, 89)
+      .describe("start directions within this angle of the aimed taxel's normal");
   s.add_double("speed_min")
       .unit_is("m/s")
       .defaults(0.05)

@@ -1,6 +1,7 @@
 #pragma once
 // object_thrower: the experimenter's stand-in for PPS learning and evaluation with objects
-// (PAPERS.md A, exp. 3).
+// (Roncone et al. 2016, Learning peripersonal space representation through artificial skin for
+// avoidance and reaching with whole body surface, exp. 3).
 //
 // One object at a time, aimed at a random taxel of a part; parts, `shapes` and `motions`
 // (approach / static / receding; geometry in presentation_plan.hpp) are each taken in turn with
@@ -22,11 +23,11 @@
 #include "believed_vision.hpp"
 #include "presentation_plan.hpp"
 #include "somasim/plugin.hpp"
-#include "somasim/skin/ports.hpp"
 #include "somasim/pps/ports.hpp"
-#include "somasim/robot/ports.hpp"
 #include "somasim/pps/true_offsets.hpp"
+#include "somasim/robot/ports.hpp"
 #include "somasim/robot/robot_model.hpp"
+#include "somasim/skin/ports.hpp"
 
 namespace somasim::plugins {
 

@@ -3,8 +3,8 @@
 #include <cmath>
 #include <random>
 
-#include "somasim/robot/joint_text.hpp"
 #include "somasim/robot/experiment_robot.hpp"
+#include "somasim/robot/joint_text.hpp"
 #include "somasim/units.hpp"
 
 namespace somasim::plugins {

@@ -1,6 +1,8 @@
 #pragma once
-// believed_kinematics: what the robot believes of its own body (PAPERS.md A: the systematic
-// offset of the learned PPS maps comes from the robot's kinematic model, not from the skin).
+// believed_kinematics: what the robot believes of its own body (Roncone et al. 2016, Learning
+// peripersonal space representation through artificial skin for avoidance and reaching with whole
+// body surface: the systematic offset of the learned PPS maps comes from the robot's kinematic
+// model, not from the skin).
 //
 // Every tick: believed joint values q_b = q_true + joint_offsets_deg + N(0, encoder_noise_deg)
 // (the noise on revolute joints only, drawn anew each tick), one forward kinematics pass with
@@ -11,10 +13,10 @@
 #include <vector>
 
 #include "somasim/plugin.hpp"
-#include "somasim/skin/ports.hpp"
-#include "somasim/robot/ports.hpp"
 #include "somasim/robot/kinematics.hpp"
+#include "somasim/robot/ports.hpp"
 #include "somasim/robot/robot_model.hpp"
+#include "somasim/skin/ports.hpp"
 
 namespace somasim::plugins {
 

@@ -12,13 +12,21 @@ figures::Figure render_skin_layout(const std::vector<SkinFigurePanel>& panels) {
   for (const auto& p : panels) {
     const skin::SkinLayout& layout = *p.layout;
     const auto uv = skin::surface_coordinates(*p.patch, layout.positions);
-    figures::ScatterGroup all{.label = "taxels", .color = figures::Color{170, 170, 170}};
+    figures::ScatterGroup all;
+    all.label = "taxels";
+    all.color = figures::Color{170, 170, 170};
     all.size_px = 4;
-    figures::ScatterGroup centres{.label = "virtual taxels", .color = figures::Color{0, 0, 0}};
+    figures::ScatterGroup centres;
+    centres.label = "virtual taxels";
+    centres.color = figures::Color{0, 0, 0};
     centres.marker = figures::Marker::kCross;
-    figures::ScatterGroup fired{.label = "fired", .color = figures::Color{214, 39, 40}};
+    figures::ScatterGroup fired;
+    fired.label = "fired";
+    fired.color = figures::Color{214, 39, 40};
     fired.size_px = 6;
-    figures::ScatterGroup touched{.label = "touched virtual", .color = figures::Color{214, 39, 40}};
+    figures::ScatterGroup touched;
+    touched.label = "touched virtual";
+    touched.color = figures::Color{214, 39, 40};
     touched.marker = figures::Marker::kDiamond;
     touched.size_px = 12;
     for (std::size_t i = 0; i < uv.size(); ++i) {

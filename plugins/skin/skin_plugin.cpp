@@ -10,8 +10,8 @@
 #include "skin_figure.hpp"
 #include "somasim/diagnostics.hpp"
 #include "somasim/figures/figure.hpp"
-#include "somasim/robot/kinematics.hpp"
 #include "somasim/robot/experiment_robot.hpp"
+#include "somasim/robot/kinematics.hpp"
 #include "somasim/skin/layout_file.hpp"
 
 namespace somasim::plugins {
@@ -48,8 +48,7 @@ PluginSpec SkinPlugin::spec() {
   robot::add_robot_param(s);
   s.add_string_list("parts")
       .defaults(std::vector<std::string>{})
-      .describe(
-          "body parts with skin (names of the robot's skin patches); empty = all");
+      .describe("body parts with skin (names of the robot's skin patches); empty = all");
   s.add_double("spacing").unit_is("m").defaults(0.0).range(0.0, 1.0).describe(
       "distance between neighbouring physical taxels; 0 = each patch's own");
   s.add_int("group_size")

@@ -7,9 +7,9 @@
 #include <vector>
 
 #include "somasim/plugin.hpp"
-#include "somasim/skin/ports.hpp"
 #include "somasim/robot/ports.hpp"
 #include "somasim/robot/robot_model.hpp"
+#include "somasim/skin/ports.hpp"
 #include "somasim/skin/skin_layout.hpp"
 #include "somasim/skin/skin_response.hpp"
 

@@ -30,8 +30,11 @@ PluginSpec BallThrower::spec() {
       .defaults(0.25)
       .range(0.05, 5)
       .describe("start distance from the aimed taxel");
-  s.add_double("cone_deg").unit_is("deg").defaults(40.0).range(0, 89).describe(
-      "start directions within this angle of the taxel normal");
+  s.add_double("cone_deg")
+      .unit_is("deg")
+      .defaults(40.0)
+      .range(0, 89)
+      .describe("start directions within this angle of the taxel normal");
   s.add_double("flight_time")
       .unit_is("s")
       .defaults(0.35)

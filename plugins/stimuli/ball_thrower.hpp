@@ -11,9 +11,9 @@
 #include <random>
 
 #include "somasim/plugin.hpp"
-#include "somasim/skin/ports.hpp"
 #include "somasim/robot/ports.hpp"
 #include "somasim/robot/robot_model.hpp"
+#include "somasim/skin/ports.hpp"
 
 namespace somasim::plugins {
 

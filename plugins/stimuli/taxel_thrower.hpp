@@ -13,8 +13,8 @@
 
 #include "somasim/plugin.hpp"
 #include "somasim/port_types.hpp"
-#include "somasim/skin/ports.hpp"
 #include "somasim/pps/ports.hpp"
+#include "somasim/skin/ports.hpp"
 
 namespace somasim::plugins {
 

@@ -16,11 +16,11 @@
 
 #include <string>
 
-#include "somasim/skin/ports.hpp"
 #include "somasim/pps/ports.hpp"
-#include "somasim/robot/ports.hpp"
 #include "somasim/robot/kinematics.hpp"
+#include "somasim/robot/ports.hpp"
 #include "somasim/robot/robot_loader.hpp"
+#include "somasim/skin/ports.hpp"
 #include "somasim/testing/harness.hpp"
 
 namespace {
@@ -36,18 +36,17 @@ const std::string kPosture =
 const std::string kLearner =
     "ttc: unsigned, ttc_max: 3.0, rf_shape: cone_mirrored_cylinder, buffer_horizon: 3.0, "
     "save: ''";
-const std::string kSkin = "skin: {plugin: skin, rate_hz: 50, params: {"
-                          "group_size: 1, figure: false}, inputs: {link_poses: "
-                          "world.link_poses, contacts: world.contacts}}";
+const std::string kSkin =
+    "skin: {plugin: skin, rate_hz: 50, params: {"
+    "group_size: 1, figure: false}, inputs: {link_poses: "
+    "world.link_poses, contacts: world.contacts}}";
 
 std::string scene_yaml(bool learner) {
   std::string y = "base_rate_hz: 1000\nrobots: {icub: " + kRobot + "}\nnodes:\n";
-  y += "  world: {plugin: bullet_world, params: {initial_posture_deg: '" +
-       kPosture +
+  y += "  world: {plugin: bullet_world, params: {initial_posture_deg: '" + kPosture +
        "', locked_joints: all}, inputs: {spawns: {from: thrower.spawns, delayed: true}}}\n";
   y += "  " + kSkin + "\n";
-  y += "  thrower: {plugin: object_thrower, rate_hz: 20, params: {parts: '" +
-       kParts +
+  y += "  thrower: {plugin: object_thrower, rate_hz: 20, params: {parts: '" + kParts +
        "', approaches: 1000000, speed_min: 0.05, speed_max: 0.15, pause: 0.5, position_noise: "
        "0.001}, inputs: {taxels: skin.taxels, state: world.joint_state, objects: world.objects, "
        "link_poses: world.link_poses}}\n";

@@ -60,8 +60,8 @@ void BM_WorldPlugin(benchmark::State& state) {
   const auto model = somasim::robot::load_robot_model_shared(kRobot);
   somasim::testing::Harness h(
       "base_rate_hz: 1000\nrobots: {icub: " + kRobot +
-      "}\nnodes:\n  world: {plugin: bullet_world, params: {initial_posture_deg: '" + kPosture + "'" +
-      (locked ? ", locked_joints: all" : "") + "}, inputs: {spawns: harness.spawns}}\n");
+      "}\nnodes:\n  world: {plugin: bullet_world, params: {initial_posture_deg: '" + kPosture +
+      "'" + (locked ? ", locked_joints: all" : "") + "}, inputs: {spawns: harness.spawns}}\n");
   auto& spawns = h.input<somasim::ObjectSpawns>("spawns");
   std::uint64_t step = 0, contacts = 0;
   for (auto _ : state) {

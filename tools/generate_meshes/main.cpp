@@ -67,7 +67,7 @@ int main(int argc, char** argv) {
   }
   const std::filesystem::path dir = argv[1];
   std::filesystem::create_directories(dir);
-  // Real iCub forearm cover: about 0.080 x 0.065 m in section, 0.14 m long (ICUB.md).
+  // Real iCub forearm cover: about 0.080 x 0.065 m in section, 0.14 m long.
   write_obj(elliptic_cylinder(0.040, 0.0325, 0.0, -0.14, 48), dir / "forearm_cover.obj",
             "iCub forearm cover: elliptic cylinder 0.080 x 0.065 m, 0.14 m along -y");
   std::cout << "wrote " << (dir / "forearm_cover.obj").string() << "\n";

@@ -25,7 +25,7 @@ TouchIk::TouchIk(std::shared_ptr<const robot::RobotModel> model, robot::FrameRef
                  const Eigen::Vector3d& effector_axis, const Eigen::Vector3d& effector_side,
                  int target_link, const std::vector<int>& held_dofs, TouchIkOptions options)
     : model_(std::move(model)),
-      effector_(effector),
+      effector_(std::move(effector)),
       target_link_(target_link),
       options_(options),
       data_(*model_) {

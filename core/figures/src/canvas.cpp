@@ -129,7 +129,7 @@ void draw_marker(cv::Mat& img, cv::Point2d p, Marker marker, double size_px, Col
   const cv::Point2d c = p - cv::Point2d(0.5, 0.5);
   const double r = size_px / 2;
   const cv::Scalar col = bgr(color);
-  auto poly = [&](std::vector<cv::Point2d> v) {
+  auto poly = [&](const std::vector<cv::Point2d>& v) {
     std::vector<cv::Point> q;
     for (auto& x : v) q.push_back(fixed(c + x));
     if (outline) cv::polylines(img, q, true, bgr(kWhite), 3, cv::LINE_AA, kShift);

@@ -22,8 +22,8 @@ using detail::LocationMap;
 namespace {
 
 const std::vector<std::string> kTopKeys = {
-    "experiment",       "description", "seed",  "duration_s", "base_rate_hz", "base_dir",
-    "plugin_libraries", "robots",      "nodes", "record"};
+    "experiment", "description",      "seed",   "duration_s", "base_rate_hz",
+    "base_dir",   "plugin_libraries", "robots", "nodes",      "record"};
 const std::vector<std::string> kNodeKeys = {"plugin", "rate_hz", "params", "inputs", "description"};
 const std::vector<std::string> kWireKeys = {"from", "delayed"};
 

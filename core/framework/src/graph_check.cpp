@@ -13,7 +13,6 @@ std::string library_of(const Experiment& exp, const std::string& node) {
   return n && n->spec && !n->spec->library_path.empty() ? n->spec->library_path : "built in";
 }
 
-
 std::vector<std::string> node_names(const Experiment& exp) {
   std::vector<std::string> names;
   for (const auto& n : exp.nodes) names.push_back(n.name);

@@ -256,8 +256,7 @@ const RobotSpec& NodeContext::robot_spec(const std::string& param) const {
     param_error(param, robots.empty()
                            ? "no robot: declare one in the experiment's 'robots:' section "
                              "(NAME: description file)"
-                           : "the experiment declares several robots (" + declared +
-                                 "): name one");
+                           : "the experiment declares several robots (" + declared + "): name one");
   }
   if (const RobotSpec* r = rt_.sim.experiment().find_robot(name)) return *r;
   param_error(param, "no robot '" + name + "' in the experiment's 'robots:' section" +

@@ -13,7 +13,8 @@ using control::CartesianVelocityController;
 
 namespace {
 std::shared_ptr<const robot::RobotModel> icub() {
-  return robot::load_robot_model_shared(std::string(SOMASIM_SOURCE_DIR) + "/assets/robots/icub_v1.yaml");
+  return robot::load_robot_model_shared(std::string(SOMASIM_SOURCE_DIR) +
+                                        "/assets/robots/icub_v1.yaml");
 }
 Eigen::VectorXd mid(const robot::RobotModel& m) {
   return 0.5 * (m.lower_limits() + m.upper_limits());
@@ -66,7 +67,7 @@ TEST(ControlCartesianVelocity, NeverPushesAJointPastItsLimitAndSolvesWithTheOthe
   const auto dofs = c.chain().dofs;
   Eigen::VectorXd qd(10);
   int clamped = 0;
-  for (const Eigen::Vector3d v :
+  for (const Eigen::Vector3d& v :
        {Eigen::Vector3d(0, 0, 0.05), Eigen::Vector3d(0.05, 0, 0), Eigen::Vector3d(0, -0.05, 0)})
     for (int k = 0; k < 10; ++k)
       for (bool upper : {false, true}) {
@@ -74,8 +75,11 @@ TEST(ControlCartesianVelocity, NeverPushesAJointPastItsLimitAndSolvesWithTheOthe
         const int d = dofs[k];
         q[d] = upper ? m->upper_limits()[d] : m->lower_limits()[d];
         c.compute(q, v, 0.01, qd);
-        if (upper) EXPECT_LE(qd[k], 0.0);
-        if (!upper) EXPECT_GE(qd[k], 0.0);
+        if (upper) {
+          EXPECT_LE(qd[k], 0.0);
+        } else {
+          EXPECT_GE(qd[k], 0.0);
+        }
         if (qd[k] == 0.0 && c.limited()) {
           ++clamped;
           // The other nine joints still produce the task exactly.

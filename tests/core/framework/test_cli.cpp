@@ -166,15 +166,15 @@ TEST_F(Cli, DescribeShowsParamsAndPorts) {
                 "  (none)\n"
                 "\n"
                 "outputs:\n"
-                "  value                    scalar\n"
+                "  value                    scalar (somasim/port_types.hpp)\n"
                 "      the count\n"
-                "  vector                   vector3\n"
+                "  vector                   vector3 (somasim/port_types.hpp)\n"
                 "      offset scaled by the count\n");
   const CliResult adder = cli({"plugins", "describe", "adder"}, dir);
   EXPECT_NE(adder.out.find("inputs:\n"
-                           "  a                        scalar\n"
+                           "  a                        scalar (somasim/port_types.hpp)\n"
                            "      first term\n"
-                           "  b                        scalar (optional)\n"
+                           "  b                        scalar (somasim/port_types.hpp) (optional)\n"
                            "      second term\n"),
             std::string::npos)
       << adder.out;

@@ -100,7 +100,7 @@ TEST(ExperimentLoader, UnknownTopLevelKey) {
             "  exp.yaml:1:1: key 'duration_s': missing required key (expected a number)\n"
             "  exp.yaml:2:1: key 'duration': unknown key (did you mean 'duration_s'?); expected "
             "one of: experiment, description, seed, duration_s, base_rate_hz, base_dir, "
-            "plugin_libraries, nodes, record");
+            "plugin_libraries, robots, nodes, record");
 }
 
 TEST(ExperimentLoader, UnknownNodeKey) {

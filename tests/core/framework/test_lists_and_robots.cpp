@@ -42,9 +42,9 @@ TEST(WordLists, ASequenceOrOneStringOfWords) {
 
 TEST(WordLists, DefaultsAndTheResolvedFile) {
   PluginRegistry registry({kTestPluginDir});
-  const Experiment e = load_experiment_text(
-      "experiment: t\nduration_s: 1\nnodes:\n  n: {plugin: list_and_robot}\n", "exp.yaml", "/base",
-      registry);
+  const Experiment e =
+      load_experiment_text("experiment: t\nduration_s: 1\nnodes:\n  n: {plugin: list_and_robot}\n",
+                           "exp.yaml", "/base", registry);
   EXPECT_EQ(e.nodes[0].params.get<std::vector<std::string>>("words"),
             (std::vector<std::string>{"a", "b"}));
   EXPECT_NE(e.resolved_yaml().find("words: [\"a\", \"b\"]"), std::string::npos)
@@ -54,20 +54,20 @@ TEST(WordLists, DefaultsAndTheResolvedFile) {
 TEST(WordLists, BadElementsAreLocatedErrors) {
   EXPECT_EQ(load_error("experiment: t\nduration_s: 1\nnodes:\n  n: {plugin: list_and_robot, "
                        "params: {words: [a, [b]]}}\n"),
-            "exp.yaml:4:53: node 'n', key 'params.words': expected a list of words, got an "
+            "exp.yaml:4:47: node 'n', key 'params.words': expected a list of words, got an "
             "element a list");
   EXPECT_EQ(load_error("experiment: t\nduration_s: 1\nnodes:\n  n: {plugin: list_and_robot, "
                        "params: {words: {a: 1}}}\n"),
-            "exp.yaml:4:49: node 'n', key 'params.words': expected a list of words, got a map");
+            "exp.yaml:4:47: node 'n', key 'params.words': expected a list of words, got a map");
   EXPECT_EQ(load_error("experiment: t\nduration_s: 1\nnodes:\n  n: {plugin: list_and_robot, "
                        "params: {colours: red blu}}\n"),
-            "exp.yaml:4:51: node 'n', key 'params.colours': expected a list of words: one of "
+            "exp.yaml:4:49: node 'n', key 'params.colours': expected a list of words: one of "
             "red, green, got an element 'blu'");
 }
 
 const std::string kTwoRobots =
-    "robots:\n  icub: " SOMASIM_SOURCE_DIR "/assets/robots/icub_v1.yaml\n  icub2: " SOMASIM_SOURCE_DIR
-    "/assets/robots/icub_v2.yaml\n";
+    "robots:\n  icub: " SOMASIM_SOURCE_DIR
+    "/assets/robots/icub_v1.yaml\n  icub2: " SOMASIM_SOURCE_DIR "/assets/robots/icub_v2.yaml\n";
 const std::string kOneRobot = "robots: {icub: " SOMASIM_SOURCE_DIR "/assets/robots/icub_v1.yaml}\n";
 
 TEST(Robots, NodesNameTheRobotOrUseTheOnlyOne) {
@@ -113,14 +113,14 @@ std::string configure_error(const std::string& yaml) {
 TEST(Robots, ErrorsNameTheRobotsSectionAndTheParameter) {
   EXPECT_EQ(configure_error(kTwoRobots + "nodes:\n  a: {plugin: list_and_robot, params: "
                                          "{use_robot: true, robot: icb}}\n"),
-            "harness:5:65: node 'a', key 'params.robot': no robot 'icb' in the experiment's "
+            "<inline>:5:64: node 'a', key 'params.robot': no robot 'icb' in the experiment's "
             "'robots:' section (declared: 'icub', 'icub2')");
   EXPECT_EQ(configure_error(kTwoRobots + "nodes:\n  a: {plugin: list_and_robot, params: "
                                          "{use_robot: true}}\n"),
-            "harness:5:6: node 'a', key 'params.robot': the experiment declares several robots "
+            "<inline>:5:3: node 'a', key 'params.robot': the experiment declares several robots "
             "('icub', 'icub2'): name one");
   EXPECT_EQ(configure_error("nodes:\n  a: {plugin: list_and_robot, params: {use_robot: true}}\n"),
-            "harness:2:6: node 'a', key 'params.robot': no robot: declare one in the "
+            "<inline>:2:3: node 'a', key 'params.robot': no robot: declare one in the "
             "experiment's 'robots:' section (NAME: description file)");
   EXPECT_EQ(load_error("experiment: t\nduration_s: 1\nrobots: {icub: missing.yaml}\nnodes:\n  n: "
                        "{plugin: list_and_robot}\n"),

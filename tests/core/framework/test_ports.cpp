@@ -66,7 +66,7 @@ record: [w.value]
     FAIL() << "accepted";
   } catch (const InputError& e) {
     EXPECT_EQ(std::string(e.what()),
-              "harness:4:10: key 'record': port 'w.value' of type 'scalar' cannot be recorded "
+              "<inline>:4:10: key 'record': port 'w.value' of type 'scalar' cannot be recorded "
               "(its type has neither CSV columns nor a recorder)");
   }
 }
@@ -82,7 +82,7 @@ nodes:
     FAIL() << "accepted";
   } catch (const InputError& e) {
     EXPECT_EQ(std::string(e.what()),
-              "harness:4:33: node 'sum', key 'inputs.a': type 'scalar' is 16 bytes in 'w' (" +
+              "<inline>:4:36: node 'sum', key 'inputs.a': type 'scalar' is 16 bytes in 'w' (" +
                   kTestPluginLib + ") but 8 bytes in 'sum' (" + kTestPluginLib +
                   "): the two plugin libraries were built against different definitions of it; "
                   "rebuild both against this somasim");

@@ -92,7 +92,7 @@ TEST(PpsMapIo, SaveLoadRoundTrip) {
   const LearnedState s = sample_state();
   const std::string p = dir.path("map.json");
   save_learned_state(s, p);
-  const LearnedState r = load_learned_state(p, LoadExpectations{"l_forearm", 2});
+  const LearnedState r = load_learned_state(p, LoadExpectations{"l_forearm", 2, {}});
   EXPECT_EQ(r.body_part, s.body_part);
   EXPECT_EQ(r.grid, s.grid);
   EXPECT_EQ(r.parzen, s.parzen);
@@ -145,9 +145,9 @@ TEST(PpsMapIo, CorruptedFiles) {
             "'taxels[0].normal' is zero, expected a non-zero vector");
   EXPECT_EQ(load_error(dir, mutated([](json& j) { j["taxels"][1]["id"] = 3; })),
             "'taxels[1].id' is 3, which taxels[0] already uses; expected unique ids");
-  EXPECT_EQ(load_error(dir, to_json(sample_state()).dump(), LoadExpectations{"r_hand", {}}),
+  EXPECT_EQ(load_error(dir, to_json(sample_state()).dump(), LoadExpectations{"r_hand", {}, {}}),
             "body part is \"l_forearm\", expected \"r_hand\"");
-  EXPECT_EQ(load_error(dir, to_json(sample_state()).dump(), LoadExpectations{{}, 24}),
+  EXPECT_EQ(load_error(dir, to_json(sample_state()).dump(), LoadExpectations{{}, 24, {}}),
             "has 2 taxels, expected 24");
 }
 

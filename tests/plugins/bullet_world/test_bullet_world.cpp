@@ -230,8 +230,11 @@ TEST(BulletWorld, MovingTheRightHandIntoTheLeftForearmMakesContactsBetweenThem) 
     touched = has_contact(h.output<Contacts>("world.contacts"), r_hand, l_forearm);
   }
   EXPECT_TRUE(touched);
-  for (const auto& c : h.output<Contacts>("world.contacts").points)
-    if (c.link_a >= 0 && c.link_b >= 0) EXPECT_GE(c.normal_force, 0.0);
+  for (const auto& c : h.output<Contacts>("world.contacts").points) {
+    if (c.link_a >= 0 && c.link_b >= 0) {
+      EXPECT_GE(c.normal_force, 0.0);
+    }
+  }
 }
 
 TEST(BulletWorld, KinematicObjectFollowsItsTrajectory) {
@@ -304,13 +307,13 @@ TEST(BulletWorld, SceneObjectsIncludingMeshesStandAndCarry) {
   EXPECT_LT(o.radius[3], std::sqrt(0.02 * 0.02 + 0.03 * 0.03) + 0.01);
   // The shapes travel with the objects, so that others than the physics can draw them.
   using somasim::ObjectShape;
-  EXPECT_EQ(o.shape, (std::vector<ObjectShape>{ObjectShape::kMesh, ObjectShape::kMesh,
-                                               ObjectShape::kSphere, ObjectShape::kCylinder,
-                                               ObjectShape::kBox}));
+  EXPECT_EQ(o.shape,
+            (std::vector<ObjectShape>{ObjectShape::kMesh, ObjectShape::kMesh, ObjectShape::kSphere,
+                                      ObjectShape::kCylinder, ObjectShape::kBox}));
   EXPECT_EQ(o.mesh[0], m);
   EXPECT_EQ(o.mesh[2], "");
   EXPECT_EQ(o.size[1], Eigen::Vector3d(0.02, 0.02, 0.02));
-  EXPECT_EQ(o.size[2].x(), 0.02);                          // sphere: radius
+  EXPECT_EQ(o.size[2].x(), 0.02);                               // sphere: radius
   EXPECT_EQ(o.size[3].head<2>(), Eigen::Vector2d(0.02, 0.03));  // cylinder: radius, half height
   EXPECT_EQ(o.size[4], Eigen::Vector3d(0.05, 0.05, 0.05));      // box: half extents
   h.finish();

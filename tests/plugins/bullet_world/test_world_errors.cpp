@@ -34,7 +34,7 @@ TEST(BulletWorldErrors, UnknownObjectTypeInTheScene) {
                        "  - {name: dice, shape: cube, size: [0.02, 0.02, 0.02]}\n");
   const std::string msg =
       message_of<InputError>([&] { Harness h(world_yaml("scene: " + scene.str())); });
-  EXPECT_EQ(msg, "<inline>:5:" + std::to_string(30 + kRobot.size()) +
+  EXPECT_EQ(msg, "<inline>:6:" + std::to_string(21) +
                      ": node 'world', key 'params.scene': " + scene.str() +
                      ":3:25: key 'objects[1].shape': unknown object type 'cube'; expected one of "
                      "box, cylinder, mesh, sphere");
@@ -97,12 +97,12 @@ TEST(BulletWorldErrors, NaNInACommandPort) {
 TEST(BulletWorldErrors, UnknownJointInTheInitialPosture) {
   EXPECT_EQ(
       message_of<InputError>([&] { Harness h(world_yaml("initial_posture_deg: 'r_elbw: 30'")); }),
-      "<inline>:5:" + std::to_string(44 + kRobot.size()) +
+      "<inline>:6:" + std::to_string(35) +
           ": node 'world', key 'params.initial_posture_deg': unknown joint 'r_elbw' (did "
           "you mean 'r_elbow'?) (movable joints of the robot)");
   EXPECT_EQ(
       message_of<InputError>([&] { Harness h(world_yaml("initial_posture_deg: 'r_elbow: 200'")); }),
-      "<inline>:5:" + std::to_string(44 + kRobot.size()) +
+      "<inline>:6:" + std::to_string(35) +
           ": node 'world', key 'params.initial_posture_deg': joint 'r_elbow': 200 deg is "
           "outside the limits [5.5, 106]");
 }
@@ -143,8 +143,8 @@ TEST(BulletWorldErrors, CommandOnALockedJoint) {
 }
 
 TEST(BulletWorldErrors, UnknownOrFixedLockedJoint) {
-  const std::string where = "<inline>:5:" + std::to_string(38 + kRobot.size()) +
-                            ": node 'world', key 'params.locked_joints': ";
+  const std::string where =
+      "<inline>:6:" + std::to_string(29) + ": node 'world', key 'params.locked_joints': ";
   EXPECT_EQ(message_of<InputError>([&] { Harness h(world_yaml("locked_joints: 'l_elbw'")); }),
             where + "robot 'icub_v1': unknown joint 'l_elbw' (did you mean 'l_elbow'?)");
   EXPECT_EQ(message_of<InputError>(

@@ -8,8 +8,8 @@
 
 #include <Eigen/Geometry>
 
-#include "somasim/robot/robot_model.hpp"
 #include "somasim/robot/ports.hpp"
+#include "somasim/robot/robot_model.hpp"
 #include "somasim/testing/harness.hpp"
 
 namespace world_test {

@@ -5,9 +5,9 @@
 #include <memory>
 #include <string>
 
+#include "somasim/robot/ports.hpp"
 #include "somasim/robot/robot_loader.hpp"
 #include "somasim/robot/robot_model.hpp"
-#include "somasim/robot/ports.hpp"
 
 namespace somasim::testing {
 
@@ -16,7 +16,8 @@ inline std::string icub_path() {
 }
 
 struct KinematicWorld {
-  explicit KinematicWorld(double dt_s) : model(robot::load_robot_model_shared(icub_path())), dt(dt_s) {
+  explicit KinematicWorld(double dt_s)
+      : model(robot::load_robot_model_shared(icub_path())), dt(dt_s) {
     // Mid-range start so every joint is within its limits.
     state.position = 0.5 * (model->lower_limits() + model->upper_limits());
     state.velocity.setZero(model->num_dofs());

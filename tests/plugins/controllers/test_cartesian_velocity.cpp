@@ -6,9 +6,9 @@
 #include <gtest/gtest.h>
 
 #include "kinematic_world.hpp"
-#include "somasim/robot/ports.hpp"
 #include "somasim/port_types.hpp"
 #include "somasim/robot/kinematics.hpp"
+#include "somasim/robot/ports.hpp"
 #include "somasim/testing/harness.hpp"
 
 using somasim::JointCommand;

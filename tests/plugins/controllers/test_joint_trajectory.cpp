@@ -6,8 +6,8 @@
 
 #include "kinematic_world.hpp"
 #include "somasim/control/joint_target.hpp"
-#include "somasim/robot/ports.hpp"
 #include "somasim/port_types.hpp"
+#include "somasim/robot/ports.hpp"
 #include "somasim/testing/harness.hpp"
 
 using somasim::JointCommand;
@@ -24,8 +24,9 @@ constexpr double kRate = 100.0;
 
 std::string graph(const std::string& params, bool with_target = false) {
   return "base_rate_hz: 100\nrobots: {icub: " + somasim::testing::icub_path() +
-         "}\nnodes:\n  traj: {plugin: joint_trajectory, params: {" + params + "}, inputs: {state: harness.state" +
-         (with_target ? ", target: harness.target" : "") + "}}\n";
+         "}\nnodes:\n  traj: {plugin: joint_trajectory, params: {" + params +
+         "}, inputs: {state: harness.state" + (with_target ? ", target: harness.target" : "") +
+         "}}\n";
 }
 
 // Steps the controller with the kinematic world in the loop; calls `check(t)` after each tick
@@ -133,8 +134,11 @@ TEST(JointTrajectory, CommandsOnlyItsJointsAndMovesThemTogether) {
   });
   EXPECT_NEAR(world.state.position[sp], -10 * kDeg, 1e-12);
   EXPECT_NEAR(world.state.position[el], 80 * kDeg, 1e-12);
-  for (int d = 0; d < world.model->num_dofs(); ++d)
-    if (d != sp && d != el) EXPECT_EQ(world.state.position[d], start[d]);
+  for (int d = 0; d < world.model->num_dofs(); ++d) {
+    if (d != sp && d != el) {
+      EXPECT_EQ(world.state.position[d], start[d]);
+    }
+  }
   EXPECT_EQ(h.output<double>("traj.done"), 1.0);
 }
 

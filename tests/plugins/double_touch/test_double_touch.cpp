@@ -10,12 +10,12 @@
 #include <gtest/gtest.h>
 
 #include "kinematic_world.hpp"
-#include "somasim/skin/ports.hpp"
 #include "somasim/pps/ports.hpp"
-#include "somasim/robot/ports.hpp"
 #include "somasim/pps/stimulus.hpp"
 #include "somasim/robot/joint_text.hpp"
 #include "somasim/robot/kinematics.hpp"
+#include "somasim/robot/ports.hpp"
+#include "somasim/skin/ports.hpp"
 #include "somasim/skin/skin_layout.hpp"
 #include "somasim/testing/harness.hpp"
 
@@ -25,8 +25,8 @@ using somasim::JointCommand;
 using somasim::JointState;
 using somasim::SkinPart;
 using somasim::SkinTaxels;
-using somasim::pps::Stimulus;
 using somasim::TaxelValues;
+using somasim::pps::Stimulus;
 using somasim::testing::Harness;
 using somasim::testing::icub_path;
 using somasim::testing::KinematicWorld;
@@ -166,9 +166,9 @@ TEST(DoubleTouch, FingertipPressesTheChosenTaxelsAlongTheirNormals) {
 }
 
 TEST(DoubleTouch, ApproachesAtASpeedInRangeAlongTheNormal) {
-  Harness h(
-      graph("touches: 3, taxels: '19', position_jitter: 0, normal_jitter_deg: 0, move_duration: 0.5, "
-            "hold: 0.1, speed_min: 0.08, speed_max: 0.12"));
+  Harness h(graph(
+      "touches: 3, taxels: '19', position_jitter: 0, normal_jitter_deg: 0, move_duration: 0.5, "
+      "hold: 0.1, speed_min: 0.08, speed_max: 0.12"));
   const auto ticks = run(h);
   EXPECT_EQ(h.finish(), "");
   const auto model = somasim::robot::load_robot_model_shared(icub_path());
@@ -321,8 +321,11 @@ TEST(DoubleTouch, TrueOffsetsArePerceivedMinusTrueDAtTheEvents) {
         EXPECT_NEAR(out.values[k], expected, 1e-12) << id;
         EXPECT_LT(out.values[k], -0.005) << id;  // the believed skin is 1 cm further out
       }
-      for (std::size_t k = 0; k < out.values.size(); ++k)
-        if (k != 22 && k != 23) EXPECT_TRUE(std::isnan(out.values[k])) << k;
+      for (std::size_t k = 0; k < out.values.size(); ++k) {
+        if (k != 22 && k != 23) {
+          EXPECT_TRUE(std::isnan(out.values[k])) << k;
+        }
+      }
     }
     w.apply(h.output<JointCommand>("t.command"));
   }

@@ -4,16 +4,16 @@
 #include <filesystem>
 #include <fstream>
 
-#include "somasim/skin/ports.hpp"
-#include "somasim/pps/ports.hpp"
 #include "somasim/port_types.hpp"
 #include "somasim/pps/map_io.hpp"
+#include "somasim/pps/ports.hpp"
+#include "somasim/skin/ports.hpp"
 #include "somasim/testing/harness.hpp"
 
 using somasim::ContactEvents;
 using somasim::SkinTaxels;
-using somasim::pps::Stimulus;
 using somasim::TaxelValues;
+using somasim::pps::Stimulus;
 using somasim::testing::Harness;
 
 namespace {
@@ -211,7 +211,7 @@ TEST(PpsLearner, DistanceOnlyModelActivatesForStaticAndRecedingObjects) {
     h->step();
     EXPECT_GT(h->output<TaxelValues>("pps.activations").values[0], 0.5);
   }
-  for (const Eigen::Vector3d v : {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0, 0, 0.1)}) {
+  for (const Eigen::Vector3d& v : {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0, 0, 0.1)}) {
     for (Harness* h : {&with_ttc, &distance_only}) {
       h->input<Stimulus>("stimulus").velocity = v;
       h->step();

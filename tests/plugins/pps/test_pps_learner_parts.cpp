@@ -9,16 +9,16 @@
 #include <limits>
 #include <string>
 
-#include "somasim/skin/ports.hpp"
-#include "somasim/pps/ports.hpp"
 #include "somasim/port_types.hpp"
 #include "somasim/pps/map_io.hpp"
+#include "somasim/pps/ports.hpp"
+#include "somasim/skin/ports.hpp"
 #include "somasim/testing/harness.hpp"
 
 using somasim::ContactEvents;
 using somasim::SkinTaxels;
-using somasim::pps::Stimulus;
 using somasim::TaxelValues;
+using somasim::pps::Stimulus;
 using somasim::testing::Harness;
 
 namespace {

@@ -8,10 +8,10 @@
 #include <gtest/gtest.h>
 
 #include "kinematic_world.hpp"
-#include "somasim/skin/ports.hpp"
-#include "somasim/robot/ports.hpp"
 #include "somasim/port_types.hpp"
 #include "somasim/robot/kinematics.hpp"
+#include "somasim/robot/ports.hpp"
+#include "somasim/skin/ports.hpp"
 #include "somasim/testing/harness.hpp"
 
 using somasim::JointCommand;
@@ -29,7 +29,9 @@ constexpr double kDt = 1.0 / kRate;
 
 std::string graph(const std::string& params) {
   return "base_rate_hz: 100\nrobots: {icub: " + somasim::testing::icub_path() +
-         "}\nnodes:\n  pc: {plugin: pps_controller, params: {robot: icub, chain: left_arm, body_part: left_forearm, " + params +
+         "}\nnodes:\n  pc: {plugin: pps_controller, params: {robot: icub, chain: left_arm, "
+         "body_part: left_forearm, " +
+         params +
          "}, inputs: {taxels: harness.taxels, activations: harness.act, state: "
          "harness.state}}\n";
 }

@@ -11,10 +11,10 @@
 
 #include <gtest/gtest.h>
 
-#include "somasim/skin/ports.hpp"
+#include "somasim/port_types.hpp"
 #include "somasim/pps/ports.hpp"
 #include "somasim/robot/ports.hpp"
-#include "somasim/port_types.hpp"
+#include "somasim/skin/ports.hpp"
 #include "somasim/testing/harness.hpp"
 
 using somasim::ContactEvent;

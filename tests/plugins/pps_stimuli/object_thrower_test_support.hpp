@@ -7,11 +7,11 @@
 
 #include <gtest/gtest.h>
 
-#include "somasim/skin/ports.hpp"
 #include "somasim/pps/ports.hpp"
-#include "somasim/robot/ports.hpp"
 #include "somasim/robot/kinematics.hpp"
+#include "somasim/robot/ports.hpp"
 #include "somasim/robot/robot_loader.hpp"
+#include "somasim/skin/ports.hpp"
 #include "somasim/testing/harness.hpp"
 
 namespace object_thrower_test {

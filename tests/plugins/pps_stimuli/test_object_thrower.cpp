@@ -69,10 +69,11 @@ TEST(ObjectThrower, NoiseIsAddedToThePerception) {
 }
 
 TEST(ObjectThrower, UnknownPartNamesTheRobotsParts) {
-  const std::string msg = error_of(
-      "robots: {icub: " + kRobot +
-      "}\nnodes:\n  t: {plugin: object_thrower, params: {parts: left_forarm}, inputs: {taxels: harness.taxels, state: harness.state, objects: "
-      "harness.objects}}\n");
+  const std::string msg =
+      error_of("robots: {icub: " + kRobot +
+               "}\nnodes:\n  t: {plugin: object_thrower, params: {parts: left_forarm}, inputs: "
+               "{taxels: harness.taxels, state: harness.state, objects: "
+               "harness.objects}}\n");
   EXPECT_NE(msg.find("node 't', key 'params.parts': unknown skin part 'left_forarm' (did you "
                      "mean 'left_forearm'?); the robot's skin parts: left_forearm, right_palm"),
             std::string::npos)

@@ -34,15 +34,15 @@ int aimed_taxel(const Eigen::Vector3d& start, double size, double lo, double hi,
 
 // Where the value of the third parameter (after robot and parts) starts on line 3.
 std::string at_third_param() {
-  return "<inline>:3:" + std::to_string(79 + kRobot.size());
+  return "<inline>:4:" + std::to_string(83);
 }
 
 }  // namespace
 
 TEST(ObjectThrowerMotions, StaticObjectsStandStillInFrontOfATaxel) {
-  Harness h(
-      thrower("motions: static, approaches: 6, pause: 0, size: 0.02, cone_deg: 30, distance_min: 0.1, "
-              "distance_max: 0.2, static_duration: 1.5"));
+  Harness h(thrower(
+      "motions: static, approaches: 6, pause: 0, size: 0.02, cone_deg: 30, distance_min: 0.1, "
+      "distance_max: 0.2, static_duration: 1.5"));
   const auto spawns = all_spawns(h);
   ASSERT_EQ(spawns.size(), 6u);
   for (const auto& s : spawns) {
@@ -95,8 +95,9 @@ TEST(ObjectThrowerMotions, PartsShapesAndMotionsCycleCylindersShowTheirSide) {
     EXPECT_EQ(s.shape, i % 4 < 2 ? ObjectShape::kSphere : ObjectShape::kCylinder) << i;
     EXPECT_EQ(s.motion, ObjectMotion::kKinematic);
     EXPECT_EQ(s.linear_velocity.isZero(), i % 3 == 1) << i;  // the static ones
-    if (i % 3 == 2)                                          // receding
+    if (i % 3 == 2) {                                        // receding
       EXPECT_NEAR(s.remove_after_s * s.linear_velocity.norm(), 0.25, 1e-12) << i;
+    }
     if (s.shape != ObjectShape::kCylinder) {
       EXPECT_EQ(s.size, Eigen::Vector3d(0.02, 0.0, 0.0));
       continue;
@@ -223,11 +224,11 @@ TEST(ObjectThrowerMotions, BadListsAndRangesAreNamed) {
                 ": node 't', key 'params.motions': unknown motion 'recedng' (did you mean "
                 "'receding'?); expected approach, static or receding");
   EXPECT_EQ(error_of(thrower("shapes: sphere cylindre")),
-            "<inline>:3:" + std::to_string(78 + kRobot.size()) +
+            "<inline>:4:" + std::to_string(82) +
                 ": node 't', key 'params.shapes': unknown shape 'cylindre' (did you mean "
                 "'cylinder'?); expected sphere, box or cylinder");
   EXPECT_EQ(error_of(thrower("receding_start_min: 0.2, receding_start_max: 0.1")),
-            "<inline>:3:" + std::to_string(115 + kRobot.size()) +
+            "<inline>:4:" + std::to_string(119) +
                 ": node 't', key 'params.receding_start_max': must not be less than "
                 "receding_start_min");
 }

@@ -81,7 +81,7 @@ TEST(ObjectThrowerPerception, TheBelievedEyePosePlacesTheObject) {
 
 TEST(ObjectThrowerPerception, UnknownVisionLinkSuggestsTheNearest) {
   EXPECT_EQ(error_of(thrower("vision_link: l_ey", "believed_state: harness.believed")),
-            "<inline>:3:" + std::to_string(83 + kRobot.size()) +
+            "<inline>:4:" + std::to_string(87) +
                 ": node 't', key 'params.vision_link': robot 'icub_v1': unknown link 'l_ey' "
                 "(did you mean 'l_eye'?)");
 }

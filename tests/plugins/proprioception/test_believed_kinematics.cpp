@@ -6,10 +6,10 @@
 
 #include <gtest/gtest.h>
 
-#include "somasim/skin/ports.hpp"
-#include "somasim/robot/ports.hpp"
 #include "somasim/robot/kinematics.hpp"
+#include "somasim/robot/ports.hpp"
 #include "somasim/robot/robot_loader.hpp"
+#include "somasim/skin/ports.hpp"
 #include "somasim/testing/harness.hpp"
 
 using somasim::InputError;
@@ -91,7 +91,7 @@ std::string config_error(const std::string& yaml) {
 
 // Where the value of the first parameter after `robot` starts (line 3 of believed()).
 std::string location() {
-  return "<inline>:3:" + std::to_string(74 + kRobot.size());
+  return "<inline>:4:" + std::to_string(78);
 }
 
 }  // namespace
@@ -225,7 +225,8 @@ TEST(BelievedKinematics, AJointStateOfAnotherRobotFailsTheRun) {
 // Without skin taxels wired, the state and the link poses are still published.
 TEST(BelievedKinematics, TaxelsAreOptional) {
   Harness h("base_rate_hz: 20\nrobots: {icub: " + kRobot +
-            "}\nnodes:\n  bk: {plugin: believed_kinematics, params: {joint_offsets_deg: 'neck_yaw: 2'}, inputs: {state: harness.state}}\n");
+            "}\nnodes:\n  bk: {plugin: believed_kinematics, params: {joint_offsets_deg: 'neck_yaw: "
+            "2'}, inputs: {state: harness.state}}\n");
   h.input<JointState>("state").position = posture();
   ASSERT_TRUE(h.step());
   const auto model = icub();

@@ -6,10 +6,10 @@
 #include <map>
 #include <set>
 
-#include "somasim/skin/ports.hpp"
-#include "somasim/robot/ports.hpp"
 #include "somasim/robot/kinematics.hpp"
+#include "somasim/robot/ports.hpp"
 #include "somasim/robot/robot_loader.hpp"
+#include "somasim/skin/ports.hpp"
 #include "somasim/skin/skin_layout.hpp"
 #include "somasim/testing/harness.hpp"
 
@@ -239,7 +239,7 @@ TEST(SkinPlugin, UnknownBodyPartIsAClearError) {
     FAIL();
   } catch (const somasim::InputError& e) {
     EXPECT_STREQ(e.what(),
-                 "<inline>:5:60: node 'skin', key 'params.parts': unknown body part "
+                 "<inline>:6:60: node 'skin', key 'params.parts': unknown body part "
                  "'left_forarm' (did you mean 'left_forearm'?); robot 'icub_v1' has skin on: "
                  "left_forearm, right_palm");
   }
@@ -251,7 +251,7 @@ TEST(SkinPlugin, BadLayoutFilesParameter) {
     FAIL();
   } catch (const somasim::InputError& e) {
     EXPECT_STREQ(e.what(),
-                 "<inline>:5:67: node 'skin', key 'params.layout_files': expected 'part=file' "
+                 "<inline>:6:67: node 'skin', key 'params.layout_files': expected 'part=file' "
                  "items separated by commas, got 'right_palm'");
   }
 }

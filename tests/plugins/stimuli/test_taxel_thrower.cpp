@@ -1,8 +1,8 @@
 // taxel_thrower: throws, hit rule, perceived offset and noise, stop, determinism.
 #include <gtest/gtest.h>
 
-#include "somasim/skin/ports.hpp"
 #include "somasim/pps/ports.hpp"
+#include "somasim/skin/ports.hpp"
 #include "somasim/testing/harness.hpp"
 
 using somasim::ContactEvents;
@@ -50,7 +50,8 @@ TEST(TaxelThrower, LandingOnTheTaxelIsAlwaysAHitAndFarAwayNever) {
 }
 
 TEST(TaxelThrower, ApproachesFromTheStartZoneAtTheDrawnSpeed) {
-  Harness h(thrower("throws: 1, landing_sigma: 0, speed_min: 0.1, speed_max: 0.1, start_cone_deg: 0"));
+  Harness h(
+      thrower("throws: 1, landing_sigma: 0, speed_min: 0.1, speed_max: 0.1, start_cone_deg: 0"));
   ASSERT_TRUE(h.step());
   const Stimulus& s = h.output<Stimulus>("t.truth");
   EXPECT_TRUE(s.present);

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// The three error tiers of somasim (DESIGN.md §7).
+/// The three error tiers of somasim.
 ///
 /// - A bug in somasim itself: SOMASIM_CHECK aborts with file and line.
 /// - Bad input (YAML, assets, learned-state files, plugin libraries): InputError, thrown only

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// An experiment: a validated graph of plugin instances loaded from YAML (DESIGN.md §2).
+/// An experiment: a validated graph of plugin instances loaded from YAML.
 ///
 /// File format (all keys; unknown keys are errors):
 /// @code
@@ -97,7 +97,7 @@ struct Experiment {
   std::vector<std::string> plugin_libraries;
   std::vector<RobotSpec> robots;  ///< in file order
   std::vector<NodeSpec> nodes;    ///< in file order
-  std::vector<int> order;       ///< indices into `nodes`, topological order of inputs
+  std::vector<int> order;         ///< indices into `nodes`, topological order of inputs
   std::vector<RecordSpec> records;
 
   const NodeSpec* find_node(const std::string& name) const;

@@ -28,7 +28,7 @@ using ParamValue = std::variant<bool, std::int64_t, double, std::string, std::ve
 std::string param_value_str(const ParamValue& value);
 
 /// The declaration of one parameter. Built with chainable setters:
-/// `spec.add_double("speed_min").unit("m/s").defaults(0.05).range(0, 10).doc("...")`.
+/// `spec.add_double("speed_min").unit_is("m/s").defaults(0.05).range(0, 10).describe("...")`.
 struct ParamSpec {
   std::string name;
   ParamType type = ParamType::Double;

@@ -89,8 +89,8 @@ class NodeContext {
   template <class T>
   std::shared_ptr<const T> run_shared(const std::string& key,
                                       const std::function<std::shared_ptr<const T>()>& make) {
-    return std::static_pointer_cast<const T>(run_shared_erased(
-        key, [&make]() -> std::shared_ptr<const void> { return make(); }));
+    return std::static_pointer_cast<const T>(
+        run_shared_erased(key, [&make]() -> std::shared_ptr<const void> { return make(); }));
   }
 
  private:

@@ -77,8 +77,8 @@ struct HasHeader<T, std::void_t<decltype(PortTraits<T>::header)>> : std::true_ty
 template <class T, class = void>
 struct HasCopy : std::false_type {};
 template <class T>
-struct HasCopy<T, std::void_t<decltype(PortTraits<T>::copy(std::declval<T&>(),
-                                                           std::declval<const T&>()))>>
+struct HasCopy<
+    T, std::void_t<decltype(PortTraits<T>::copy(std::declval<T&>(), std::declval<const T&>()))>>
     : std::true_type {};
 template <class T, class = void>
 struct HasRecorder : std::false_type {};

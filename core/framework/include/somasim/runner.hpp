@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// Running an experiment into a run folder (DESIGN.md §5):
+/// Running an experiment into a run folder:
 ///   experiment.resolved.yaml, log.txt, metrics.json, NODE.PORT.csv per recorded port,
 ///   figures/*.png and plugin artefacts. Outputs are flushed whatever happens.
 #include <filesystem>

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// The scheduler: an instantiated experiment stepped on simulated time (DESIGN.md §4).
+/// The scheduler: an instantiated experiment stepped on simulated time.
 ///
 /// One base tick of 1/base_rate_hz seconds; node i steps at ticks k with
 /// k % period_ticks(i) == 0, in the topological order of its inputs. Delayed inputs read the

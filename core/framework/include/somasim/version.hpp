@@ -8,7 +8,7 @@ namespace somasim {
 inline constexpr const char* kVersion = "0.1.0";
 
 /// Version of the binary plugin interface. A plugin library records the string it was built
-/// with; the loader rejects a library whose string differs (DESIGN.md §3). Bump it whenever a
+/// with; the loader rejects a library whose string differs. Bump it whenever a
 /// public header that plugins include changes layout or virtual functions.
 #ifdef SOMASIM_PLUGIN_INTERFACE_VERSION_OVERRIDE  // only for the loader's own tests
 inline constexpr const char* kPluginInterfaceVersion = SOMASIM_PLUGIN_INTERFACE_VERSION_OVERRIDE;

@@ -213,9 +213,7 @@ class ListAndRobot : public Plugin {
  public:
   static PluginSpec spec() {
     PluginSpec s("list_and_robot", "Reports a word list and a robot (test plugin).");
-    s.add_string_list("words")
-        .defaults(std::vector<std::string>{"a", "b"})
-        .describe("any words");
+    s.add_string_list("words").defaults(std::vector<std::string>{"a", "b"}).describe("any words");
     s.add_string_list("colours")
         .defaults(std::vector<std::string>{})
         .one_of({"red", "green"})

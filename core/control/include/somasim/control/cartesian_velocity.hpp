@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// Cartesian velocity control of any point fixed to a link of a chain (DESIGN.md §6, issue 3):
+/// Cartesian velocity control of any point fixed to a link of a chain (issue 3):
 ///   q̇ = J⁺ v,   J⁺ = Jᵀ (J Jᵀ + λ² I)⁻¹   (damped least squares),
 /// with J the point's position Jacobian (3 × chain dofs, root frame) — or, when holding the
 /// link's orientation, the full 6-row Jacobian with ω = k_R · log(R_ref Rᵀ) as angular task.

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// Test a plugin in isolation, from inline YAML (DESIGN.md §8):
+/// Test a plugin in isolation, from inline YAML:
 /// @code
 ///   somasim::testing::Harness h(R"(
 ///     nodes:

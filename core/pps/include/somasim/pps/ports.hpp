@@ -44,8 +44,6 @@ struct Presentation {
   double speed = 0.0;                                     ///< [m/s] (0 for static)
 };
 
-
-
 template <>
 struct PortTraits<Presentation> {
   static constexpr const char* name = "presentation";

@@ -17,9 +17,9 @@
 #include <string>
 #include <vector>
 
-#include "somasim/skin/ports.hpp"
 #include "somasim/pps/ports.hpp"
 #include "somasim/pps/stimulus.hpp"
+#include "somasim/skin/ports.hpp"
 
 namespace somasim::pps {
 

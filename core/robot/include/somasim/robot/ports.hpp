@@ -103,8 +103,8 @@ struct PortTraits<JointState> {
   static constexpr const char* header = "somasim/robot/ports.hpp";
   static std::vector<std::string> csv_columns(const JointState& s) {
     std::vector<std::string> c;
-    for (int i = 0; i < s.position.size(); ++i) c.push_back("q" + std::to_string(i) + " [rad]");
-    for (int i = 0; i < s.velocity.size(); ++i) c.push_back("dq" + std::to_string(i) + " [rad/s]");
+    for (int i = 0; i < s.position.size(); ++i) c.push_back(fmt::format("q{} [rad]", i));
+    for (int i = 0; i < s.velocity.size(); ++i) c.push_back(fmt::format("dq{} [rad/s]", i));
     return c;
   }
   static void csv_write(const JointState& s, std::string& row) {

@@ -2,10 +2,11 @@
 /// @file
 /// The immutable robot model: a kinematic tree of links connected by joints, with geometry,
 /// mass, named frames, cameras and skin patches. Per-use state (joint values, offsets, link
-/// poses) lives in RobotData (robot_data.hpp); algorithms are free functions (kinematics.hpp).
+/// poses) lives in RobotData; it and the algorithms (free functions) are in kinematics.hpp.
 ///
 /// Frames: every pose is in the root frame unless stated otherwise. For the iCub the root frame is
-/// the waist frame of ICUB.md: x backward, y to the robot's right, z up.
+/// the waist frame of the iCub's kinematics (iKin DH tables): x backward, y to the robot's right,
+/// z up.
 /// Units: [m], [rad] (prismatic joints: [m]), [kg].
 ///
 /// Joint transform (child link pose from parent link pose):

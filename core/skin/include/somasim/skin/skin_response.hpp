@@ -8,10 +8,11 @@
 ///   - kernel: each gets F · exp(-d² / (2 σ²)), σ = contact_radius / 2.
 /// Pressures of several contact points add up. "Pressure" is thus a force per taxel [N].
 ///
-/// Contact events (PAPERS.md A): a part is touched when more than `min_taxels` physical taxels
-/// are over `pressure_threshold`. One event per contact episode: it fires at the first touched
-/// update, and the episode lasts until no taxel of the part has been over threshold for
-/// `release_s` (so a persistent or bouncing contact does not fire again).
+/// Contact events (as in Roncone et al. 2016, Learning peripersonal space representation through
+/// artificial skin for avoidance and reaching with whole body surface): a part is touched when more
+/// than `min_taxels` physical taxels are over `pressure_threshold`. One event per contact episode:
+/// it fires at the first touched update, and the episode lasts until no taxel of the part has been
+/// over threshold for `release_s` (so a persistent or bouncing contact does not fire again).
 #include <optional>
 #include <string>
 #include <vector>
