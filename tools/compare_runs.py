@@ -18,7 +18,7 @@ What is compared (all files under both folders, recursively):
     compiler), and any key whose name contains "wall". Everything else (status, error,
     stop_reason, seed, sim_time_s and every plugin metric) must match: numbers with the
     tolerance below, and with --rel-tol 0 exactly (same value and same JSON type, int vs float).
-    Why these keys: core/src/runner.cpp is the only code that reads a clock (wall_time_s, and
+    Why these keys: core/framework/src/runner.cpp is the only code that reads a clock (wall_time_s, and
     real_time_factor derived from it), and `versions` names the build, not the behaviour; two
     runs of the same config with the same build differ in metrics.json in exactly
     wall_time_s and real_time_factor (checked on every shipped config);
