@@ -1,5 +1,7 @@
 #include "commands.hpp"
 
+#include <cstdio>
+
 #include <fmt/format.h>
 
 #include "somasim/diagnostics.hpp"
@@ -9,6 +11,7 @@
 #include "somasim/plugin.hpp"
 #include "somasim/plugin_registry.hpp"
 #include "somasim/runner.hpp"
+#include "somasim/yaml_text.hpp"
 
 namespace somasim::app {
 namespace fs = std::filesystem;
@@ -27,6 +30,33 @@ std::vector<Override> parse_sets(const std::vector<std::string>& sets) {
   return out;
 }
 
+// Creates the run folder, or empties an existing one with `overwrite`; an existing non-empty
+// folder is refused otherwise (its files would mix with this run's). InputError when it cannot
+// be made a fresh, writable folder.
+void prepare_run_folder(const fs::path& dir, bool overwrite) {
+  std::error_code ec;
+  const auto status = fs::status(dir, ec);
+  if (fs::exists(status) && !fs::is_directory(status))
+    throw InputError("--out '" + dir.string() + "' exists and is not a folder");
+  if (fs::is_directory(status) && !fs::is_empty(dir, ec)) {
+    if (!overwrite)
+      throw InputError("run folder '" + dir.string() +
+                       "' already holds a run; choose another --out or add --overwrite "
+                       "(which empties it first)");
+    for (const auto& entry : fs::directory_iterator(dir, ec)) fs::remove_all(entry.path(), ec);
+    if (ec) throw InputError("cannot empty run folder '" + dir.string() + "': " + ec.message());
+  }
+  fs::create_directories(dir, ec);
+  if (ec) throw InputError("cannot create run folder '" + dir.string() + "': " + ec.message());
+  const fs::path probe = dir / ".somasim-write-test";
+  if (std::FILE* f = std::fopen(probe.c_str(), "w")) {
+    std::fclose(f);
+    fs::remove(probe, ec);
+  } else {
+    throw InputError("cannot write into run folder '" + dir.string() + "'");
+  }
+}
+
 int bad_input(const std::exception& e) {
   fmt::print(stderr, "error: {}\n", e.what());
   return kExitBadInput;
@@ -40,7 +70,12 @@ int cmd_run(const CommonOptions& common, const RunArgs& args) {
   try {
     LoadOptions options;
     options.overrides = parse_sets(args.sets);
-    options.seed = args.seed;
+    if (!args.seed.empty()) {
+      options.seed = parse_seed(args.seed);
+      if (!options.seed)
+        throw InputError("--seed: expected an integer in [0, 18446744073709551615], got '" +
+                         args.seed + "'");
+    }
     exp = load_experiment_file(args.file, registry, options);
   } catch (const InputError& e) {
     return bad_input(e);
@@ -48,6 +83,11 @@ int cmd_run(const CommonOptions& common, const RunArgs& args) {
   RunOptions run;
   run.out_dir = args.out.empty() ? fs::path("runs") / exp.name : fs::path(args.out);
   run.quiet = args.quiet;
+  try {
+    prepare_run_folder(run.out_dir, args.overwrite);
+  } catch (const InputError& e) {
+    return bad_input(e);
+  }
   install_interrupt_handler();
   const RunReport report = run_experiment(exp, run);
   const fs::path out = fs::absolute(run.out_dir).lexically_normal();

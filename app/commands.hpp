@@ -21,8 +21,9 @@ struct CommonOptions {
 struct RunArgs {
   std::string file;
   std::vector<std::string> sets;  ///< "path=value"
-  std::optional<std::uint64_t> seed;
+  std::string seed;               ///< "": the experiment's own
   std::string out;
+  bool overwrite = false;  ///< an existing run folder is emptied first (else refused)
   bool quiet = false;
 };
 

@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 
 #include "commands.hpp"
+#include "somasim/error.hpp"
 
 using namespace somasim::app;
 
@@ -27,6 +28,8 @@ int main(int argc, char** argv) {
       ->allow_extra_args(false);  // one value per --set, so `run --set a=1 FILE` works
   run_cmd->add_option("--seed", run.seed, "Replace the experiment's seed");
   run_cmd->add_option("--out", run.out, "Run folder (default: runs/<experiment name>)");
+  run_cmd->add_flag("--overwrite", run.overwrite,
+                    "Empty an existing run folder first (without it, one is refused)");
   run_cmd->add_flag("--quiet", run.quiet, "No progress line; only warnings and errors on stderr");
 
   std::string validate_file;
@@ -57,10 +60,22 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "error: %s\nRun with --help for more information.\n", e.what());
     return kExitBadInput;
   }
-  if (*run_cmd) return cmd_run(common, run);
-  if (*validate_cmd) return cmd_validate(common, validate_file, validate_sets);
-  if (*describe_cmd) return cmd_describe(common, describe_name);
-  if (*plugins_cmd) return cmd_plugins(common);
-  if (*graph_cmd) return cmd_graph(common, graph_file);
+  // One top-level handler: whatever escapes a command becomes one line and an exit code.
+  try {
+    if (*run_cmd) return cmd_run(common, run);
+    if (*validate_cmd) return cmd_validate(common, validate_file, validate_sets);
+    if (*describe_cmd) return cmd_describe(common, describe_name);
+    if (*plugins_cmd) return cmd_plugins(common);
+    if (*graph_cmd) return cmd_graph(common, graph_file);
+  } catch (const somasim::InputError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return kExitBadInput;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return kExitRunFailed;
+  } catch (...) {
+    std::fprintf(stderr, "error: unknown exception\n");
+    return kExitRunFailed;
+  }
   return kExitBadInput;
 }

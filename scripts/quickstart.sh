@@ -4,4 +4,4 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
-build/bin/somasim run configs/pps_single_taxel_offset.yaml --out runs/pps_single_taxel_offset
+build/bin/somasim run configs/pps_single_taxel_offset.yaml --out runs/pps_single_taxel_offset --overwrite

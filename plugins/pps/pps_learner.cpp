@@ -67,6 +67,7 @@ void PpsLearner::configure(NodeContext& ctx) {
   parse_body_parts(ctx);
   learn_ = ctx.param<bool>("learn");
   save_name_ = ctx.param<std::string>("save");
+  if (!save_name_.empty()) save_path_ = ctx.output_path_param("save");
   min_samples_ = ctx.param<int>("min_samples");
   figure_taxels_ = ctx.param<std::vector<double>>("figure_taxels");
   for (double e : ctx.param<std::vector<double>>("snapshot_events"))
@@ -260,7 +261,7 @@ void PpsLearner::finish(NodeContext& ctx) {
   if (!save_name_.empty()) {
     std::vector<pps::LearnedState> states;
     for (const LearnerPart& p : parts_) states.push_back(pps::learned_state(*p.learner));
-    pps::save_learned_parts(states, ctx.output_path(save_name_).string());
+    pps::save_learned_parts(states, save_path_.string());
   }
   for (LearnerPart& p : parts_) draw_landscapes(ctx, *p.learner, figure_taxels_, "", true_offsets_);
 }

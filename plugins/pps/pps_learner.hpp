@@ -2,6 +2,7 @@
 // pps_learner: learns and evaluates the peripersonal-space maps of the taxels of one or several
 // body parts (one pps::BodyPartLearner per part).
 #include <cstdint>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -34,6 +35,7 @@ class PpsLearner : public Plugin {
   pps::LearnerParams params_;
   std::string load_path_;
   std::string save_name_;
+  std::filesystem::path save_path_;  // in the run folder, checked in configure()
   bool learn_ = true;
   int min_samples_ = 0;
   std::vector<double> figure_taxels_;

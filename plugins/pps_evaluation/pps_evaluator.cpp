@@ -84,6 +84,7 @@ void PpsEvaluator::configure(NodeContext& ctx) {
   figure_ids_ = ctx.param<std::vector<double>>("figure_presentations");
   figure_taxels_ = ctx.param<int>("figure_taxels");
   csv_name_ = ctx.param<std::string>("csv");
+  if (!csv_name_.empty()) csv_path_ = ctx.output_path_param("csv");
   for (const std::string& p : ctx.param<std::vector<std::string>>("velocity_parts"))
     velocity_parts_.push_back(p == "-" ? "" : p);
   if (velocity_parts_.size() > static_cast<std::size_t>(kVelocityInputs))
@@ -262,7 +263,7 @@ void PpsEvaluator::finish(NodeContext& ctx) {
   const nlohmann::json metrics = evaluation_metrics(records_);
   for (const auto& [key, value] : metrics.items()) ctx.report_metric(key, value);
   ctx.report_metric("threshold", threshold_);
-  if (!csv_name_.empty()) write_presentations_csv(ctx.output_path(csv_name_), records_);
+  if (!csv_name_.empty()) write_presentations_csv(csv_path_, records_);
   for (const auto& [id, trace] : traces_) {
     if (trace.time_s.empty()) continue;
     const auto it = std::find_if(records_.begin(), records_.end(),

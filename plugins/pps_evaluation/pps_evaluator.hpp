@@ -10,6 +10,7 @@
 // events on the aimed part and on any part, and object-robot contacts reported by the world.
 // finish() reports the metrics (evaluation_report.hpp), writes one CSV row per presentation and
 // draws Fig 10/11-style figures of chosen presentations.
+#include <filesystem>
 #include <map>
 #include <memory>
 #include <string>
@@ -48,6 +49,7 @@ class PpsEvaluator : public Plugin {
   std::vector<double> figure_ids_;
   int figure_taxels_ = 3;
   std::string csv_name_;
+  std::filesystem::path csv_path_;  // in the run folder, checked in configure()
 
   const Presentation* presentation_ = nullptr;
   const ObjectStates* objects_ = nullptr;

@@ -16,19 +16,22 @@ std::string Diagnostic::str() const {
 
 void Diagnostics::add(SourceLocation where, std::string node, std::string key,
                       std::string message) {
-  items_.push_back({std::move(where), std::move(node), std::move(key), std::move(message)});
+  ++total_;
+  if (items_.size() < kMaxKept)
+    items_.push_back({std::move(where), std::move(node), std::move(key), std::move(message)});
 }
 
 void Diagnostics::throw_if_any() const {
-  if (items_.empty()) return;
-  if (items_.size() == 1) throw InputError(items_.front().str());
+  if (total_ == 0) return;
+  if (total_ == 1) throw InputError(items_.front().str());
   // In file order: easier to read and to fix from top to bottom.
   std::vector<Diagnostic> sorted = items_;
   std::stable_sort(sorted.begin(), sorted.end(), [](const Diagnostic& a, const Diagnostic& b) {
     return std::tie(a.where.line, a.where.column) < std::tie(b.where.line, b.where.column);
   });
-  std::string msg = std::to_string(items_.size()) + " errors:";
-  for (const auto& d : sorted) msg += "\n  " + d.str();
+  std::string msg = std::to_string(total_) + " errors:";
+  for (std::size_t i = 0; i < sorted.size() && i < kMaxShown; ++i) msg += "\n  " + sorted[i].str();
+  if (total_ > kMaxShown) msg += "\n  ... and " + std::to_string(total_ - kMaxShown) + " more";
   throw InputError(msg);
 }
 

@@ -26,6 +26,7 @@ const std::vector<std::string> kTopKeys = {
     "base_dir",   "plugin_libraries", "robots", "nodes",      "record"};
 const std::vector<std::string> kNodeKeys = {"plugin", "rate_hz", "params", "inputs", "description"};
 const std::vector<std::string> kWireKeys = {"from", "delayed"};
+constexpr std::uintmax_t kMaxExperimentFileBytes = 16u << 20;
 
 std::vector<std::string> split(const std::string& s, char sep) {
   std::vector<std::string> parts;
@@ -58,8 +59,10 @@ class Loader {
           ": expected a map with the keys 'experiment', 'duration_s' and 'nodes', got " +
           describe_yaml(root));
     }
-    check_duplicate_keys(root, {});
     apply_overrides(root);
+    // Before anything reads a key as text: keys that are not plain scalars end the load here.
+    check_keys(root, {});
+    if (bad_keys_) diags_.throw_if_any();
     read_top(root);
     detail::check_graph(exp_, diags_, options_.allow_harness_inputs);
     diags_.throw_if_any();
@@ -74,14 +77,27 @@ class Loader {
 
   // yaml-cpp keeps every duplicate key in map iteration, but lookups return the first one: a
   // repeated key would silently lose its value. Node names have their own message (read_nodes).
-  void check_duplicate_keys(const YAML::Node& n, const std::vector<std::string>& path) {
+  // Keys must be plain scalars. An alias is the node it names: each node is visited once, so
+  // aliases of aliases ("billion laughs") cost what the file costs, not what they expand to.
+  void check_keys(const YAML::Node& n, const std::vector<std::string>& path) {
+    if (!n.IsSequence() && !n.IsMap()) return;
+    if (const YAML::Mark m = n.Mark(); !m.is_null() && !visited_.insert({m.pos, m.line}).second)
+      return;
     if (n.IsSequence())
-      for (const auto& item : n) check_duplicate_keys(item, path);
+      for (const auto& item : n) check_keys(item, path);
     if (!n.IsMap()) return;
     const bool node_names = path.size() == 1 && path[0] == "nodes";
     std::map<std::string, SourceLocation> seen;
     for (const auto& kv : n) {
-      const std::string key = kv.first.IsScalar() ? kv.first.Scalar() : "";
+      if (!kv.first.IsScalar()) {
+        std::string dotted;
+        for (const auto& p : path) dotted += (dotted.empty() ? "" : ".") + p;
+        error(kv.first, "", dotted.empty() ? "(top level)" : dotted,
+              "keys must be plain names, got " + describe_yaml(kv.first) + " as a key");
+        bad_keys_ = true;
+        continue;
+      }
+      const std::string key = kv.first.Scalar();
       std::vector<std::string> sub = path;
       sub.push_back(key);
       if (!node_names) {
@@ -96,7 +112,7 @@ class Loader {
         }
         seen[key] = locs_.of(kv.first);
       }
-      check_duplicate_keys(kv.second, sub);
+      check_keys(kv.second, sub);
     }
   }
 
@@ -125,7 +141,8 @@ class Loader {
         if (!next.IsDefined() || !next.IsMap()) {
           std::vector<std::string> keys;
           if (parent.IsMap())
-            for (const auto& kv : parent) keys.push_back(kv.first.as<std::string>());
+            for (const auto& kv : parent)
+              if (kv.first.IsScalar()) keys.push_back(kv.first.Scalar());
           fail("no map '" + (walked.empty() ? "" : walked + ".") + parts[i] + "' in " +
                locs_.file() + did_you_mean(parts[i], keys));
         }
@@ -167,19 +184,46 @@ class Loader {
                   "; expected one of: " + join_names(kTopKeys));
     }
     exp_.name = read_string(root, "experiment", options_.defaults_for_tests ? "test" : "");
+    // The name makes the default run folder (runs/NAME): nothing that could leave it.
+    if (!exp_.name.empty() && !safe_file_name(exp_.name))
+      error(root["experiment"], "", "experiment",
+            "expected a name of letters, digits, '_' and '-', got '" + exp_.name + "'");
     if (const YAML::Node d = root["description"]; d)
       exp_.description = read_string(root, "description", "");
-    exp_.seed = static_cast<std::uint64_t>(read_number(root, "seed", 0.0, 0.0, true));
+    exp_.seed = read_seed(root);
     if (options_.seed) exp_.seed = *options_.seed;
     exp_.duration_s =
         read_number(root, "duration_s", options_.defaults_for_tests ? 1e9 : -1.0, 1e-9, false);
     exp_.base_rate_hz = read_number(root, "base_rate_hz", 1000.0, 1e-9, false);
+    check_tick_count(root);
     if (const YAML::Node b = root["base_dir"]; b) exp_.base_dir = read_string(root, "base_dir", "");
     read_libraries(root);
     read_robots(root);
     read_nodes(root);
     read_records(root);
   }
+
+  // The seed is a 64-bit unsigned integer, read exactly (not through a double).
+  std::uint64_t read_seed(const YAML::Node& root) {
+    const YAML::Node n = root["seed"];
+    if (!n) return 0;
+    const auto seed = n.IsScalar() ? somasim::parse_seed(n.Scalar()) : std::nullopt;
+    if (!seed)
+      error(n, "", "seed",
+            "expected an integer in [0, 18446744073709551615], got " + describe_yaml(n));
+    return seed.value_or(0);
+  }
+
+  // The run has duration_s × base_rate_hz ticks: it must be a count a tick counter (and a
+  // double, for times) holds exactly.
+  void check_tick_count(const YAML::Node& root) {
+    const double ticks = exp_.duration_s * exp_.base_rate_hz;
+    if (ticks > kMaxTicks)
+      error(root["duration_s"] ? root["duration_s"] : root, "", "duration_s",
+            fmt::format("duration_s × base_rate_hz is {:g} ticks; at most {:g} (2^53) can run",
+                        ticks, kMaxTicks));
+  }
+  static constexpr double kMaxTicks = 9007199254740992.0;  // 2^53
 
   std::string read_string(const YAML::Node& map, const std::string& key,
                           const std::string& fallback) {
@@ -281,6 +325,14 @@ class Loader {
     }
   }
 
+  // Names that become file names in the run folder (NODE.PORT.csv, runs/NAME).
+  static bool safe_file_name(const std::string& name) {
+    return !name.empty() && name.size() <= 128 && name[0] != '-' &&
+           std::all_of(name.begin(), name.end(), [](char c) {
+             return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-';
+           });
+  }
+
   static bool valid_name(const std::string& name) {
     return !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
       return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
@@ -308,8 +360,9 @@ class Loader {
         continue;
       }
       seen[name] = locs_.of(kv.first);
-      if (name == "harness" || name.find('.') != std::string::npos) {
-        error(kv.first, name, "", "invalid node name (no dots; 'harness' is reserved)");
+      if (name == "harness" || !safe_file_name(name)) {
+        error(kv.first, name, "",
+              "invalid node name (letters, digits, '_' and '-'; 'harness' is reserved)");
         continue;
       }
       read_node(name, kv.first, kv.second);
@@ -478,6 +531,8 @@ class Loader {
   PluginRegistry& registry_;
   const LoadOptions& options_;
   Diagnostics diags_;
+  std::set<std::pair<std::size_t, int>> visited_;  // containers seen by check_keys
+  bool bad_keys_ = false;
   Experiment exp_;
 };
 
@@ -494,6 +549,11 @@ Experiment load_experiment_file(const fs::path& file, PluginRegistry& registry,
   std::error_code ec;
   if (!fs::exists(file, ec))
     throw InputError("experiment file '" + file.string() + "' does not exist");
+  if (fs::is_directory(file, ec))
+    throw InputError("experiment file '" + file.string() + "' is a directory, not a YAML file");
+  if (const auto size = fs::file_size(file, ec); !ec && size > kMaxExperimentFileBytes)
+    throw InputError(fmt::format("experiment file '{}' is {} bytes; at most {} (16 MiB) are read",
+                                 file.string(), size, kMaxExperimentFileBytes));
   std::ifstream in(file);
   if (!in) throw InputError("experiment file '" + file.string() + "' cannot be read");
   std::stringstream buffer;

@@ -223,15 +223,43 @@ void NodeContext::report_metric(const std::string& name, nlohmann::json value) {
   rt_.metrics.emplace_back(name, std::move(value));
 }
 
+namespace {
+// "" if `name` is a relative path that stays below its folder, else why not.
+std::string containment_problem(const std::string& name) {
+  const fs::path p = name;
+  if (name.empty()) return "is empty";
+  if (p.is_absolute()) return "is an absolute path";
+  for (const auto& part : p)
+    if (part == "..") return "climbs out with '..'";
+  if (p.filename().empty() || p.filename() == ".") return "names a folder, not a file";
+  return "";
+}
+}  // namespace
+
 fs::path NodeContext::figure_path(const std::string& file_name) {
-  const fs::path dir = rt_.sim.out_dir_ / "figures";
-  fs::create_directories(dir);
-  return dir / file_name;
+  if (const std::string why = containment_problem(file_name); !why.empty())
+    throw RunError("node '" + rt_.spec.name + "': figure file '" + file_name + "' " + why +
+                   "; it must stay inside the run folder's figures/");
+  const fs::path file = rt_.sim.out_dir_ / "figures" / fs::path(file_name).lexically_normal();
+  fs::create_directories(file.parent_path());
+  return file;
 }
 
 fs::path NodeContext::output_path(const std::string& file_name) {
-  fs::create_directories(rt_.sim.out_dir_);
-  return rt_.sim.out_dir_ / file_name;
+  if (const std::string why = containment_problem(file_name); !why.empty())
+    throw RunError("node '" + rt_.spec.name + "': output file '" + file_name + "' " + why +
+                   "; it must stay inside the run folder");
+  const fs::path file = rt_.sim.out_dir_ / fs::path(file_name).lexically_normal();
+  fs::create_directories(file.parent_path());
+  return file;
+}
+
+fs::path NodeContext::output_path_param(const std::string& param) {
+  const std::string name = params().get<std::string>(param);
+  if (const std::string why = containment_problem(name); !why.empty())
+    param_error(param, "output file '" + name + "' " + why +
+                           "; expected a file name relative to the run folder");
+  return output_path(name);
 }
 
 fs::path NodeContext::resolve_input_path(const std::string& path) const {

@@ -11,59 +11,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli_support.hpp"
 #include "test_support.hpp"
-
-extern char** environ;
 
 namespace somasim::test {
 namespace {
 namespace fs = std::filesystem;
-
-const std::string kBinary = SOMASIM_BINARY;
-
-struct CliResult {
-  int code = -1;  ///< exit code, or 128 + signal
-  std::string out, err;
-};
-
-// Starts `somasim --plugin-path TEST_PLUGIN_DIR args...` with stdout/stderr to files in `dir`.
-pid_t spawn_cli(const std::vector<std::string>& args, const TempDir& dir,
-                bool with_plugin_path = true) {
-  std::vector<std::string> argv_s = {kBinary};
-  if (with_plugin_path) argv_s.insert(argv_s.end(), {"--plugin-path", kTestPluginDir});
-  argv_s.insert(argv_s.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (auto& a : argv_s) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, (dir / "stdout").c_str(),
-                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_addopen(&actions, 2, (dir / "stderr").c_str(),
-                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_addchdir_np(&actions, dir.path().c_str());
-  pid_t pid = -1;
-  const int rc = posix_spawn(&pid, kBinary.c_str(), &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  EXPECT_EQ(rc, 0) << "cannot start " << kBinary;
-  return pid;
-}
-
-CliResult wait_cli(pid_t pid, const TempDir& dir) {
-  int status = 0;
-  waitpid(pid, &status, 0);
-  CliResult r;
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  r.out = read_file(dir / "stdout");
-  r.err = read_file(dir / "stderr");
-  return r;
-}
-
-// Runs the program in `dir` (its working directory) and waits for it.
-CliResult cli(const std::vector<std::string>& args, const TempDir& dir,
-              bool with_plugin_path = true) {
-  return wait_cli(spawn_cli(args, dir, with_plugin_path), dir);
-}
 
 const std::string kExperiment = R"(experiment: cli_test
 seed: 1
@@ -111,7 +64,14 @@ TEST_F(Cli, UsageErrorsAreBadInput) {
   EXPECT_EQ(r.err, "error: A subcommand is required\nRun with --help for more information.\n");
   r = cli({"run", "exp.yaml", "--seed", "x"}, dir);
   EXPECT_EQ(r.code, 2);
-  EXPECT_EQ(r.err, "error: Could not convert: --seed = x\nRun with --help for more information.\n");
+  EXPECT_EQ(r.err, "error: --seed: expected an integer in [0, 18446744073709551615], got 'x'\n");
+  for (const char* seed : {"-1", "18446744073709551616", "1e3", "+5"}) {
+    r = cli({"run", "exp.yaml", "--seed", seed}, dir);
+    EXPECT_EQ(r.code, 2) << seed;
+    EXPECT_EQ(r.err, std::string("error: --seed: expected an integer in [0, "
+                                 "18446744073709551615], got '") +
+                         seed + "'\n");
+  }
 }
 
 TEST_F(Cli, PluginsListsTheTestPlugins) {

@@ -439,13 +439,14 @@ record: [c.value, s.total, nodot]
 }
 
 TEST(ExperimentLoader, MissingRequiredTopLevelKeys) {
-  EXPECT_EQ(load_error("seed: -1\n"),
-            "4 errors:\n"
-            "  exp.yaml:1:1: key 'experiment': missing required key (expected a string)\n"
-            "  exp.yaml:1:1: key 'duration_s': missing required key (expected a number)\n"
-            "  exp.yaml:1:1: key 'nodes': missing required key (expected a map of node names to "
-            "nodes)\n"
-            "  exp.yaml:1:7: key 'seed': expected an integer >= 0, got -1");
+  EXPECT_EQ(
+      load_error("seed: -1\n"),
+      "4 errors:\n"
+      "  exp.yaml:1:1: key 'experiment': missing required key (expected a string)\n"
+      "  exp.yaml:1:1: key 'duration_s': missing required key (expected a number)\n"
+      "  exp.yaml:1:1: key 'nodes': missing required key (expected a map of node names to "
+      "nodes)\n"
+      "  exp.yaml:1:7: key 'seed': expected an integer in [0, 18446744073709551615], got '-1'");
 }
 
 TEST(ExperimentLoader, MalformedShapes) {
@@ -464,8 +465,10 @@ record: s.sum
 )"),
             "10 errors:\n"
             "  exp.yaml:3:19: key 'plugin_libraries': expected a list of paths, got 'lib.so'\n"
-            "  exp.yaml:5:3: node 'a.b': invalid node name (no dots; 'harness' is reserved)\n"
-            "  exp.yaml:6:3: node 'harness': invalid node name (no dots; 'harness' is reserved)\n"
+            "  exp.yaml:5:3: node 'a.b': invalid node name (letters, digits, '_' and '-'; "
+            "'harness' is reserved)\n"
+            "  exp.yaml:6:3: node 'harness': invalid node name (letters, digits, '_' and '-'; "
+            "'harness' is reserved)\n"
             "  exp.yaml:7:6: node 'n': expected a map with 'plugin', 'params', 'inputs', got '3'\n"
             "  exp.yaml:8:32: node 'c', key 'params': expected a map of parameter names to values, "
             "got a list\n"

@@ -23,13 +23,20 @@ struct Diagnostic {
 class Diagnostics {
  public:
   void add(SourceLocation where, std::string node, std::string key, std::string message);
-  bool empty() const { return items_.empty(); }
+  bool empty() const { return total_ == 0; }
+  /// The first kMaxKept problems (memory stays bounded whatever the input).
   const std::vector<Diagnostic>& items() const { return items_; }
-  /// Throws InputError: the single message, or "N errors:" followed by one line per error.
+  std::size_t total() const { return total_; }
+  /// Throws InputError: the single message, or "N errors:" followed by one line per error in
+  /// file order, at most kMaxShown of them ("... and M more").
   void throw_if_any() const;
+
+  static constexpr std::size_t kMaxKept = 1000;
+  static constexpr std::size_t kMaxShown = 50;
 
  private:
   std::vector<Diagnostic> items_;
+  std::size_t total_ = 0;
 };
 
 /// The candidate closest to `name` by edit distance, or "" when none is reasonably close.

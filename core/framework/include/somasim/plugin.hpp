@@ -68,9 +68,16 @@ class NodeContext {
   /// Records a final figure in metrics.json under `name` (plugins report in finish()).
   void report_metric(const std::string& name, nlohmann::json value);
   /// A path inside the run folder's figures/ directory (created on demand).
+  /// `file_name` must be relative and stay inside (no "..", not absolute): else RunError.
   std::filesystem::path figure_path(const std::string& file_name);
   /// A path inside the run folder for other artefacts (e.g. learned state files).
+  /// `file_name` is relative to the run folder and may name sub-folders (created on demand);
+  /// a name that would leave the run folder (absolute, or with "..") is a RunError.
   std::filesystem::path output_path(const std::string& file_name);
+  /// The path in the run folder of the file named by the string parameter `param` (call it in
+  /// configure()): InputError naming the node and the parameter if it would leave the run
+  /// folder, so a bad name is found before the run, not when the file is written.
+  std::filesystem::path output_path_param(const std::string& param);
   /// Resolves a path given in a parameter: relative paths are relative to the experiment file.
   std::filesystem::path resolve_input_path(const std::string& path) const;
 

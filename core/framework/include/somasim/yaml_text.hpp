@@ -19,6 +19,8 @@ std::string describe_yaml(const YAML::Node& node);
 /// parsed (callers reject them with a precise message).
 std::optional<double> parse_double(const std::string& text);
 std::optional<std::int64_t> parse_int(const std::string& text);
+/// A seed: decimal digits only (no sign, no exponent), at most 2^64 - 1; nullopt otherwise.
+std::optional<std::uint64_t> parse_seed(const std::string& text);
 /// true/True/TRUE/false/False/FALSE.
 std::optional<bool> parse_bool(const std::string& text);
 
