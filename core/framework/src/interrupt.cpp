@@ -18,6 +18,7 @@ extern "C" void on_signal(int sig) {
 void install_interrupt_handler() {
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
+  std::signal(SIGHUP, on_signal);  // a closed terminal: flush like SIGTERM
 }
 void request_interrupt() {
   g_interrupted = 1;

@@ -41,8 +41,14 @@ double get_number(const json& obj, const char* key, const std::string& where,
 
 int get_int(const json& obj, const char* key, const std::string& where, const std::string& source) {
   const json& v = member(obj, key, where, source);
-  if (!v.is_number_integer())
-    fail(source, "'" + where + key + "' is " + v.dump() + ", expected an integer");
+  // Range-checked as a 64-bit value: 4294967304 must not read as 8.
+  if (!v.is_number_integer() ||
+      (v.is_number_unsigned() ? v.get<std::uint64_t>() > std::numeric_limits<int>::max()
+                              : (v.get<std::int64_t>() < std::numeric_limits<int>::min() ||
+                                 v.get<std::int64_t>() > std::numeric_limits<int>::max())))
+    fail(source, "'" + where + key + "' is " + v.dump() + ", expected an integer in [" +
+                     std::to_string(std::numeric_limits<int>::min()) + ", " +
+                     std::to_string(std::numeric_limits<int>::max()) + "]");
   return v.get<int>();
 }
 

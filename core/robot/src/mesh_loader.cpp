@@ -23,6 +23,10 @@ TriangleMesh load_triangle_mesh(const std::filesystem::path& file, const Eigen::
     for (unsigned v = 0; v < am->mNumVertices; ++v) {
       const aiVector3D& p = am->mVertices[v];
       mesh.vertices.emplace_back(p.x * scale.x(), p.y * scale.y(), p.z * scale.z());
+      if (!mesh.vertices.back().allFinite())
+        throw InputError(where + "vertex " + std::to_string(v) + " of mesh " + std::to_string(m) +
+                         " is not finite (" + std::to_string(p.x) + ", " + std::to_string(p.y) +
+                         ", " + std::to_string(p.z) + ")");
     }
     for (unsigned f = 0; f < am->mNumFaces; ++f) {
       const aiFace& face = am->mFaces[f];

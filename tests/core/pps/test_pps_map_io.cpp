@@ -126,7 +126,10 @@ TEST(PpsMapIo, CorruptedFiles) {
             "'model' is \"ttc_only\", expected \"d_ttc\" or \"distance_only\"");
   EXPECT_EQ(load_error(dir, mutated([](json& j) { j.erase("grid"); })), "missing key 'grid'");
   EXPECT_EQ(load_error(dir, mutated([](json& j) { j["grid"]["d_bins"] = 8.5; })),
-            "'grid.d_bins' is 8.5, expected an integer");
+            "'grid.d_bins' is 8.5, expected an integer in [-2147483648, 2147483647]");
+  // 2^32 + 8 must not be read as 8.
+  EXPECT_EQ(load_error(dir, mutated([](json& j) { j["grid"]["d_bins"] = 4294967304LL; })),
+            "'grid.d_bins' is 4294967304, expected an integer in [-2147483648, 2147483647]");
   EXPECT_EQ(load_error(dir, mutated([](json& j) { j["grid"]["d_max"] = -0.2; })),
             "invalid grid: D range [-0.1, -0.2] m must be finite with d_min < d_max");
   EXPECT_EQ(load_error(dir, mutated([](json& j) { j["parzen"]["anchor"] = "middle"; })),
@@ -236,7 +239,7 @@ TEST(PpsMapIo, SeveralBodyPartsErrors) {
   EXPECT_EQ(parts_error(dir, mutated_parts([](json& j) { j["parts"][1].erase("model"); })),
             "missing key 'parts[1].model'");
   EXPECT_EQ(parts_error(dir, mutated_parts([](json& j) { j["parts"][1]["grid"]["d_bins"] = 8.5; })),
-            "'parts[1].grid.d_bins' is 8.5, expected an integer");
+            "'parts[1].grid.d_bins' is 8.5, expected an integer in [-2147483648, 2147483647]");
   EXPECT_EQ(
       parts_error(dir, mutated_parts([](json& j) { j["parts"][0]["taxels"][1]["pos"].erase(0); })),
       "'parts[0].taxels[1].pos' has 31 entries, expected 32 (8 D bins x 4 TTC bins)");

@@ -117,6 +117,15 @@ TEST(BulletWorldErrors, PhysicsBlowUpStopsTheRunNamingTimeAndBody) {
             "(max_object_speed: 50 m/s)");
 }
 
+// A gravity 10^6 times Earth's: the joints run into Bullet's speed clamp within a few
+// steps; the blow-up check (below that clamp) must see it, not let the run "complete".
+TEST(BulletWorldErrors, HugeGravityIsCaughtAsABlowUp) {
+  Harness h(world_yaml("gravity: [0, 0, -1e7]"));
+  const std::string msg = message_of<RunError>([&] { h.step(100); });
+  EXPECT_EQ(msg.rfind("physics blow-up at t = ", 0), 0u) << msg;
+  EXPECT_NE(msg.find("rad/s (max_joint_speed: 50 rad/s)"), std::string::npos) << msg;
+}
+
 TEST(BulletWorldErrors, BadSpawnRequest) {
   Harness h(world_yaml());
   auto s = sphere(3, "flat", 0.0, Eigen::Vector3d(-1, 0, 0.5));
