@@ -1,8 +1,11 @@
 #include "commands.hpp"
 
+#include <stdlib.h>  // mkdtemp
+
 #include <cstdio>
 
 #include <fmt/format.h>
+#include <spdlog/sinks/null_sink.h>
 
 #include "somasim/diagnostics.hpp"
 #include "somasim/error.hpp"
@@ -11,6 +14,7 @@
 #include "somasim/plugin.hpp"
 #include "somasim/plugin_registry.hpp"
 #include "somasim/runner.hpp"
+#include "somasim/simulation.hpp"
 #include "somasim/yaml_text.hpp"
 
 namespace somasim::app {
@@ -55,6 +59,25 @@ void prepare_run_folder(const fs::path& dir, bool overwrite) {
   } else {
     throw InputError("cannot write into run folder '" + dir.string() + "'");
   }
+}
+
+// What validate adds to the file checks: every node's configure() (robots, learned maps,
+// meshes, scene files and output names are read and checked), into a scratch run folder that
+// is removed afterwards; nothing is stepped.
+void configure_without_running(const Experiment& exp) {
+  std::string scratch = (fs::temp_directory_path() / "somasim-validate-XXXXXX").string();
+  if (!mkdtemp(scratch.data())) throw RunError("cannot create a scratch folder for validate");
+  struct RemoveOnExit {
+    fs::path dir;
+    ~RemoveOnExit() {
+      std::error_code ec;
+      fs::remove_all(dir, ec);
+    }
+  } remove{scratch};
+  auto logger =
+      std::make_shared<spdlog::logger>("validate", std::make_shared<spdlog::sinks::null_sink_mt>());
+  Simulation sim(exp, scratch, logger);
+  sim.configure();
 }
 
 int bad_input(const std::exception& e) {
@@ -115,6 +138,7 @@ int cmd_validate(const CommonOptions& common, const std::string& file,
     LoadOptions options;
     options.overrides = parse_sets(sets);
     const Experiment exp = load_experiment_file(file, registry, options);
+    configure_without_running(exp);
     fmt::print("{}: ok ({} nodes, {} s at {} Hz)\n", file, exp.nodes.size(), exp.duration_s,
                exp.base_rate_hz);
     return kExitOk;

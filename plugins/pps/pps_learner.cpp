@@ -95,7 +95,12 @@ void PpsLearner::load(NodeContext& ctx, const std::string& file) {
   pps::PartsExpectations expect;
   for (const LearnerPart& p : parts_) expect.body_parts.push_back(p.name);
   expect.model = params_.model;
-  const std::vector<pps::LearnedState> states = pps::load_learned_parts(load_path_, expect);
+  std::vector<pps::LearnedState> states;
+  try {
+    states = pps::load_learned_parts(load_path_, expect);
+  } catch (const InputError& e) {
+    ctx.param_error("load", e.what());  // the file's own message, located at the parameter
+  }
   for (std::size_t i = 0; i < parts_.size(); ++i)
     parts_[i].learner =
         std::make_unique<pps::BodyPartLearner>(pps::make_learner(states[i], params_));

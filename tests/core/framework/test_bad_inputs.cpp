@@ -190,5 +190,28 @@ TEST_F(BadInputs, ADirectoryIsNotAnExperiment) {
   EXPECT_EQ(r.err, "error: experiment file 'folder.yaml' is a directory, not a YAML file\n");
 }
 
+// validate runs every node's configure(): bad names, robots and learned maps are found
+// before a run, and validate writes nothing where it was run.
+TEST_F(BadInputs, ValidateConfiguresEveryNode) {
+  write_file(dir / "exp.yaml", learner_with_save("../escaped.json"));
+  CliResult r = cli({"validate", "exp.yaml"}, dir);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(r.err,
+            "error: exp.yaml:8:20: node 'pps', key 'params.save': output file '../escaped.json' "
+            "climbs out with '..'; expected a file name relative to the run folder\n");
+  std::string with_load = learner_with_save("pps.json");
+  with_load.replace(with_load.find("{save:"), 6, "{load: missing.json, save:");
+  write_file(dir / "exp.yaml", with_load);
+  r = cli({"validate", "exp.yaml"}, dir);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(r.err.rfind("error: exp.yaml:8:20: node 'pps', key 'params.load': ", 0), 0u) << r.err;
+  write_file(dir / "exp.yaml", learner_with_save("pps.json"));
+  r = cli({"validate", "exp.yaml"}, dir);
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.out, "exp.yaml: ok (2 nodes, 0.1 s at 20 Hz)\n");
+  EXPECT_FALSE(fs::exists(dir / "pps.json"));
+  EXPECT_FALSE(fs::exists(dir / "escaped.json"));
+}
+
 }  // namespace
 }  // namespace somasim::test

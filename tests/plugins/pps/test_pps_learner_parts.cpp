@@ -291,8 +291,9 @@ TEST(PpsLearnerParts, AFileLackingAPartIsRejectedNamingFileAndParts) {
   learn_both(learnt);
   learnt.finish();
   const auto one = keep(learnt, "somasim_test_pps_parts_one.json");
+  const std::string where = "<inline>:7:56: node 'pps', key 'params.load': ";
   EXPECT_EQ(error_of([&] { Harness h(graph("palm patch", "load: " + one.string())); }),
-            one.string() +
+            where + one.string() +
                 ": has no body part \"palm\" (it has: patch), expected every body part of "
                 "\"palm patch\"");
   Harness learnt2(graph("palm patch"));
@@ -302,7 +303,7 @@ TEST(PpsLearnerParts, AFileLackingAPartIsRejectedNamingFileAndParts) {
   learnt2.finish();
   const auto two = keep(learnt2, "somasim_test_pps_parts_two.json");
   EXPECT_EQ(error_of([&] { Harness h(graph("palm hand patch", "load: " + two.string())); }),
-            two.string() +
+            where + two.string() +
                 ": has no body part \"hand\" (it has: palm patch), expected every body part of "
                 "\"palm hand patch\"");
   std::filesystem::remove(one);
