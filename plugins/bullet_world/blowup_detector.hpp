@@ -9,7 +9,7 @@
 namespace somasim::bullet_world {
 
 struct BlowupLimits {
-  double max_joint_speed = 50.0;   ///< [rad/s] (prismatic: [m/s]); < Bullet's 100 clamp
+  double max_joint_speed = 99.0;   ///< [rad/s] (prismatic: [m/s]); < Bullet's 100 clamp
   double max_object_speed = 50.0;  ///< [m/s]
   double max_penetration = 0.02;   ///< [m]
 };

@@ -107,12 +107,12 @@ PluginSpec BulletWorld::spec() {
       .describe("dynamic objects farther than this from the root are removed (fell away)");
   s.add_double("max_joint_speed")
       .unit_is("rad/s")
-      .defaults(50.0)
+      .defaults(99.0)
       .range(0, 99)
       .describe(
-          "blow-up bound: a faster joint stops the run (below Bullet's own clamp of joint "
-          "speeds at 100 rad/s, which a blown-up joint sits at; the iCub's joints stay under "
-          "10 rad/s)");
+          "blow-up bound: a faster joint stops the run (kept below Bullet's own clamp of joint "
+          "speeds at 100 rad/s, which a blown-up joint sits at; hard contacts can briefly "
+          "drive a light joint to ~70 rad/s)");
   s.add_double("max_object_speed")
       .unit_is("m/s")
       .defaults(50.0)

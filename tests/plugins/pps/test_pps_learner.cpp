@@ -156,7 +156,8 @@ TEST(PpsLearner, ALearnedFileForAnotherBodyPartIsRejected) {
     FAIL() << "expected an InputError";
   } catch (const somasim::InputError& e) {
     EXPECT_EQ(std::string(e.what()),
-              saved.string() + ": body part is \"patch\", expected \"palm\"");
+              "<inline>:6:57: node 'pps', key 'params.load': " + saved.string() +
+                  ": body part is \"patch\", expected \"palm\"");
   }
   std::filesystem::remove(saved);
 }
@@ -243,7 +244,8 @@ TEST(PpsLearner, ALearnedFileOfTheOtherModelIsRejected) {
     FAIL() << "expected an InputError";
   } catch (const somasim::InputError& e) {
     EXPECT_EQ(std::string(e.what()),
-              saved.string() + ": model is \"distance_only\", expected \"d_ttc\"");
+              "<inline>:6:58: node 'pps', key 'params.load': " + saved.string() +
+                  ": model is \"distance_only\", expected \"d_ttc\"");
   }
   Harness h(graph("model: distance_only, learn: false, load: " + saved.string()));
   set_patch(h);
