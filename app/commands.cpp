@@ -1,8 +1,7 @@
 #include "commands.hpp"
 
-#include <stdlib.h>  // mkdtemp
-
 #include <cstdio>
+#include <cstdlib>  // mkdtemp (POSIX)
 
 #include <fmt/format.h>
 #include <spdlog/sinks/null_sink.h>
@@ -66,7 +65,7 @@ void prepare_run_folder(const fs::path& dir, bool overwrite) {
 // is removed afterwards; nothing is stepped.
 void configure_without_running(const Experiment& exp) {
   std::string scratch = (fs::temp_directory_path() / "somasim-validate-XXXXXX").string();
-  if (!mkdtemp(scratch.data())) throw RunError("cannot create a scratch folder for validate");
+  if (!::mkdtemp(scratch.data())) throw RunError("cannot create a scratch folder for validate");
   struct RemoveOnExit {
     fs::path dir;
     ~RemoveOnExit() {
