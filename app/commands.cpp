@@ -80,11 +80,23 @@ void configure_without_running(const Experiment& exp) {
 }
 
 int bad_input(const std::exception& e) {
-  fmt::print(stderr, "error: {}\n", e.what());
+  fmt::print(stderr, "error: {}\n", printable(e.what()));
   return kExitBadInput;
 }
 
 }  // namespace
+
+std::string printable(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    const auto u = static_cast<unsigned char>(c);
+    if ((u < 0x20 && c != '\n') || u == 0x7f)
+      out += fmt::format("\\x{:02x}", u);
+    else
+      out += c;
+  }
+  return out;
+}
 
 int cmd_run(const CommonOptions& common, const RunArgs& args) {
   PluginRegistry registry(PluginRegistry::default_search_path(common.plugin_path));
@@ -118,10 +130,12 @@ int cmd_run(const CommonOptions& common, const RunArgs& args) {
       fmt::print("results: {}\n", out.string());
       return kExitOk;
     case RunStatus::BadInput:
-      fmt::print(stderr, "error: {}\n(partial results: {})\n", report.error, out.string());
+      fmt::print(stderr, "error: {}\n(partial results: {})\n", printable(report.error),
+                 out.string());
       return kExitBadInput;
     case RunStatus::Failed:
-      fmt::print(stderr, "run failed: {}\n(outputs flushed to {})\n", report.error, out.string());
+      fmt::print(stderr, "run failed: {}\n(outputs flushed to {})\n", printable(report.error),
+                 out.string());
       return kExitRunFailed;
     case RunStatus::Interrupted:
       fmt::print(stderr, "interrupted: outputs flushed to {}\n", out.string());

@@ -68,10 +68,10 @@ int main(int argc, char** argv) {
     if (*plugins_cmd) return cmd_plugins(common);
     if (*graph_cmd) return cmd_graph(common, graph_file);
   } catch (const somasim::InputError& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
+    std::fprintf(stderr, "error: %s\n", printable(e.what()).c_str());
     return kExitBadInput;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
+    std::fprintf(stderr, "error: %s\n", printable(e.what()).c_str());
     return kExitRunFailed;
   } catch (...) {
     std::fprintf(stderr, "error: unknown exception\n");

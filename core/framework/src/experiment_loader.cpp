@@ -50,8 +50,7 @@ class Loader {
     try {
       root = YAML::Load(text);
     } catch (const YAML::ParserException& e) {
-      throw InputError(fmt::format("{}:{}:{}: YAML syntax error: {}", locs_.file(), e.mark.line + 1,
-                                   e.mark.column + 1, e.msg));
+      throw InputError(syntax_error_message(text, e));
     }
     if (!root.IsMap()) {
       throw InputError(
@@ -70,6 +69,53 @@ class Loader {
   }
 
  private:
+  // yaml-cpp's messages for the two commonest slips point at the wrong place or say little: a
+  // tab in the indentation ("illegal map value"), and an unclosed bracket (found at the end).
+  std::string syntax_error_message(const std::string& text, const YAML::ParserException& e) {
+    int line = 1;
+    std::size_t line_start = 0;
+    struct Bracket {
+      char c;
+      int line, column;
+    };
+    std::vector<Bracket> open;  // unclosed [ and {
+    char quote = 0;
+    bool comment = false;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+      const char c = text[i];
+      if (c == '\n') {
+        ++line;
+        line_start = i + 1;
+        comment = false;
+        if (quote) quote = 0;  // flow scalars spanning lines are rare here; do not guess
+        continue;
+      }
+      const bool in_indent = text.find_first_not_of(" \t", line_start) >= i;
+      if (c == '\t' && in_indent && !quote)
+        return fmt::format("{}:{}:{}: a tab in the indentation; YAML indents with spaces only",
+                           locs_.file(), line, i - line_start + 1);
+      if (comment) continue;
+      if (quote) {
+        if (c == quote) quote = 0;
+      } else if (c == '\'' || c == '"') {
+        quote = c;
+      } else if (c == '#' && (i == line_start || text[i - 1] == ' ')) {
+        comment = true;
+      } else if (c == '[' || c == '{') {
+        open.push_back({c, line, static_cast<int>(i - line_start) + 1});
+      } else if (!open.empty() &&
+                 ((c == ']' && open.back().c == '[') || (c == '}' && open.back().c == '{'))) {
+        open.pop_back();
+      }
+    }
+    std::string msg = fmt::format("{}:{}:{}: YAML syntax error: {}", locs_.file(), e.mark.line + 1,
+                                  e.mark.column + 1, e.msg);
+    if (!open.empty())
+      msg += fmt::format(" (the '{}' opened at {}:{}:{} is never closed)", open.back().c,
+                         locs_.file(), open.back().line, open.back().column);
+    return msg;
+  }
+
   void error(const YAML::Node& at, const std::string& node, const std::string& key,
              const std::string& msg) {
     diags_.add(locs_.of(at), node, key, msg);
@@ -187,7 +233,8 @@ class Loader {
     // The name makes the default run folder (runs/NAME): nothing that could leave it.
     if (!exp_.name.empty() && !safe_file_name(exp_.name))
       error(root["experiment"], "", "experiment",
-            "expected a name of letters, digits, '_' and '-', got '" + exp_.name + "'");
+            "expected a name of letters, digits, '_' and '-', got " +
+                describe_yaml(root["experiment"]));
     if (const YAML::Node d = root["description"]; d)
       exp_.description = read_string(root, "description", "");
     exp_.seed = read_seed(root);
@@ -558,6 +605,9 @@ Experiment load_experiment_file(const fs::path& file, PluginRegistry& registry,
   if (!in) throw InputError("experiment file '" + file.string() + "' cannot be read");
   std::stringstream buffer;
   buffer << in.rdbuf();
+  if (buffer.str().find('\0') != std::string::npos)
+    throw InputError("experiment file '" + file.string() +
+                     "' is binary (it holds NUL bytes), not a YAML text file");
   const fs::path dir = fs::absolute(file).parent_path().lexically_normal();
   return load_experiment_text(buffer.str(), file.string(), dir, registry, options);
 }

@@ -11,8 +11,18 @@ namespace somasim {
 
 std::string describe_yaml(const YAML::Node& node) {
   switch (node.Type()) {
-    case YAML::NodeType::Scalar:
-      return "'" + node.Scalar() + "'";
+    case YAML::NodeType::Scalar: {
+      // Control bytes are shown escaped, never echoed raw to the terminal.
+      std::string shown;
+      for (const char c : node.Scalar()) {
+        const auto u = static_cast<unsigned char>(c);
+        if (u < 0x20 || u == 0x7f)
+          shown += fmt::format("\\x{:02x}", u);
+        else
+          shown += c;
+      }
+      return "'" + shown + "'";
+    }
     case YAML::NodeType::Sequence:
       return "a list";
     case YAML::NodeType::Map:

@@ -190,6 +190,39 @@ TEST_F(BadInputs, ADirectoryIsNotAnExperiment) {
   EXPECT_EQ(r.err, "error: experiment file 'folder.yaml' is a directory, not a YAML file\n");
 }
 
+TEST_F(BadInputs, SyntaxSlipsArePointedAtWhereTheyAre) {
+  write_file(dir / "tab.yaml", "experiment: x\nduration_s: 1\nnodes:\n\tc: {plugin: counter}\n");
+  CliResult r = cli({"validate", "tab.yaml"}, dir);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(r.err,
+            "error: tab.yaml:4:1: a tab in the indentation; YAML indents with spaces only\n");
+  write_file(dir / "br.yaml",
+             "experiment: x\nduration_s: 1\nnodes:\n  c: {plugin: counter, params: {offset: [1, "
+             "2, 3}}\nrecord: []\n");
+  r = cli({"validate", "br.yaml"}, dir);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(r.err,
+            "error: br.yaml:4:49: YAML syntax error: illegal flow end (the '[' opened at "
+            "br.yaml:4:41 is never closed)\n");
+}
+
+TEST_F(BadInputs, ControlBytesAndBinaryFilesAreNotEchoed) {
+  write_file(dir / "ctl.yaml", "experiment: x\x01\x1b[31m\nduration_s: 1\nnodes: {}\n");
+  CliResult r = cli({"validate", "ctl.yaml"}, dir);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(r.err,
+            "error: ctl.yaml:1:13: key 'experiment': expected a name of letters, digits, '_' and "
+            "'-', got 'x\\x01\\x1b[31m'\n");
+  write_file(dir / "bin.yaml", std::string("\x7f"
+                                           "ELF\x02\x01\x01\0\0\0garbage",
+                                           16));
+  r = cli({"validate", "bin.yaml"}, dir);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(r.err,
+            "error: experiment file 'bin.yaml' is binary (it holds NUL bytes), not a YAML text "
+            "file\n");
+}
+
 // validate runs every node's configure(): bad names, robots and learned maps are found
 // before a run, and validate writes nothing where it was run.
 TEST_F(BadInputs, ValidateConfiguresEveryNode) {
