@@ -1,4 +1,4 @@
-// The `somasim` program: exit codes, messages, subcommands, --set/--seed, SIGINT.
+// The `somasim` program: exit codes, messages, subcommands, --set/--seed, signals.
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -251,31 +251,36 @@ TEST_F(Cli, SetAndSeedApply) {
   EXPECT_NE(read_file(dir / "b" / "noise.value.csv"), read_file(dir / "c" / "noise.value.csv"));
 }
 
-TEST_F(Cli, SigintInterruptsAndFlushes) {
+// SIGINT (Ctrl-C), SIGTERM and SIGHUP (a closed terminal) all stop the run cleanly: whole CSV
+// rows, metrics.json with the status.
+TEST_F(Cli, SignalsInterruptAndFlush) {
   write_file(dir / "long.yaml", R"(experiment: long
 duration_s: 1.0e7
 nodes:
   c: {plugin: counter, rate_hz: 100, params: {start: 0}}
 record: [c.value]
 )");
-  const pid_t pid = spawn_cli({"run", "long.yaml", "--out", "out", "--quiet"}, dir);
-  // Wait until the run is under way (the handler is installed before the run folder is made),
-  // then a little more; the deadline only guards against a hang.
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-  while (!fs::exists(dir / "out" / "log.txt") && std::chrono::steady_clock::now() < deadline)
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  std::this_thread::sleep_for(std::chrono::milliseconds(500));
-  ASSERT_EQ(kill(pid, SIGINT), 0);
-  const CliResult r = wait_cli(pid, dir);
-  EXPECT_EQ(r.code, 130) << r.err;
-  EXPECT_EQ(r.err, "interrupted: outputs flushed to " + (dir / "out").string() + "\n");
-  const auto m = metrics("out");
-  EXPECT_EQ(m["status"], "interrupted");
-  EXPECT_EQ(m["stop_reason"], "interrupted");
-  EXPECT_GT(m["sim_time_s"].get<double>(), 0.0);
-  const std::string csv = read_file(dir / "out" / "c.value.csv");
-  ASSERT_GT(csv.size(), std::string("time [s],value\n").size());
-  EXPECT_EQ(csv.back(), '\n');  // the last row is complete
+  for (const int sig : {SIGINT, SIGTERM, SIGHUP}) {
+    const std::string out = "out" + std::to_string(sig);
+    const pid_t pid = spawn_cli({"run", "long.yaml", "--out", out, "--quiet"}, dir);
+    // Wait until the run is under way (the handler is installed before log.txt is made), then
+    // a little more; the deadline only guards against a hang.
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (!fs::exists(dir / out / "log.txt") && std::chrono::steady_clock::now() < deadline)
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+    ASSERT_EQ(kill(pid, sig), 0);
+    const CliResult r = wait_cli(pid, dir);
+    EXPECT_EQ(r.code, 130) << r.err << " signal " << sig;
+    EXPECT_EQ(r.err, "interrupted: outputs flushed to " + (dir / out).string() + "\n");
+    const auto m = metrics(out);
+    EXPECT_EQ(m["status"], "interrupted");
+    EXPECT_EQ(m["stop_reason"], "interrupted");
+    EXPECT_GT(m["sim_time_s"].get<double>(), 0.0);
+    const std::string csv = read_file(dir / out / "c.value.csv");
+    ASSERT_GT(csv.size(), std::string("time [s],value\n").size());
+    EXPECT_EQ(csv.back(), '\n');  // the last row is complete
+  }
 }
 
 }  // namespace
