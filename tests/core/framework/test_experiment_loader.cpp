@@ -333,7 +333,9 @@ TEST(ExperimentLoader, YamlSyntaxErrorHasLineAndColumn) {
     FAIL() << "no error";
   } catch (const InputError& e) {
     EXPECT_EQ(std::string(e.what()),
-              file.string() + ":5:1: YAML syntax error: end of map flow not found");
+              file.string() +
+                  ":5:1: YAML syntax error: end of map flow not found (the '{' opened at " +
+                  file.string() + ":4:6 is never closed)");
   }
 }
 
