@@ -80,23 +80,11 @@ void configure_without_running(const Experiment& exp) {
 }
 
 int bad_input(const std::exception& e) {
-  fmt::print(stderr, "error: {}\n", printable(e.what()));
+  fmt::print(stderr, "error: {}\n", escape_control_bytes(e.what()));
   return kExitBadInput;
 }
 
 }  // namespace
-
-std::string printable(const std::string& text) {
-  std::string out;
-  for (const char c : text) {
-    const auto u = static_cast<unsigned char>(c);
-    if ((u < 0x20 && c != '\n') || u == 0x7f)
-      out += fmt::format("\\x{:02x}", u);
-    else
-      out += c;
-  }
-  return out;
-}
 
 int cmd_run(const CommonOptions& common, const RunArgs& args) {
   PluginRegistry registry(PluginRegistry::default_search_path(common.plugin_path));
@@ -107,7 +95,7 @@ int cmd_run(const CommonOptions& common, const RunArgs& args) {
     if (!args.seed.empty()) {
       options.seed = parse_seed(args.seed);
       if (!options.seed)
-        throw InputError("--seed: expected an integer in [0, 18446744073709551615], got '" +
+        throw InputError(std::string("--seed: expected ") + kSeedExpectation + ", got '" +
                          args.seed + "'");
     }
     exp = load_experiment_file(args.file, registry, options);
@@ -130,12 +118,12 @@ int cmd_run(const CommonOptions& common, const RunArgs& args) {
       fmt::print("results: {}\n", out.string());
       return kExitOk;
     case RunStatus::BadInput:
-      fmt::print(stderr, "error: {}\n(partial results: {})\n", printable(report.error),
+      fmt::print(stderr, "error: {}\n(partial results: {})\n", escape_control_bytes(report.error),
                  out.string());
       return kExitBadInput;
     case RunStatus::Failed:
-      fmt::print(stderr, "run failed: {}\n(outputs flushed to {})\n", printable(report.error),
-                 out.string());
+      fmt::print(stderr, "run failed: {}\n(outputs flushed to {})\n",
+                 escape_control_bytes(report.error), out.string());
       return kExitRunFailed;
     case RunStatus::Interrupted:
       fmt::print(stderr, "interrupted: outputs flushed to {}\n", out.string());

@@ -18,10 +18,6 @@ struct CommonOptions {
   std::vector<std::filesystem::path> plugin_path;
 };
 
-/// `text` with control bytes (other than newlines) shown as \xNN: a message may quote
-/// input, and input must never drive the terminal.
-std::string printable(const std::string& text);
-
 struct RunArgs {
   std::string file;
   std::vector<std::string> sets;  ///< "path=value"

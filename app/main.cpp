@@ -5,6 +5,7 @@
 
 #include "commands.hpp"
 #include "somasim/error.hpp"
+#include "somasim/yaml_text.hpp"
 
 using namespace somasim::app;
 
@@ -68,10 +69,10 @@ int main(int argc, char** argv) {
     if (*plugins_cmd) return cmd_plugins(common);
     if (*graph_cmd) return cmd_graph(common, graph_file);
   } catch (const somasim::InputError& e) {
-    std::fprintf(stderr, "error: %s\n", printable(e.what()).c_str());
+    std::fprintf(stderr, "error: %s\n", somasim::escape_control_bytes(e.what()).c_str());
     return kExitBadInput;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "error: %s\n", printable(e.what()).c_str());
+    std::fprintf(stderr, "error: %s\n", somasim::escape_control_bytes(e.what()).c_str());
     return kExitRunFailed;
   } catch (...) {
     std::fprintf(stderr, "error: unknown exception\n");

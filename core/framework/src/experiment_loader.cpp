@@ -257,7 +257,7 @@ class Loader {
     const auto seed = n.IsScalar() ? somasim::parse_seed(n.Scalar()) : std::nullopt;
     if (!seed)
       error(n, "", "seed",
-            "expected an integer in [0, 18446744073709551615], got " + describe_yaml(n));
+            std::string("expected ") + kSeedExpectation + ", got " + describe_yaml(n));
     return seed.value_or(0);
   }
 

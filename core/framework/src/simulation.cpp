@@ -236,22 +236,25 @@ std::string containment_problem(const std::string& name) {
 }
 }  // namespace
 
-fs::path NodeContext::figure_path(const std::string& file_name) {
+namespace {
+// `dir / file_name` with its folders created; RunError naming the node if it would leave `dir`.
+fs::path contained_path(const fs::path& dir, const std::string& file_name, const std::string& node,
+                        const std::string& what) {
   if (const std::string why = containment_problem(file_name); !why.empty())
-    throw RunError("node '" + rt_.spec.name + "': figure file '" + file_name + "' " + why +
-                   "; it must stay inside the run folder's figures/");
-  const fs::path file = rt_.sim.out_dir_ / "figures" / fs::path(file_name).lexically_normal();
+    throw RunError("node '" + node + "': " + what + " '" + file_name + "' " + why +
+                   "; it must stay inside " + dir.string());
+  const fs::path file = dir / fs::path(file_name).lexically_normal();
   fs::create_directories(file.parent_path());
   return file;
 }
+}  // namespace
+
+fs::path NodeContext::figure_path(const std::string& file_name) {
+  return contained_path(rt_.sim.out_dir_ / "figures", file_name, rt_.spec.name, "figure file");
+}
 
 fs::path NodeContext::output_path(const std::string& file_name) {
-  if (const std::string why = containment_problem(file_name); !why.empty())
-    throw RunError("node '" + rt_.spec.name + "': output file '" + file_name + "' " + why +
-                   "; it must stay inside the run folder");
-  const fs::path file = rt_.sim.out_dir_ / fs::path(file_name).lexically_normal();
-  fs::create_directories(file.parent_path());
-  return file;
+  return contained_path(rt_.sim.out_dir_, file_name, rt_.spec.name, "output file");
 }
 
 fs::path NodeContext::output_path_param(const std::string& param) {

@@ -21,6 +21,12 @@ std::optional<double> parse_double(const std::string& text);
 std::optional<std::int64_t> parse_int(const std::string& text);
 /// A seed: decimal digits only (no sign, no exponent), at most 2^64 - 1; nullopt otherwise.
 std::optional<std::uint64_t> parse_seed(const std::string& text);
+/// What a seed must be, for messages.
+inline constexpr const char* kSeedExpectation = "an integer in [0, 18446744073709551615]";
+
+/// `text` with control bytes (other than newlines) shown as \xNN: messages quote input, and
+/// input must never drive the terminal.
+std::string escape_control_bytes(const std::string& text);
 /// true/True/TRUE/false/False/FALSE.
 std::optional<bool> parse_bool(const std::string& text);
 
