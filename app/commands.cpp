@@ -150,14 +150,32 @@ int cmd_validate(const CommonOptions& common, const std::string& file,
 
 int cmd_plugins(const CommonOptions& common) {
   PluginRegistry registry(PluginRegistry::default_search_path(common.plugin_path));
-  const auto all = registry.all();
-  for (const PluginSpec* spec : all) {
-    const std::string first_line = spec->doc().substr(0, spec->doc().find('\n'));
-    fmt::print("{:<22} {}\n", spec->name(), first_line);
+  const auto listing = registry.list();
+  for (const auto& l : listing) fmt::print("{:<22} {}\n", l.plugin.name, l.plugin.summary);
+  if (listing.empty()) fmt::print(stderr, "no plugins found; {}\n", registry.search_report());
+  // What was dlopen'ed to make this list (its constructors ran), and what was read from an index.
+  bool header = false;
+  for (const auto& c : registry.candidates()) {
+    if (c.rejected()) continue;
+    if (!header) fmt::print("\nlibraries:\n");
+    header = true;
+    fmt::print(
+        "  {}: {}\n", c.path.string(),
+        c.opened ? "loaded (dlopen'ed): " + c.index_note : std::string("index read, not loaded"));
   }
-  if (all.empty()) fmt::print(stderr, "no plugins found; {}\n", registry.search_report());
   for (const auto& c : registry.candidates())
-    if (!c.loaded) fmt::print(stderr, "rejected {}: {}\n", c.path.string(), c.rejection);
+    if (c.rejected()) fmt::print(stderr, "rejected {}: {}\n", c.path.string(), c.rejection);
+  return kExitOk;
+}
+
+int cmd_index_plugins(const std::vector<std::string>& libraries) {
+  for (const auto& lib : libraries) {
+    try {
+      index_plugin_library(lib);
+    } catch (const InputError& e) {
+      return bad_input(e);
+    }
+  }
   return kExitOk;
 }
 

@@ -30,7 +30,10 @@ struct RunArgs {
 int cmd_run(const CommonOptions& common, const RunArgs& args);
 int cmd_validate(const CommonOptions& common, const std::string& file,
                  const std::vector<std::string>& sets);
+/// Lists the plugins found, then each library and whether it was dlopen'ed to list it.
 int cmd_plugins(const CommonOptions& common);
+/// Writes `<library>.index` for each library (opens each one).
+int cmd_index_plugins(const std::vector<std::string>& libraries);
 int cmd_describe(const CommonOptions& common, const std::string& name);
 int cmd_graph(const CommonOptions& common, const std::string& file);
 

@@ -45,6 +45,10 @@ int main(int argc, char** argv) {
   auto* describe_cmd =
       plugins_cmd->add_subcommand("describe", "Parameters and ports of one plugin");
   describe_cmd->add_option("name", describe_name, "Plugin name")->required();
+  std::vector<std::string> index_libraries;
+  auto* index_cmd = plugins_cmd->add_subcommand(
+      "index", "Write the index file of plugin libraries (<library>.index; the build does this)");
+  index_cmd->add_option("libraries", index_libraries, "Plugin library files (.so)")->required();
 
   std::string graph_file;
   auto* graph_cmd = app.add_subcommand("graph", "Print an experiment's graph in Graphviz DOT");
@@ -66,6 +70,7 @@ int main(int argc, char** argv) {
     if (*run_cmd) return cmd_run(common, run);
     if (*validate_cmd) return cmd_validate(common, validate_file, validate_sets);
     if (*describe_cmd) return cmd_describe(common, describe_name);
+    if (*index_cmd) return cmd_index_plugins(index_libraries);
     if (*plugins_cmd) return cmd_plugins(common);
     if (*graph_cmd) return cmd_graph(common, graph_file);
   } catch (const somasim::InputError& e) {

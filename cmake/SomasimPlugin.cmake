@@ -16,5 +16,16 @@ function(somasim_add_plugin name)
     LIBRARY_OUTPUT_DIRECTORY ${SOMASIM_PLUGIN_BUILD_DIR}
     CXX_VISIBILITY_PRESET hidden
     INSTALL_RPATH "$ORIGIN/../..")
+  set_property(GLOBAL APPEND PROPERTY SOMASIM_PLUGIN_TARGETS ${target})
   install(TARGETS ${target} LIBRARY DESTINATION ${SOMASIM_PLUGIN_INSTALL_DIR})
+  # The index file lets somasim find the library's plugins without loading it (plugin_index.hpp).
+  if(SOMASIM_INDEX_COMMAND)
+    add_custom_command(TARGET ${target} POST_BUILD
+      COMMAND ${SOMASIM_INDEX_COMMAND} plugins index $<TARGET_FILE:${target}>
+      COMMENT "Indexing plugin library ${name}" VERBATIM)
+    if(TARGET somasim)
+      add_dependencies(${target} somasim)
+    endif()
+    install(FILES $<TARGET_FILE:${target}>.index DESTINATION ${SOMASIM_PLUGIN_INSTALL_DIR})
+  endif()
 endfunction()

@@ -6,12 +6,26 @@
 #include <algorithm>
 #include <cstdlib>
 #include <cstring>
+#include <set>
 
 #include "somasim/error.hpp"
 #include "somasim/plugin.hpp"
 
 namespace somasim {
 namespace fs = std::filesystem;
+
+namespace {
+
+bool provides(const LibraryCandidate& c, const std::string& name) {
+  return std::any_of(c.plugins.begin(), c.plugins.end(),
+                     [&](const IndexedPlugin& p) { return p.name == name; });
+}
+
+std::string first_line(const std::string& text) {
+  return text.substr(0, text.find('\n'));
+}
+
+}  // namespace
 
 PluginRegistry::PluginRegistry(std::vector<fs::path> search_path)
     : search_path_(std::move(search_path)) {}
@@ -34,16 +48,15 @@ std::vector<fs::path> PluginRegistry::default_search_path(const std::vector<fs::
   return path;
 }
 
-LibraryCandidate PluginRegistry::open(const fs::path& file) {
-  LibraryCandidate c;
-  c.path = file;
+void PluginRegistry::open(LibraryCandidate& c) {
+  if (c.opened || c.rejected()) return;
   // RTLD_LOCAL keeps plugins' symbols apart; libraries stay loaded for the process lifetime
   // because plugin instances and their specs' factories point into them.
-  void* handle = dlopen(file.c_str(), RTLD_NOW | RTLD_LOCAL);
+  void* handle = dlopen(c.path.c_str(), RTLD_NOW | RTLD_LOCAL);
   if (!handle) {
     const char* err = dlerror();
     c.rejection = std::string("cannot be loaded: ") + (err ? err : "unknown dlopen error");
-    return c;
+    return;
   }
   using EntryFn = const PluginLibraryEntry* (*)();
   auto entry_fn = reinterpret_cast<EntryFn>(dlsym(handle, SOMASIM_PLUGIN_ENTRY_SYMBOL));
@@ -51,7 +64,7 @@ LibraryCandidate PluginRegistry::open(const fs::path& file) {
     c.rejection =
         "no entry point '" SOMASIM_PLUGIN_ENTRY_SYMBOL "' (is SOMASIM_PLUGIN_LIBRARY missing?)";
     dlclose(handle);
-    return c;
+    return;
   }
   const PluginLibraryEntry* entry = entry_fn();
   if (!entry || !entry->interface_version ||
@@ -60,29 +73,49 @@ LibraryCandidate PluginRegistry::open(const fs::path& file) {
                   (entry && entry->interface_version ? entry->interface_version : "?") +
                   "', this somasim needs '" + kPluginInterfaceVersion + "' (rebuild the plugin)";
     dlclose(handle);
-    return c;
+    return;
   }
   PluginRegistrar registrar;
   entry->register_plugins(registrar);
-  c.loaded = true;
+  c.opened = true;
+  opened_order_.push_back(c.path);
+  // What the library really provides replaces what its index said.
+  c.plugins.clear();
   for (auto& spec : registrar.specs()) {
-    c.plugins.push_back(spec.name());
-    spec.library_path = file.string();
-    // First found wins: the search path's order is the user's order of preference.
-    plugins_.try_emplace(spec.name(), std::move(spec));
+    c.plugins.push_back({spec.name(), first_line(spec.doc())});
+    spec.library_path = c.path.string();
+    c.specs.try_emplace(spec.name(), std::move(spec));
+  }
+}
+
+LibraryCandidate PluginRegistry::inspect(const fs::path& file) {
+  LibraryCandidate c;
+  c.path = file;
+  if (auto indexed = read_plugin_index(file, c.index_note)) {
+    c.indexed = true;
+    c.plugins = std::move(*indexed);
+  } else {
+    open(c);  // no usable index: open it to see what it provides
   }
   return c;
 }
 
 void PluginRegistry::load_library(const fs::path& file) {
-  for (const auto& c : candidates_)
-    if (c.path == file && c.loaded) return;
   if (!fs::exists(file)) throw InputError("plugin library '" + file.string() + "' does not exist");
-  LibraryCandidate c = open(file);
-  const bool ok = c.loaded;
+  LibraryCandidate c;
+  c.path = file;
+  const auto known = std::find_if(candidates_.begin(), candidates_.end(),
+                                  [&](const LibraryCandidate& k) { return k.path == file; });
+  if (known != candidates_.end()) {
+    c = std::move(*known);
+    candidates_.erase(known);
+  }
+  c.index_note = "loaded explicitly";
+  open(c);
   const std::string why = c.rejection;
-  candidates_.push_back(std::move(c));
-  if (!ok) throw InputError("plugin library '" + file.string() + "' rejected: " + why);
+  // Explicit libraries go first: find() resolves in candidate order.
+  candidates_.insert(candidates_.begin(), std::move(c));
+  if (!why.empty()) throw InputError("plugin library '" + file.string() + "' rejected: " + why);
 }
 
 void PluginRegistry::scan() {
@@ -98,30 +131,40 @@ void PluginRegistry::scan() {
     for (const auto& f : files) {
       const bool seen = std::any_of(candidates_.begin(), candidates_.end(),
                                     [&](const LibraryCandidate& c) { return c.path == f; });
-      if (!seen) candidates_.push_back(open(f));
+      if (!seen) candidates_.push_back(inspect(f));
     }
   }
 }
 
 const PluginSpec* PluginRegistry::find(const std::string& name) {
-  auto it = plugins_.find(name);
-  if (it != plugins_.end()) return &it->second;
   scan();
-  it = plugins_.find(name);
-  return it == plugins_.end() ? nullptr : &it->second;
+  for (auto& c : candidates_) {
+    if (c.rejected() || !provides(c, name)) continue;
+    open(c);
+    const auto it = c.specs.find(name);
+    if (it != c.specs.end()) return &it->second;
+    // A stale index named it but the library does not provide it: keep looking.
+  }
+  return nullptr;
 }
 
-std::vector<const PluginSpec*> PluginRegistry::all() {
+std::vector<PluginRegistry::Listing> PluginRegistry::list() {
   scan();
-  std::vector<const PluginSpec*> out;
-  for (const auto& [name, spec] : plugins_) out.push_back(&spec);
+  std::vector<Listing> out;
+  std::set<std::string> seen;
+  for (const auto& c : candidates_) {
+    if (c.rejected()) continue;
+    for (const auto& p : c.plugins)
+      if (seen.insert(p.name).second) out.push_back({p, &c});
+  }
+  std::sort(out.begin(), out.end(),
+            [](const Listing& a, const Listing& b) { return a.plugin.name < b.plugin.name; });
   return out;
 }
 
 std::vector<std::string> PluginRegistry::names() {
-  scan();
   std::vector<std::string> out;
-  for (const auto& [name, spec] : plugins_) out.push_back(name);
+  for (const auto& l : list()) out.push_back(l.plugin.name);
   return out;
 }
 
@@ -141,7 +184,7 @@ std::string PluginRegistry::search_report() {
     for (const auto& c : candidates_) {
       if (c.path.parent_path() != dir) continue;
       found += (found.empty() ? "" : ", ") + c.path.filename().string() +
-               (c.loaded ? "" : " [rejected: " + c.rejection + "]");
+               (c.rejected() ? " [rejected: " + c.rejection + "]" : "");
     }
     out += found.empty() ? " (no .so files);" : " (" + found + ");";
   }
@@ -150,10 +193,16 @@ std::string PluginRegistry::search_report() {
                                      [&](const fs::path& d) { return c.path.parent_path() == d; });
     if (!in_path)
       out += " " + c.path.string() +
-             (c.loaded ? " (loaded explicitly);" : " [rejected: " + c.rejection + "];");
+             (c.rejected() ? " [rejected: " + c.rejection + "];" : " (loaded explicitly);");
   }
   if (!out.empty() && out.back() == ';') out.pop_back();
   return out;
+}
+
+void index_plugin_library(const fs::path& library) {
+  PluginRegistry registry({});
+  registry.load_library(library);
+  write_plugin_index(library, registry.candidates().front().plugins);
 }
 
 }  // namespace somasim

@@ -4,6 +4,8 @@
 
 #include <chrono>
 #include <fstream>
+#include <set>
+#include <stdexcept>
 
 #include <fmt/format.h>
 #include <spdlog/sinks/basic_file_sink.h>
@@ -71,11 +73,53 @@ class ProgressLine {
 void write_metrics(const fs::path& file, const nlohmann::ordered_json& metrics) {
   std::ofstream out(file);
   out << metrics.dump(2) << "\n";
+  out.close();
+  if (!out) throw std::runtime_error("cannot write " + file.string());
 }
+
+/// The plugin libraries the experiment's nodes come from, for the log.
+std::string plugin_libraries(const Experiment& exp) {
+  std::set<std::string> libs;
+  for (const auto& n : exp.nodes)
+    if (n.spec && !n.spec->library_path.empty()) libs.insert(n.spec->library_path);
+  std::string out;
+  for (const auto& l : libs) out += (out.empty() ? "" : ", ") + l;
+  return out.empty() ? "none" : out;
+}
+
+RunReport run_in_folder(const Experiment& exp, const RunOptions& options);
 
 }  // namespace
 
 RunReport run_experiment(const Experiment& exp, const RunOptions& options) {
+  try {
+    return run_in_folder(exp, options);
+  } catch (const std::exception& e) {
+    // The run folder, the log or metrics.json itself failed: still report it, and leave a
+    // metrics.json saying so if the folder can take one.
+    RunReport report;
+    report.status = RunStatus::Failed;
+    report.error = e.what();
+    report.stop_reason = report.error;
+    report.metrics = {{"experiment", exp.name},
+                      {"status", run_status_name(report.status)},
+                      {"error", report.error},
+                      {"stop_reason", report.stop_reason},
+                      {"seed", exp.seed}};
+    std::error_code ec;
+    if (fs::is_directory(options.out_dir, ec)) {
+      try {
+        write_metrics(options.out_dir / "metrics.json", report.metrics);
+      } catch (const std::exception&) {  // nothing more can be saved; the error is returned
+      }
+    }
+    return report;
+  }
+}
+
+namespace {
+
+RunReport run_in_folder(const Experiment& exp, const RunOptions& options) {
   fs::create_directories(options.out_dir);
   {
     std::ofstream resolved(options.out_dir / "experiment.resolved.yaml");
@@ -85,6 +129,7 @@ RunReport run_experiment(const Experiment& exp, const RunOptions& options) {
   logger->info("experiment '{}' from {}, seed {}, {} s at {} Hz, output in {}", exp.name,
                exp.file.string(), exp.seed, exp.duration_s, exp.base_rate_hz,
                options.out_dir.string());
+  logger->info("plugin libraries: {}", plugin_libraries(exp));
   RunReport report;
   const auto wall_start = Clock::now();
   auto wall = [&] { return std::chrono::duration<double>(Clock::now() - wall_start).count(); };
@@ -155,5 +200,7 @@ RunReport run_experiment(const Experiment& exp, const RunOptions& options) {
   logger->flush();
   return report;
 }
+
+}  // namespace
 
 }  // namespace somasim

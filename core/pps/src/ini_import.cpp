@@ -13,6 +13,10 @@ namespace somasim::pps {
 
 namespace {
 
+// Bounds that keep every conversion to int defined; real files have a few hundred taxels.
+constexpr int kMaxTaxels = 1'000'000;
+constexpr int kMaxTaxelId = 1'000'000'000;
+
 struct Section {
   std::string name;
   int line = 0;
@@ -123,8 +127,13 @@ LearnedState build(const std::string& path, const Section& s, const ParzenSpec& 
   }
   if (!s.bins) fail(path, s.line, "section [" + s.name + "] has no 'binsNum' line");
   const double bd = (*s.bins)[0], bt = (*s.bins)[1];
-  if (bd != std::floor(bd) || bt != std::floor(bt))
-    fail(path, s.line, "section [" + s.name + "]: binsNum must be integers");
+  const auto in_range = [](double v) {
+    return v == std::floor(v) && v >= 1 && v <= kMaxBinsPerAxis;
+  };
+  if (!in_range(bd) || !in_range(bt))
+    fail(path, s.line,
+         "section [" + s.name + "]: binsNum must be integers in [1, " +
+             std::to_string(kMaxBinsPerAxis) + "]");
   st.grid.d_bins = static_cast<int>(bd);
   st.grid.ttc_bins = static_cast<int>(bt);
   if (const std::string e = st.grid.validate(); !e.empty())
@@ -135,8 +144,10 @@ LearnedState build(const std::string& path, const Section& s, const ParzenSpec& 
     std::string id_tok;
     is >> id_tok;
     double idv = 0;
-    if (!parse_double(id_tok, idv) || idv != std::floor(idv))
-      fail(path, line, "taxel id '" + id_tok + "' is not an integer");
+    if (!parse_double(id_tok, idv) || idv != std::floor(idv) || std::abs(idv) > kMaxTaxelId)
+      fail(path, line,
+           "taxel id '" + id_tok + "' is not an integer in [-" + std::to_string(kMaxTaxelId) +
+               ", " + std::to_string(kMaxTaxelId) + "]");
     std::string rest;
     std::getline(is, rest);
     std::vector<std::vector<std::string>> groups;
@@ -162,6 +173,11 @@ LearnedState build(const std::string& path, const Section& s, const ParzenSpec& 
 std::vector<LearnedState> import_taxels2d_ini(const std::string& path, const ParzenSpec& parzen) {
   std::ifstream in(path);
   if (!in) throw InputError(path + ": cannot open for reading");
+  return parse_taxels2d_ini(in, path, parzen);
+}
+
+std::vector<LearnedState> parse_taxels2d_ini(std::istream& in, const std::string& path,
+                                             const ParzenSpec& parzen) {
   std::vector<Section> sections;
   std::string raw;
   int line = 0;
@@ -189,8 +205,10 @@ std::vector<LearnedState> import_taxels2d_ini(const std::string& path, const Par
       s.modality = rest;
     } else if (key == "nTaxels") {
       double v = 0;
-      if (!parse_double(rest, v) || v < 0 || v != std::floor(v))
-        fail(path, line, "'nTaxels' is '" + rest + "', expected a non-negative integer");
+      if (!parse_double(rest, v) || v < 0 || v != std::floor(v) || v > kMaxTaxels)
+        fail(path, line,
+             "'nTaxels' is '" + rest + "', expected an integer in [0, " +
+                 std::to_string(kMaxTaxels) + "]");
       s.n_taxels = static_cast<int>(v);
     } else if (key == "ext") {
       s.ext = parse_list(path, line, key, rest, s.modality == "1D" ? 2 : 4);

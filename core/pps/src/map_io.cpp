@@ -5,6 +5,7 @@
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
@@ -244,14 +245,19 @@ void check_model(const LearnedState& s, const std::optional<PpsModel>& expected,
                      "\"");
 }
 
+template <typename Input>
+json parse_json(Input&& in, const std::string& source) {
+  try {
+    return json::parse(std::forward<Input>(in));
+  } catch (const json::parse_error& e) {
+    throw InputError(source + ": not valid JSON (" + e.what() + ")");
+  }
+}
+
 json read_json_file(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw InputError(path + ": cannot open for reading");
-  try {
-    return json::parse(in);
-  } catch (const json::parse_error& e) {
-    throw InputError(path + ": not valid JSON (" + e.what() + ")");
-  }
+  return parse_json(in, path);
 }
 
 void write_json_file(const json& j, const std::string& path) {
@@ -356,6 +362,11 @@ LearnedState load_learned_state(const std::string& path, const LoadExpectations&
 std::vector<LearnedState> load_learned_parts(const std::string& path,
                                              const PartsExpectations& expect) {
   return parts_from_json(read_json_file(path), path, expect);
+}
+
+std::vector<LearnedState> parse_learned_parts(const std::string& text, const std::string& source,
+                                              const PartsExpectations& expect) {
+  return parts_from_json(parse_json(text, source), source, expect);
 }
 
 }  // namespace somasim::pps

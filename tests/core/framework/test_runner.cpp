@@ -46,6 +46,20 @@ nlohmann::json metrics_of(const fs::path& run_dir) {
   return nlohmann::json::parse(read_file(run_dir / "metrics.json"));
 }
 
+TEST(Runner, AFailureOutsideTheNodesStillLeavesMetrics) {
+  // log.txt cannot be created (a folder is in its place): the run fails before any node runs,
+  // and says why in the report and in metrics.json.
+  TempDir dir;
+  fs::create_directories(dir / "run" / "log.txt");
+  const RunResult r = run(dir, kExperiment);
+  EXPECT_EQ(r.report.status, RunStatus::Failed);
+  EXPECT_NE(r.report.error.find("log.txt"), std::string::npos) << r.report.error;
+  const auto m = metrics_of(r.dir);
+  EXPECT_EQ(m["status"], "failed");
+  EXPECT_EQ(m["error"], r.report.error);
+  EXPECT_EQ(m["experiment"], "runner_test");
+}
+
 TEST(Runner, RunFolderHasEveryOutput) {
   TempDir dir;
   const RunResult r = run(dir, kExperiment);

@@ -2,21 +2,31 @@
 /// @file
 /// Finds plugin shared libraries on a search path, checks their interface version and
 /// exposes the plugins they register. Built-in plugins are found the same way as users'.
+///
+/// Libraries are loaded (dlopen'ed) only when needed: a library with a valid index file
+/// (plugin_index.hpp) is opened when one of its plugins is looked up; a library without one is
+/// opened when the search path is scanned, to see what it provides.
 #include <filesystem>
 #include <map>
 #include <string>
 #include <vector>
 
+#include "somasim/plugin_index.hpp"
 #include "somasim/plugin_spec.hpp"
 
 namespace somasim {
 
-/// What the loader found in one file, for error messages and `somasim plugins`.
+/// What the registry knows of one library file, for lookups, errors and `somasim plugins`.
 struct LibraryCandidate {
   std::filesystem::path path;
-  bool loaded = false;
-  std::string rejection;             ///< why it was rejected (empty when loaded)
-  std::vector<std::string> plugins;  ///< names it provides (when loaded)
+  bool indexed = false;                     ///< its plugins are known from its index file
+  bool opened = false;                      ///< dlopen'ed (and accepted) in this process
+  std::string rejection;                    ///< why it was rejected (empty unless rejected)
+  std::string index_note;                   ///< why its index was not used (when not indexed)
+  std::vector<IndexedPlugin> plugins;       ///< what it provides (from the index or the library)
+  std::map<std::string, PluginSpec> specs;  ///< its registered plugins (once opened)
+
+  bool rejected() const { return !rejection.empty(); }
 };
 
 class PluginRegistry {
@@ -32,18 +42,26 @@ class PluginRegistry {
   static std::vector<std::filesystem::path> default_search_path(
       const std::vector<std::filesystem::path>& cli_paths);
 
-  /// Loads one library explicitly (e.g. `plugin_libraries:` in an experiment). Throws
-  /// InputError saying why it was rejected.
+  /// Loads one library explicitly (e.g. `plugin_libraries:` in an experiment); its plugins take
+  /// precedence over the search path's. Throws InputError saying why it was rejected.
   void load_library(const std::filesystem::path& file);
 
-  /// The plugin registered under `name`, or nullptr (after scanning the search path).
+  /// The plugin registered under `name`, or nullptr. The first library (explicit ones, then the
+  /// search path in order) that provides it wins; only that library is opened.
   const PluginSpec* find(const std::string& name);
-  /// Every plugin found (scans the search path).
-  std::vector<const PluginSpec*> all();
-  /// Names of all plugins found.
+  /// Every plugin found, each once (as find() would resolve it), without opening indexed
+  /// libraries: name, summary and library.
+  struct Listing {
+    IndexedPlugin plugin;
+    const LibraryCandidate* library = nullptr;
+  };
+  std::vector<Listing> list();
+  /// Names of all plugins found (no library is opened for this beyond the scan).
   std::vector<std::string> names();
   /// "searched: DIR (...), DIR (...)": what was looked at and why candidates were rejected.
   std::string search_report();
+  /// The libraries dlopen'ed so far, in the order they were opened.
+  std::vector<std::filesystem::path> opened_libraries() const { return opened_order_; }
 
   const std::vector<std::filesystem::path>& search_path() const { return search_path_; }
   const std::vector<LibraryCandidate>& candidates() {
@@ -53,11 +71,16 @@ class PluginRegistry {
 
  private:
   void scan();
-  LibraryCandidate open(const std::filesystem::path& file);
+  LibraryCandidate inspect(const std::filesystem::path& file);
+  void open(LibraryCandidate& c);
   std::vector<std::filesystem::path> search_path_;
   std::vector<LibraryCandidate> candidates_;
-  std::map<std::string, PluginSpec> plugins_;
+  std::vector<std::filesystem::path> opened_order_;
   bool scanned_ = false;
 };
+
+/// Opens `library` and writes its index file (what `somasim plugins index` does). Throws
+/// InputError when the library is rejected or the index cannot be written.
+void index_plugin_library(const std::filesystem::path& library);
 
 }  // namespace somasim

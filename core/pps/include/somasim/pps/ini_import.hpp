@@ -7,6 +7,7 @@
 /// (ignored), then N lines `ID (nd*nt positive counts) (nd*nt negative counts)`, D-major. Sections
 /// with `modality 1D` are skipped. The files carry no taxel geometry: positions are set to 0 and
 /// normals to +z (link frame); take the geometry from the skinGui position files.
+#include <istream>
 #include <string>
 #include <vector>
 
@@ -18,5 +19,9 @@ namespace somasim::pps {
 /// released code's). InputError naming file:line and the problem.
 std::vector<LearnedState> import_taxels2d_ini(const std::string& path,
                                               const ParzenSpec& parzen = ParzenSpec::code());
+
+/// The same from a stream; `source` names it in messages.
+std::vector<LearnedState> parse_taxels2d_ini(std::istream& in, const std::string& source,
+                                             const ParzenSpec& parzen = ParzenSpec::code());
 
 }  // namespace somasim::pps

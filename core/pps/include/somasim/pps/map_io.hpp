@@ -81,5 +81,8 @@ LearnedState load_learned_state(const std::string& path, const LoadExpectations&
 /// Reads `path` as several body parts (see parts_from_json).
 std::vector<LearnedState> load_learned_parts(const std::string& path,
                                              const PartsExpectations& expect = {});
+/// The same from the text of such a file; `source` names it in messages.
+std::vector<LearnedState> parse_learned_parts(const std::string& text, const std::string& source,
+                                              const PartsExpectations& expect = {});
 
 }  // namespace somasim::pps
