@@ -9,6 +9,7 @@ packages=(
   libeigen3-dev libyaml-cpp-dev libspdlog-dev libfmt-dev nlohmann-json3-dev libcli11-dev
   libopencv-dev libbullet-dev libosmesa6-dev libassimp-dev
   libgtest-dev libgmock-dev libbenchmark-dev clang-format clang-tidy
+  clang libclang-rt-14-dev
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -168,8 +168,12 @@ void BulletWorld::configure(NodeContext& ctx) {
   filter_ = std::make_unique<SelfCollisionFilter>(*model_, locked);
   physics_->set_pair_filter(filter_.get());
   shapes_ = std::make_unique<ShapeStore>();
-  robot_ = std::make_unique<RobotMultiBody>(model_, physics_->world(), *shapes_, q0,
-                                            LinkMaterial{friction, 0.0, restitution}, locked);
+  try {
+    robot_ = std::make_unique<RobotMultiBody>(model_, physics_->world(), *shapes_, q0,
+                                              LinkMaterial{friction, 0.0, restitution}, locked);
+  } catch (const InputError& e) {  // e.g. a collision mesh that cannot be used
+    robot::robot_error(ctx, e.what());
+  }
   const MotorGains gains{ctx.param<double>("position_gain"), ctx.param<double>("velocity_gain"),
                          ctx.param<double>("max_torque")};
   motors_ = std::make_unique<JointMotors>(*robot_, physics_->world(), gains, dt_, q0);
@@ -185,7 +189,13 @@ void BulletWorld::configure(NodeContext& ctx) {
       ctx.param_error("scene", e.what());
     }
     for (const robot::SceneObject& so : objects) {
-      const int i = objects_->add(so.spawn, 0.0);
+      int i = -1;
+      try {
+        i = objects_->add(so.spawn, 0.0);
+      } catch (const InputError& e) {  // e.g. a mesh that cannot be used
+        ctx.param_error(
+            "scene", fmt::format("{}: object '{}': {}", so.where.str(), so.spawn.name, e.what()));
+      }
       const RobotOverlap overlap =
           deepest_robot_overlap(physics_->world(), *robot_, objects_->body(i));
       if (overlap.link >= 0 && overlap.depth > spawn_tolerance_)

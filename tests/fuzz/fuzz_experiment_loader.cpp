@@ -1,5 +1,5 @@
 // libFuzzer target: experiment YAML text through the whole loader (syntax, schema, plugin
-// parameters against the real built-in plugins, wiring). Bad input must be an InputError;
+// parameters against the test plugins, wiring). Bad input must be an InputError;
 // anything else escaping (or a sanitizer report) is a finding.
 #include <cstddef>
 #include <cstdint>

@@ -23,6 +23,12 @@ std::shared_ptr<const RobotModel> experiment_robot(NodeContext& ctx, const std::
   });
 }
 
+void robot_error(NodeContext& ctx, const std::string& message, const std::string& param) {
+  const RobotSpec& spec = ctx.robot_spec(param);
+  throw InputError(spec.where.str() + ": robot '" + spec.name + "' (used by node '" +
+                   ctx.node_name() + "'): " + message);
+}
+
 void check_joint_state(const NodeContext& ctx, const RobotModel& model,
                        const Eigen::VectorXd& position, const Eigen::VectorXd& velocity) {
   const auto n = model.num_dofs();

@@ -19,6 +19,12 @@ const std::vector<std::string> kTopKeys = {"robot",   "extends", "set",    "root
 }  // namespace
 
 std::string read_text(const fs::path& path, bool& ok) {
+  // As for experiment files: the YAML parser's memory grows ~200x the file size.
+  constexpr std::uintmax_t kMaxRobotFileBytes = 2u << 20;
+  std::error_code ec;
+  if (const auto size = fs::file_size(path, ec); !ec && size > kMaxRobotFileBytes)
+    throw InputError("robot description '" + path.string() + "' is " + std::to_string(size) +
+                     " bytes; at most " + std::to_string(kMaxRobotFileBytes) + " (2 MiB) are read");
   std::ifstream in(path, std::ios::binary);
   ok = static_cast<bool>(in) && fs::is_regular_file(path);
   std::stringstream s;

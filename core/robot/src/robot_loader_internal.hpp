@@ -29,7 +29,8 @@ inline std::string in_quotes(const std::string& s) {
   return "'" + s + "'";
 }
 
-// Reads `path` into a string; `ok` says whether it was a readable regular file.
+// Reads `path` into a string; `ok` says whether it was a readable regular file. InputError
+// for files over 2 MiB.
 std::string read_text(const fs::path& path, bool& ok);
 
 struct LinkBuild {

@@ -183,6 +183,16 @@ TEST_F(BadInputs, TickCountsThatOverflowAreRefused) {
             "at most 9.0072e+15 (2^53) can run\n");
 }
 
+TEST_F(BadInputs, HugeFilesAreRefusedBeforeTheyAreRead) {
+  write_file(dir / "huge.yaml", kCounter);
+  fs::resize_file(dir / "huge.yaml", 3u << 20);  // 3 MiB (sparse: NUL bytes after the text)
+  const CliResult r = cli({"validate", "huge.yaml"}, dir);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(r.err,
+            "error: experiment file 'huge.yaml' is 3145728 bytes; at most 2097152 (2 MiB) are "
+            "read\n");
+}
+
 TEST_F(BadInputs, ADirectoryIsNotAnExperiment) {
   fs::create_directories(dir / "folder.yaml");
   const CliResult r = cli({"run", "folder.yaml"}, dir);

@@ -80,6 +80,18 @@ links:
             "capsule, mesh");
 }
 
+TEST_F(RobotLoader, HugeFilesAreRefusedBeforeTheyAreRead) {
+  write("huge.yaml", "robot: r\n");
+  fs::resize_file(dir_ / "huge.yaml", 3u << 20);
+  try {
+    load_robot_model(dir_ / "huge.yaml");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), "robot description '" + (dir_ / "huge.yaml").string() +
+                                         "' is 3145728 bytes; at most 2097152 (2 MiB) are read");
+  }
+}
+
 TEST_F(RobotLoader, MeshFileMissingOrUnreadable) {
   EXPECT_EQ(error("robot: r\nlinks:\n  root:\n    visual: [{type: mesh, file: meshes/hand.stl}]\n"),
             "robot.yaml:4:33: link 'root', key 'visual[0].file': mesh file 'meshes/hand.stl' "

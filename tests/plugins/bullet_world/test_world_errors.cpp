@@ -27,6 +27,31 @@ std::string message_of(F&& f) {
 
 }  // namespace
 
+TEST(BulletWorldErrors, AMeshThatCannotBeUsedIsNamedWithItsNodeKeyAndObject) {
+  const TempFile mesh("bad.obj", "v 0 0 0\nv 1 0 0\nv 0 nan 0\nf 1 2 3\n");
+  const TempFile scene("scene.yaml", "objects:\n  - name: cup\n    shape: mesh\n    file: " +
+                                         mesh.str() + "\n    xyz: [0.3, 0, 0.5]\n");
+  const std::string msg =
+      message_of<InputError>([&] { Harness h(world_yaml("scene: " + scene.str())); });
+  EXPECT_EQ(msg, "<inline>:6:21: node 'world', key 'params.scene': " + scene.str() +
+                     ":2:5: object 'cup': mesh file '" + mesh.str() +
+                     "': vertex 2 of mesh 0 is not finite (0.000000, nan, 0.000000)");
+}
+
+TEST(BulletWorldErrors, ARobotMeshThatCannotBeUsedIsNamedWithItsRobotEntry) {
+  const TempFile mesh("bad.obj", "v 0 0 0\nv 1 0 0\nv 0 inf 0\nf 1 2 3\n");
+  const TempFile robot("robot.yaml",
+                       "robot: r\nlinks:\n  root:\n    mass: 1\n"
+                       "    collision: [{type: mesh, file: " +
+                           mesh.str() + "}]\n");
+  const std::string msg = message_of<InputError>([&] {
+    Harness h("base_rate_hz: 1000\nrobots: {r: " + robot.str() +
+              "}\nnodes:\n  world: {plugin: bullet_world}\n");
+  });
+  EXPECT_EQ(msg, "<inline>:2:13: robot 'r' (used by node 'world'): mesh file '" + mesh.str() +
+                     "': vertex 2 of mesh 0 is not finite (0.000000, inf, 0.000000)");
+}
+
 TEST(BulletWorldErrors, UnknownObjectTypeInTheScene) {
   const TempFile scene("scene.yaml",
                        "objects:\n"

@@ -22,6 +22,12 @@ ParamSpec& add_robot_param(PluginSpec& spec, const std::string& name = "robot");
 std::shared_ptr<const RobotModel> experiment_robot(NodeContext& ctx,
                                                    const std::string& param = "robot");
 
+/// Throws InputError located at the `robots:` entry of the robot named by `param`, naming the
+/// robot and the node: for problems of the robot's files found by a plugin (e.g. a mesh that
+/// the physics or the renderer cannot use).
+[[noreturn]] void robot_error(NodeContext& ctx, const std::string& message,
+                              const std::string& param = "robot");
+
 /// RunError unless a joint state has one position and one velocity per dof of `model` and
 /// finite positions (for plugins that read a JointState input).
 void check_joint_state(const NodeContext& ctx, const RobotModel& model,
