@@ -12,6 +12,8 @@
 #include "somasim/interrupt.hpp"
 #include "somasim/plugin.hpp"
 #include "somasim/plugin_registry.hpp"
+#include "somasim/pps/ini_export.hpp"
+#include "somasim/pps/learned_file.hpp"
 #include "somasim/runner.hpp"
 #include "somasim/simulation.hpp"
 #include "somasim/yaml_text.hpp"
@@ -217,6 +219,26 @@ int cmd_describe(const CommonOptions& common, const std::string& name) {
     if (!any) fmt::print("  (none)\n");
   }
   return kExitOk;
+}
+
+int cmd_pps_convert(const std::string& input, const std::string& output) {
+  try {
+    const pps::LearnedFile file = pps::load_learned_file(input, {}, pps::ParzenSpec::code());
+    pps::save_learned_file(file.parts, output);
+    std::string parts;
+    for (const auto& p : file.parts)
+      parts +=
+          fmt::format("{}{} ({} taxels)", parts.empty() ? "" : ", ", p.body_part, p.taxels.size());
+    fmt::print("{} -> {}: {}\n", input, output, parts);
+    if (!file.has_geometry && !pps::is_ini_learned_file(output))
+      fmt::print(stderr,
+                 "note: {} holds no taxel geometry; {} has positions 0 and normals +z. Load the "
+                 ".ini itself into pps_learner to take the geometry from the skin.\n",
+                 input, output);
+    return kExitOk;
+  } catch (const InputError& e) {
+    return bad_input(e);
+  }
 }
 
 int cmd_graph(const CommonOptions& common, const std::string& file) {

@@ -35,6 +35,8 @@ int cmd_plugins(const CommonOptions& common);
 /// Writes `<library>.index` for each library (opens each one).
 int cmd_index_plugins(const std::vector<std::string>& libraries);
 int cmd_describe(const CommonOptions& common, const std::string& name);
+/// Reads a learned map (.json or .ini) and writes it in the format `output`'s extension names.
+int cmd_pps_convert(const std::string& input, const std::string& output);
 int cmd_graph(const CommonOptions& common, const std::string& file);
 
 }  // namespace somasim::app

@@ -50,6 +50,14 @@ int main(int argc, char** argv) {
       "index", "Write the index file of plugin libraries (<library>.index; the build does this)");
   index_cmd->add_option("libraries", index_libraries, "Plugin library files (.so)")->required();
 
+  auto* pps_cmd = app.add_subcommand("pps", "PPS learned-map files");
+  pps_cmd->require_subcommand(1);
+  std::string convert_in, convert_out;
+  auto* convert_cmd = pps_cmd->add_subcommand(
+      "convert", "Convert a learned map between somasim JSON and the iCub's taxels2D .ini");
+  convert_cmd->add_option("input", convert_in, "Learned map (.json or .ini)")->required();
+  convert_cmd->add_option("output", convert_out, "File to write (.json or .ini)")->required();
+
   std::string graph_file;
   auto* graph_cmd = app.add_subcommand("graph", "Print an experiment's graph in Graphviz DOT");
   graph_cmd->add_option("file", graph_file, "Experiment YAML")->required();
@@ -73,6 +81,7 @@ int main(int argc, char** argv) {
     if (*index_cmd) return cmd_index_plugins(index_libraries);
     if (*plugins_cmd) return cmd_plugins(common);
     if (*graph_cmd) return cmd_graph(common, graph_file);
+    if (*convert_cmd) return cmd_pps_convert(convert_in, convert_out);
   } catch (const somasim::InputError& e) {
     std::fprintf(stderr, "error: %s\n", somasim::escape_control_bytes(e.what()).c_str());
     return kExitBadInput;

@@ -7,8 +7,9 @@
 #include "learner_params.hpp"
 #include "learner_report.hpp"
 #include "somasim/diagnostics.hpp"
+#include "somasim/pps/ini_export.hpp"
+#include "somasim/pps/learned_file.hpp"
 #include "somasim/pps/learned_state.hpp"
-#include "somasim/pps/map_io.hpp"
 
 namespace somasim::plugins {
 
@@ -26,13 +27,14 @@ PluginSpec PpsLearner::spec() {
   s.add_string("load")
       .defaults(std::string(""))
       .describe(
-          "learned-state file to start from (somasim JSON, holding every body part); relative "
-          "to the experiment");
+          "learned-state file to start from, relative to the experiment: somasim JSON (holding "
+          "every body part), or the iCub's taxels2D_*.ini (sections named as the body parts; "
+          "(D, TTC) counts only, taxel geometry taken from the 'taxels' input by id)");
   s.add_string("save")
       .defaults(std::string("pps_map.json"))
       .describe(
-          "file name of the learned state written into the run folder, all parts in one file "
-          "('' = none)");
+          "file name of the learned state written into the run folder, all parts in one file: "
+          "*.json (somasim) or *.ini (the iCub's taxels2D format, d_ttc model only) ('' = none)");
   s.add_list("figure_taxels")
       .defaults(std::vector<double>{})
       .describe(
@@ -68,6 +70,10 @@ void PpsLearner::configure(NodeContext& ctx) {
   learn_ = ctx.param<bool>("learn");
   save_name_ = ctx.param<std::string>("save");
   if (!save_name_.empty()) save_path_ = ctx.output_path_param("save");
+  if (!save_name_.empty() && pps::is_ini_learned_file(save_name_) &&
+      params_.model != pps::PpsModel::kDTtc)
+    ctx.param_error("save", "an .ini file holds (D, TTC) maps; this learner's model is " +
+                                std::string(pps::to_string(params_.model)) + " (save as .json)");
   min_samples_ = ctx.param<int>("min_samples");
   figure_taxels_ = ctx.param<std::vector<double>>("figure_taxels");
   for (double e : ctx.param<std::vector<double>>("snapshot_events"))
@@ -95,15 +101,45 @@ void PpsLearner::load(NodeContext& ctx, const std::string& file) {
   pps::PartsExpectations expect;
   for (const LearnerPart& p : parts_) expect.body_parts.push_back(p.name);
   expect.model = params_.model;
-  std::vector<pps::LearnedState> states;
+  pps::LearnedFile loaded;
   try {
-    states = pps::load_learned_parts(load_path_, expect);
+    loaded = pps::load_learned_file(load_path_, expect, params_.parzen);
   } catch (const InputError& e) {
     ctx.param_error("load", e.what());  // the file's own message, located at the parameter
   }
-  for (std::size_t i = 0; i < parts_.size(); ++i)
-    parts_[i].learner =
-        std::make_unique<pps::BodyPartLearner>(pps::make_learner(states[i], params_));
+  for (std::size_t i = 0; i < parts_.size(); ++i) {
+    if (loaded.has_geometry)
+      parts_[i].learner =
+          std::make_unique<pps::BodyPartLearner>(pps::make_learner(loaded.parts[i], params_));
+    else
+      parts_[i].needs_geometry = std::make_unique<pps::LearnedState>(std::move(loaded.parts[i]));
+  }
+}
+
+// A learner from a file without geometry: its taxels in the input's order, posed as the input's.
+void PpsLearner::add_geometry(LearnerPart& p, const SkinPart& part) {
+  pps::LearnedState& st = *p.needs_geometry;
+  const std::size_t n = part.taxel_ids.size();
+  const bool has_link = part.positions_link.size() == n && part.normals_link.size() == n;
+  std::vector<pps::LearnedTaxel> ordered;
+  for (std::size_t k = 0; k < n; ++k) {
+    const auto it = std::find_if(st.taxels.begin(), st.taxels.end(),
+                                 [&](const auto& t) { return t.id == part.taxel_ids[k]; });
+    if (it == st.taxels.end())
+      throw InputError(load_path_ + ": body part \"" + p.name + "\" has no taxel " +
+                       std::to_string(part.taxel_ids[k]) +
+                       ", expected every taxel id of the 'taxels' input");
+    ordered.push_back(*it);
+    ordered.back().pose_link.position = has_link ? part.positions_link[k] : part.positions[k];
+    ordered.back().pose_link.normal = has_link ? part.normals_link[k] : part.normals[k];
+  }
+  if (ordered.size() != st.taxels.size())
+    throw InputError(load_path_ + ": body part \"" + p.name + "\" has " +
+                     std::to_string(st.taxels.size()) + " taxels, expected " + std::to_string(n) +
+                     " (the 'taxels' input's count)");
+  st.taxels = std::move(ordered);
+  p.learner = std::make_unique<pps::BodyPartLearner>(pps::make_learner(st, params_));
+  p.needs_geometry.reset();
 }
 
 // First step: finds each part in the 'taxels' input, checks a loaded learner against it (or
@@ -114,6 +150,7 @@ void PpsLearner::bind_parts(NodeContext& ctx) {
   for (LearnerPart& p : parts_) {
     const SkinPart& part = input_part(ctx, p);
     const std::size_t n = part.taxel_ids.size();
+    if (p.needs_geometry) add_geometry(p, part);
     if (p.learner) {
       const auto& taxels = p.learner->taxels();
       if (taxels.size() != n)
@@ -266,7 +303,7 @@ void PpsLearner::finish(NodeContext& ctx) {
   if (!save_name_.empty()) {
     std::vector<pps::LearnedState> states;
     for (const LearnerPart& p : parts_) states.push_back(pps::learned_state(*p.learner));
-    pps::save_learned_parts(states, save_path_.string());
+    pps::save_learned_file(states, save_path_.string());
   }
   for (LearnerPart& p : parts_) draw_landscapes(ctx, *p.learner, figure_taxels_, "", true_offsets_);
 }

@@ -27,6 +27,7 @@ class PpsLearner : public Plugin {
   void parse_body_parts(NodeContext& ctx);
   void load(NodeContext& ctx, const std::string& file);
   void bind_parts(NodeContext& ctx);
+  void add_geometry(LearnerPart& p, const SkinPart& part);
   void check_figure_taxels(NodeContext& ctx) const;
   const SkinPart& input_part(NodeContext& ctx, LearnerPart& part) const;
   void learn_from_events(NodeContext& ctx);

@@ -229,7 +229,8 @@ std::vector<LearnedState> parse_taxels2d_ini(std::istream& in, const std::string
   std::vector<LearnedState> out;
   for (const Section& s : sections) {
     if (s.modality == "1D") continue;
-    if (s.modality != "2D")
+    // Files from before the 1D maps existed (2014) have no modality line: they are 2D.
+    if (s.modality != "2D" && !s.modality.empty())
       fail(path, s.line,
            "section [" + s.name + "] has modality '" + s.modality +
                "', expected 2D (1D sections are skipped)");

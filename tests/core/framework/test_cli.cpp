@@ -285,3 +285,28 @@ record: [c.value]
 
 }  // namespace
 }  // namespace somasim::test
+
+namespace somasim::test {
+namespace {
+
+TEST(PpsConvert, IniToJsonAndBack) {
+  TempDir dir;
+  write_file(dir / "in.ini",
+             "[right_hand]\nmodality 2D\nnTaxels 1\next (-0.1 0.2 0 1.2)\nbinsNum (2 1)\n"
+             "101 (1 2) (3 4)\n");
+  CliResult r = cli({"pps", "convert", "in.ini", "map.json"}, dir, false);
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.out, "in.ini -> map.json: right_hand (1 taxels)\n");
+  EXPECT_NE(r.err.find("note: in.ini holds no taxel geometry"), std::string::npos) << r.err;
+  r = cli({"pps", "convert", "map.json", "out.ini"}, dir, false);
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(read_file(dir / "out.ini"),
+            "[right_hand]\nmodality 2D\nnTaxels 1\next (-0.1 0.2 0 1.2)\nbinsNum (2 1)\n"
+            "101 (1 2) (3 4)\n");
+  r = cli({"pps", "convert", "missing.ini", "x.json"}, dir, false);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(r.err, "error: missing.ini: cannot open for reading\n");
+}
+
+}  // namespace
+}  // namespace somasim::test

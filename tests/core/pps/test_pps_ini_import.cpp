@@ -1,8 +1,10 @@
+#include <sstream>
 #include <string>
 
 #include <gtest/gtest.h>
 
 #include "somasim/error.hpp"
+#include "somasim/pps/ini_export.hpp"
 #include "somasim/pps/ini_import.hpp"
 #include "temp_dir.hpp"
 
@@ -112,4 +114,39 @@ TEST(PpsIniImport, BadFiles) {
   } catch (const somasim::InputError& e) {
     EXPECT_EQ(std::string(e.what()), p + ": no 2D section found, expected at least one");
   }
+}
+
+// What write_taxels2d_ini writes, import_taxels2d_ini reads back exactly (grid, ids, counts).
+TEST(PpsIniExport, RoundTrip) {
+  TempDir dir;
+  const auto parts = import_taxels2d_ini(dir.file("good.ini", kGood));
+  std::ostringstream text;
+  write_taxels2d_ini(parts, text);
+  const auto again = import_taxels2d_ini(dir.file("again.ini", text.str()));
+  ASSERT_EQ(again.size(), parts.size());
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    EXPECT_EQ(again[i].body_part, parts[i].body_part);
+    EXPECT_EQ(again[i].grid, parts[i].grid);
+    ASSERT_EQ(again[i].taxels.size(), parts[i].taxels.size());
+    for (std::size_t k = 0; k < parts[i].taxels.size(); ++k) {
+      EXPECT_EQ(again[i].taxels[k].id, parts[i].taxels[k].id);
+      EXPECT_EQ(again[i].taxels[k].pos, parts[i].taxels[k].pos);
+      EXPECT_EQ(again[i].taxels[k].neg, parts[i].taxels[k].neg);
+    }
+  }
+  EXPECT_EQ(
+      text.str().rfind(
+          "[r_hand]\nmodality 2D\nnTaxels 2\next (-0.1 0.2 0 1.2)\nbinsNum (8 4)\n101 (0 1 2 ", 0),
+      0u)
+      << text.str();
+}
+
+TEST(PpsIniImport, SectionsWithoutModalityAre2D) {
+  TempDir dir;
+  const auto parts =
+      import_taxels2d_ini(dir.file("old.ini",
+                                   "[right_hand]\nnTaxels 1\nextX ( -0.1 0.2 )\nextY ( 0 1.2 )\n"
+                                   "binsNum ( 2 1 )\n101 (1 2) (3 4)\n"));
+  ASSERT_EQ(parts.size(), 1u);
+  EXPECT_EQ(parts[0].taxels[0].neg, (std::vector<somasim::pps::TaxelMap::Count>{3, 4}));
 }

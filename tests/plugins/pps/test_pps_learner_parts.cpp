@@ -284,6 +284,53 @@ TEST(PpsLearnerParts, ReloadsAMultiPartFile) {
   std::filesystem::remove(saved);
 }
 
+// The iCub's .ini format: saved and loaded back (taxel geometry from the 'taxels' input, parts in
+// another order), the maps and the metrics are the same as from the JSON file.
+TEST(PpsLearnerParts, RoundTripThroughTheIcubIniFormat) {
+  auto with_ini = [](std::string g) {
+    g.replace(g.find("save: learned.json"), 18, "save: learned.ini");
+    return g;
+  };
+  Harness learnt(with_ini(graph("palm patch")));
+  set_skin(learnt);
+  set_truth(learnt, -0.02, 0.013);
+  learn_both(learnt);
+  learnt.finish();
+  const auto saved = std::filesystem::temp_directory_path() / "somasim_test_pps_parts.ini";
+  std::filesystem::copy_file(learnt.out_dir() / "learned.ini", saved,
+                             std::filesystem::copy_options::overwrite_existing);
+  Harness h(graph("patch palm", "learn: false, load: " + saved.string()));
+  set_skin(h);
+  set_truth(h, -0.02, 0.013);
+  learn_both(h);
+  h.finish();
+  EXPECT_EQ(h.metric("pps", "events"), 0);
+  EXPECT_EQ(h.metric("pps", "offset_error_max_m"), learnt.metric("pps", "offset_error_max_m"));
+  const auto parts = somasim::pps::load_learned_parts((h.out_dir() / "learned.json").string());
+  ASSERT_EQ(parts.size(), 2u);
+  EXPECT_EQ(parts[0].body_part, "patch");
+  EXPECT_EQ(parts[0].taxels[1].pose_link.position.x(), 0.05);  // from the input, not the file
+  ASSERT_EQ(parts[1].taxels.size(), 3u);
+  // The .ini holds the learnt counts exactly.
+  Harness json(graph("palm patch"));
+  set_skin(json);
+  set_truth(json, -0.02, 0.013);
+  learn_both(json);
+  json.finish();
+  const auto direct = somasim::pps::load_learned_parts((json.out_dir() / "learned.json").string());
+  EXPECT_EQ(parts[1].taxels[1].pos, direct[0].taxels[1].pos);
+  EXPECT_EQ(parts[0].taxels[0].neg, direct[1].taxels[0].neg);
+  // A distance-only learner cannot save an .ini; a missing part names what the file has.
+  EXPECT_EQ(error_of([&] { Harness d(with_ini(graph("palm", "model: distance_only"))); }),
+            "<inline>:6:39: node 'pps', key 'params.save': an .ini file holds (D, TTC) maps; "
+            "this learner's model is distance_only (save as .json)");
+  EXPECT_EQ(error_of([&] { Harness m(graph("hand", "load: " + saved.string())); }),
+            "<inline>:7:56: node 'pps', key 'params.load': " + saved.string() +
+                ": has no body part \"hand\" (it has: palm patch), expected every body part of "
+                "\"hand\"");
+  std::filesystem::remove(saved);
+}
+
 TEST(PpsLearnerParts, AFileLackingAPartIsRejectedNamingFileAndParts) {
   Harness learnt(graph("patch"));
   set_skin(learnt);

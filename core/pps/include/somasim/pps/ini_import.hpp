@@ -5,8 +5,9 @@
 /// Per section `[part]`: `modality 2D`, `nTaxels N`, `ext (dmin dmax tmin tmax)` (older files:
 /// `extX (dmin dmax)` and `extY (tmin tmax)`), `binsNum (nd nt)`, `size`, `Mapping (...)`
 /// (ignored), then N lines `ID (nd*nt positive counts) (nd*nt negative counts)`, D-major. Sections
-/// with `modality 1D` are skipped. The files carry no taxel geometry: positions are set to 0 and
-/// normals to +z (link frame); take the geometry from the skinGui position files.
+/// with `modality 1D` are skipped; a section without a modality line (2014 files) is 2D. The files
+/// carry no taxel geometry: positions are set to 0 and normals to +z (link frame); take the
+/// geometry from the skinGui position files.
 #include <istream>
 #include <string>
 #include <vector>
