@@ -197,6 +197,7 @@ int cmd_describe(const CommonOptions& common, const std::string& name) {
       type = fmt::format("a list of {} numbers", *p.list_size);
     if (p.type == ParamType::StringList && p.list_size)
       type = fmt::format("a list of {} words", *p.list_size);
+    if (p.map_as_text) type += " ('name: value, ...') or a map";
     std::string line = fmt::format("  {:<24} {}", p.name, type);
     if (!p.unit.empty()) line += " [" + p.unit + "]";
     line += p.default_value ? ", default " + param_value_str(*p.default_value) : ", required";

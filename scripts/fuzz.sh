@@ -7,7 +7,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds="${1:-600}"
 dir="${SOMASIM_SAN_BUILD_DIR:-build-san}"
-CC=clang CXX=clang++ cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+CC=clang CXX=clang++ cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Sanitize \
   -DSOMASIM_FUZZ=ON -DSOMASIM_BUILD_BENCHMARKS=OFF >/dev/null
 targets=(fuzz_experiment_loader fuzz_robot_loader fuzz_learned_map fuzz_ini_import)
 cmake --build "$dir" --parallel "$(nproc)" --target "${targets[@]}" somasim_test_plugins

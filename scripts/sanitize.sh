@@ -9,7 +9,7 @@ seconds="${SOMASIM_FUZZ_SECONDS:-20}"
 dir="${SOMASIM_SAN_BUILD_DIR:-build-san}"
 
 echo "== building with ASan+UBSan and the fuzz targets ($dir/)"
-CC=clang CXX=clang++ cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+CC=clang CXX=clang++ cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Sanitize \
   -DSOMASIM_FUZZ=ON -DSOMASIM_BUILD_BENCHMARKS=OFF -DSOMASIM_FUZZ_SECONDS="$seconds" >/dev/null
 cmake --build "$dir" --parallel "$(nproc)"
 

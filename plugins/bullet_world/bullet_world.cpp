@@ -20,6 +20,7 @@ PluginSpec BulletWorld::spec() {
                "static/dynamic/kinematic objects and contacts. One fixed step per tick.");
   robot::add_robot_param(s);
   s.add_string("initial_posture_deg")
+      .accepts_map_as_text()
       .defaults(std::string(""))
       .describe(
           "initial joint values held by the motors, 'joint: value, ...' in degrees (prismatic: "

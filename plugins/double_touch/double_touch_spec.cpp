@@ -112,6 +112,7 @@ PluginSpec DoubleTouch::spec() {
       .range(0.0, 45.0)
       .describe("approach direction drawn within this angle of the taxel normal");
   s.add_string("home_posture_deg")
+      .accepts_map_as_text()
       .defaults(std::string(kDefaultHome))
       .describe("'joint: value, ...' [deg]: posture regularisation and the final posture");
   s.add_double("move_duration")

@@ -16,6 +16,7 @@ PluginSpec BelievedKinematics::spec() {
                "(forward kinematics of the robot model).");
   robot::add_robot_param(s);
   s.add_string("joint_offsets_deg")
+      .accepts_map_as_text()
       .defaults(std::string(""))
       .describe(
           "believed-kinematics error, 'joint: value, ...' [deg] (prismatic: [m]) added to the "

@@ -194,8 +194,24 @@ std::optional<ParamValue> to_param_value(const YAML::Node& node, const ParamSpec
     }
     return list;
   }
+  if (spec.type == ParamType::String && spec.map_as_text && node.IsMap()) {
+    std::string text;
+    for (const auto& kv : node) {
+      if (!kv.first.IsScalar() || !kv.second.IsScalar()) {
+        problem = "expected " + expectation(spec) +
+                  " or a map of names to values, got a map "
+                  "holding " +
+                  describe_yaml(kv.first.IsScalar() ? kv.second : kv.first);
+        return std::nullopt;
+      }
+      text += (text.empty() ? "" : ", ") + kv.first.Scalar() + ": " + kv.second.Scalar();
+    }
+    return text;
+  }
   if (!node.IsScalar()) {
     problem = "expected " + expectation(spec) + ", got " + got;
+    if (spec.type == ParamType::String && node.IsMap())
+      problem += " (a text value holding ':' needs quotes: 'a: 1, b: 2')";
     return std::nullopt;
   }
   const std::string& text = node.Scalar();

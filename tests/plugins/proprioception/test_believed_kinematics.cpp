@@ -187,6 +187,24 @@ TEST(BelievedKinematics, EncoderNoiseIsGaussianPerRevoluteJointAndSeeded) {
   EXPECT_NE(believed_q(3, 5), believed_q(4, 5));
 }
 
+// The offsets as a YAML map (what `--set 'nodes.bk.params.joint_offsets_deg={l_elbow: -4}'`
+// gives) mean the same as the quoted text.
+TEST(BelievedKinematics, OffsetsAsAMapOrAsText) {
+  auto believed_q = [](const std::string& offsets) {
+    Harness h(believed("joint_offsets_deg: " + offsets));
+    feed(h, posture());
+    EXPECT_TRUE(h.step());
+    return Eigen::VectorXd(h.output<JointState>("bk.state").position);
+  };
+  const Eigen::VectorXd text = believed_q("'l_elbow: -4, r_shoulder_roll: 2.5'");
+  EXPECT_EQ(believed_q("{l_elbow: -4, r_shoulder_roll: 2.5}"), text);
+  EXPECT_NE(text, believed_q("''"));
+  EXPECT_EQ(config_error(believed("joint_offsets_deg: {l_elbow: [1, 2]}")),
+            location() +
+                ": node 'bk', key 'params.joint_offsets_deg': expected a string or a map of "
+                "names to values, got a map holding a list");
+}
+
 TEST(BelievedKinematics, UnknownJointSuggestsTheNearest) {
   EXPECT_EQ(config_error(believed("joint_offsets_deg: 'l_elbw: 3'")),
             location() +

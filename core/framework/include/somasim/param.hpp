@@ -37,6 +37,9 @@ struct ParamSpec {
   std::optional<double> min, max;           ///< inclusive range for numbers (each list element)
   std::vector<std::string> choices;  ///< allowed values of a String (StringList element), if fixed
   std::optional<std::size_t> list_size;  ///< required length of a list
+  /// A String that is "name: value" text (e.g. joint angles): a flat YAML map is accepted too and
+  /// read as the text "k1: v1, k2: v2" (so `--set 'P={a: 1, b: 2}'` works without inner quotes).
+  bool map_as_text = false;
   std::string doc;
 
   ParamSpec& unit_is(std::string u) {
@@ -58,6 +61,10 @@ struct ParamSpec {
   }
   ParamSpec& one_of(std::vector<std::string> c) {
     choices = std::move(c);
+    return *this;
+  }
+  ParamSpec& accepts_map_as_text() {
+    map_as_text = true;
     return *this;
   }
   ParamSpec& size(std::size_t n) {
