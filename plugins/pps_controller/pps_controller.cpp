@@ -1,5 +1,7 @@
 #include "pps_controller.hpp"
 
+#include "workspace_guard.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -55,7 +57,9 @@ PluginSpec PpsController::spec() {
       .unit_is("m")
       .defaults(0.2)
       .range(0, 10)
-      .describe("the controlled point stops this far from its home position");
+      .describe(
+          "no point of the body part goes farther than this from where it was at the home "
+          "posture (the controlled point stops at this distance)");
   s.add_double("return_gain")
       .unit_is("1/s")
       .defaults(2.0)
@@ -194,10 +198,13 @@ void PpsController::move(NodeContext& ctx, const Eigen::VectorXd& q) {
   *velocity_ = direction_ * (step / dt);
   controller_->set_point(link_, point_link_);
   controller_->compute(q, *velocity_, dt, *command_);
+  // The step above holds the controlled point to the sphere as if the arm moved exactly as
+  // asked; the guard holds every point of the part, as the joints will really move.
+  *velocity_ *= guard_->limit(q, controller_->chain().dofs, *command_, kGuardHorizonTicks * dt);
   away_from_home_ = true;
 }
 
-void PpsController::return_home(const Eigen::VectorXd& q) {
+void PpsController::return_home(const Eigen::VectorXd& q, double period_s) {
   const auto& dofs = controller_->chain().dofs;
   double worst = 0.0;
   for (std::size_t k = 0; k < dofs.size(); ++k)
@@ -214,6 +221,7 @@ void PpsController::return_home(const Eigen::VectorXd& q) {
     command_->position[d] = q[d];
     command_->velocity[d] = std::clamp(return_gain_ * (home_q_[d] - q[d]), -limit, limit);
   }
+  guard_->limit(q, dofs, *command_, kGuardHorizonTicks * period_s);
 }
 
 void PpsController::step(NodeContext& ctx) {
@@ -237,6 +245,14 @@ void PpsController::step(NodeContext& ctx) {
     home_q_ = q;
     robot::forward_kinematics(*model_, *home_data_, home_q_);
     have_home_ = true;
+    // Every taxel of the part, in the link frame: the points the workspace holds.
+    std::vector<Eigen::Vector3d> points = part.positions_link;
+    if (points.size() != part.positions.size()) {
+      points.clear();
+      const Eigen::Isometry3d to_link = home_data_->link_poses[link_].inverse();
+      for (const auto& p : part.positions) points.push_back(to_link * p);
+    }
+    guard_ = std::make_unique<WorkspaceGuard>(model_, link_, std::move(points), home_q_, radius_);
   }
   robot::forward_kinematics(*model_, *data_, q);
   const double now = ctx.time_s();
@@ -271,15 +287,12 @@ void PpsController::step(NodeContext& ctx) {
   } else {
     have_target_ = false;
     if (away_from_home_ && since >= return_after_ - kTimeEps)
-      return_home(q);
+      return_home(q, ctx.period_s());
     else
       hold(q);
   }
-  if (away_from_home_ || have_target_) {
-    const Eigen::Vector3d now_p = data_->link_poses[link_] * point_link_;
-    const Eigen::Vector3d home_p = home_data_->link_poses[link_] * point_link_;
-    max_distance_ = std::max(max_distance_, (now_p - home_p).norm());
-  }
+  if (away_from_home_ || have_target_)
+    max_distance_ = std::max(max_distance_, guard_->max_distance(q));
 }
 
 void PpsController::finish(NodeContext& ctx) {

@@ -6,7 +6,9 @@
 // (activation-weighted, root frame); control::CartesianVelocityController moves that point of
 // the arm at `speed` along −N (avoid) or +N (reach). Keeps moving `persistence` s after the last
 // above-threshold tick, returns to the start posture (joint space) `return_after` s after it,
-// and never carries the controlled point farther than `workspace_radius` from its home position.
+// and never carries any point of the body part farther than `workspace_radius` from where it was
+// at the home posture: at the limit the joint velocities are scaled down (WorkspaceGuard), so the
+// arm slides along the boundary or stops there, and only motion back inside is allowed.
 #include <memory>
 #include <string>
 
@@ -17,6 +19,7 @@
 #include "somasim/robot/kinematics.hpp"
 #include "somasim/robot/ports.hpp"
 #include "somasim/skin/ports.hpp"
+#include "workspace_guard.hpp"
 
 namespace somasim::plugins {
 
@@ -31,10 +34,14 @@ class PpsController : public Plugin {
   const SkinPart& find_part(NodeContext& ctx);
   void hold(const Eigen::VectorXd& q);
   void move(NodeContext& ctx, const Eigen::VectorXd& q);
-  void return_home(const Eigen::VectorXd& q);
+  void return_home(const Eigen::VectorXd& q, double period_s);
 
   std::shared_ptr<const robot::RobotModel> model_;
   std::unique_ptr<control::CartesianVelocityController> controller_;
+  /// Holds every taxel of the part within workspace_radius of its home position (first step).
+  std::unique_ptr<WorkspaceGuard> guard_;
+  /// The guard looks this many control periods ahead (the joints follow with a lag).
+  static constexpr double kGuardHorizonTicks = 2.0;
   std::unique_ptr<robot::RobotData> data_, home_data_;  ///< at q; at the start posture
   std::string body_part_;
   bool reach_ = false;
