@@ -55,12 +55,13 @@ struct EstimatorStats {
 
 // Offset statistics of a set of taxels (one part, or all parts).
 struct OffsetStats {
-  EstimatorStats floor, ridge, paper;
+  EstimatorStats contact, floor, ridge, paper;
   Summary truth;              // true offsets of taxels with enough samples
   std::size_t evaluated = 0;  // taxels with enough samples and a finite true offset
 
-  void add(const std::optional<double>& f, const std::optional<double>& r,
-           const std::optional<double>& p, double t) {
+  void add(const std::optional<double>& c, const std::optional<double>& f,
+           const std::optional<double>& r, const std::optional<double>& p, double t) {
+    contact.add(c, t);
     floor.add(f, t);
     ridge.add(r, t);
     paper.add(p, t);
@@ -97,8 +98,8 @@ void report_learning(NodeContext& ctx, std::vector<LearnerPart>& parts, int min_
   pps::LearningStats totals;
   OffsetStats all;
   json per_taxel = json::object(), per_part = json::object();
-  json mean_floor = json::object(), mean_ridge = json::object(), mean_paper = json::object(),
-       mean_truth = json::object();
+  json mean_contact = json::object(), mean_floor = json::object(), mean_ridge = json::object(),
+       mean_paper = json::object(), mean_truth = json::object();
   for (LearnerPart& part : parts) {
     if (!part.learner) continue;
     pps::BodyPartLearner& learner = *part.learner;
@@ -112,8 +113,9 @@ void report_learning(NodeContext& ctx, std::vector<LearnerPart>& parts, int min_
       // Estimates only for taxels with enough samples (Fig 8 evaluates the activation on a
       // grid: the costliest part of the report). Fig 8 needs a TTC axis: none for the
       // distance-only model.
-      std::optional<double> floor, ridge, paper;
+      std::optional<double> contact, floor, ridge, paper;
       if (counted) {
+        contact = learner.contact_offset(static_cast<int>(k));
         floor = pps::estimate_offset_floor(map);
         ridge = pps::estimate_offset_ridge(map);
         if (!distance_only) paper = pps::estimate_offset(map);
@@ -125,13 +127,15 @@ void report_learning(NodeContext& ctx, std::vector<LearnerPart>& parts, int min_
         truth = it->second;
       json& t = per_taxel[single ? id : label];
       t = {{"samples", samples},
+           {"contacts", learner.contact_count(static_cast<int>(k))},
+           {"offset_contact_m", opt_json(contact)},
            {"offset_floor_m", opt_json(floor)},
            {"offset_ridge_m", opt_json(ridge)},
            {"offset_estimate_m", opt_json(paper)}};
       if (true_offsets) t["true_offset_m"] = std::isfinite(truth) ? json(truth) : json();
       if (!counted) continue;
-      stats.add(floor, ridge, paper, truth);
-      all.add(floor, ridge, paper, truth);
+      stats.add(contact, floor, ridge, paper, truth);
+      all.add(contact, floor, ridge, paper, truth);
     }
     const pps::LearningStats& t = learner.totals();
     json p = sample_metrics(t);
@@ -139,14 +143,17 @@ void report_learning(NodeContext& ctx, std::vector<LearnerPart>& parts, int min_
     p["taxels"] = learner.taxels().size();
     if (true_offsets) {
       p["offset_taxels_evaluated"] = stats.evaluated;
-      p["offset_error_max_m"] = stats.floor.error.max_json();
-      p["offset_error_mean_m"] = stats.floor.error.mean_json();
+      p["offset_error_max_m"] = stats.contact.error.max_json();
+      p["offset_error_mean_m"] = stats.contact.error.mean_json();
+      p["offset_error_max_floor_m"] = stats.floor.error.max_json();
+      p["offset_error_mean_floor_m"] = stats.floor.error.mean_json();
       p["offset_error_max_ridge_m"] = stats.ridge.error.max_json();
       p["offset_error_mean_ridge_m"] = stats.ridge.error.mean_json();
       p["offset_error_max_paper_m"] = stats.paper.error.max_json();
       p["offset_error_mean_paper_m"] = stats.paper.error.mean_json();
     }
     per_part[part.name] = std::move(p);
+    mean_contact[part.name] = stats.contact.estimate.mean_json();
     mean_floor[part.name] = stats.floor.estimate.mean_json();
     mean_ridge[part.name] = stats.ridge.estimate.mean_json();
     mean_paper[part.name] = stats.paper.estimate.mean_json();
@@ -165,23 +172,28 @@ void report_learning(NodeContext& ctx, std::vector<LearnerPart>& parts, int min_
   ctx.report_metric("offset_estimate_m", all.paper.estimate.mean_json());
   ctx.report_metric("offset_ridge_m", all.ridge.estimate.mean_json());
   ctx.report_metric("offset_floor_m", all.floor.estimate.mean_json());
-  // Per part; the best estimator (the floor: it targets the radial D the truth defines) is the
-  // unsuffixed key.
-  ctx.report_metric("offset_mean_m", mean_floor);
+  ctx.report_metric("offset_contact_m", all.contact.estimate.mean_json());
+  // Per part; the best estimator (contact: the perceived D at the moment of contact, which is
+  // what the truth defines, sign included) is the unsuffixed key.
+  ctx.report_metric("offset_mean_m", mean_contact);
+  ctx.report_metric("offset_mean_floor_m", mean_floor);
   ctx.report_metric("offset_mean_ridge_m", mean_ridge);
   ctx.report_metric("offset_mean_paper_m", mean_paper);
   if (true_offsets) {
     ctx.report_metric("true_offset_mean_m", mean_truth);
-    ctx.report_metric("offset_error_max_m", all.floor.error.max_json());
-    ctx.report_metric("offset_error_mean_m", all.floor.error.mean_json());
+    ctx.report_metric("offset_error_max_m", all.contact.error.max_json());
+    ctx.report_metric("offset_error_mean_m", all.contact.error.mean_json());
+    ctx.report_metric("offset_error_max_floor_m", all.floor.error.max_json());
+    ctx.report_metric("offset_error_mean_floor_m", all.floor.error.mean_json());
     ctx.report_metric("offset_error_max_ridge_m", all.ridge.error.max_json());
     ctx.report_metric("offset_error_mean_ridge_m", all.ridge.error.mean_json());
     ctx.report_metric("offset_error_max_paper_m", all.paper.error.max_json());
     ctx.report_metric("offset_error_mean_paper_m", all.paper.error.mean_json());
     ctx.report_metric("offset_taxels_evaluated", all.evaluated);
-    ctx.report_metric(
-        "offset_taxels_without_estimate",
-        json{{"floor", all.floor.none}, {"ridge", all.ridge.none}, {"paper", all.paper.none}});
+    ctx.report_metric("offset_taxels_without_estimate", json{{"contact", all.contact.none},
+                                                             {"floor", all.floor.none},
+                                                             {"ridge", all.ridge.none},
+                                                             {"paper", all.paper.none}});
   }
   ctx.report_metric("per_part", per_part);
   ctx.report_metric("taxels", per_taxel);

@@ -1,6 +1,7 @@
 #include "pps_learner.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 
 #include "landscape_figure.hpp"
@@ -272,6 +273,10 @@ void PpsLearner::learn_from_events(NodeContext& ctx) {
     if (!learn_) continue;
     for (LearnerPart& p : parts_) {
       if (e.body_part != p.name) continue;
+      // The contact estimator: where the stimulus was perceived when it touched (before the
+      // buffer is spent on the maps).
+      p.learner->record_contact_offset(p.poses, e.touched_taxels,
+                                       std::isnan(e.first_touch_s) ? e.time_s : e.first_touch_s);
       p.learner->on_contact(p.poses, e.touched_taxels);
       ++p.events;
       if (std::find(snapshot_after_.begin(), snapshot_after_.end(), p.events) !=

@@ -173,9 +173,13 @@ const SkinPart& PpsController::find_part(NodeContext& ctx) {
 }
 
 void PpsController::hold(const Eigen::VectorXd& q) {
+  // In position mode at the posture where the hold began: a zero velocity target alone lets
+  // the arm sag under gravity (the motors' torque is bounded), out of the workspace too.
+  if (!holding_) hold_q_ = q;
+  holding_ = true;
   for (int d : controller_->chain().dofs) {
-    command_->mode[static_cast<std::size_t>(d)] = JointCommandMode::kVelocity;
-    command_->position[d] = q[d];
+    command_->mode[static_cast<std::size_t>(d)] = JointCommandMode::kPosition;
+    command_->position[d] = hold_q_[d];
     command_->velocity[d] = 0.0;
   }
 }
@@ -200,8 +204,16 @@ void PpsController::move(NodeContext& ctx, const Eigen::VectorXd& q) {
   controller_->compute(q, *velocity_, dt, *command_);
   // The step above holds the controlled point to the sphere as if the arm moved exactly as
   // asked; the guard holds every point of the part, as the joints will really move.
-  *velocity_ *= guard_->limit(q, controller_->chain().dofs, *command_, kGuardHorizonTicks * dt);
+  const double scale =
+      guard_->limit(q, controller_->chain().dofs, *command_, kGuardHorizonTicks * dt);
+  *velocity_ *= scale;
   away_from_home_ = true;
+  if (scale < kBlockedScale) {  // at the boundary, pushing out: hold there
+    velocity_->setZero();
+    hold(q);
+    return;
+  }
+  holding_ = false;
 }
 
 void PpsController::return_home(const Eigen::VectorXd& q, double period_s) {
@@ -214,6 +226,7 @@ void PpsController::return_home(const Eigen::VectorXd& q, double period_s) {
     hold(q);
     return;
   }
+  holding_ = false;
   for (std::size_t k = 0; k < dofs.size(); ++k) {
     const int d = dofs[k];
     const double limit = max_joint_velocity_[static_cast<Eigen::Index>(k)];
@@ -291,14 +304,24 @@ void PpsController::step(NodeContext& ctx) {
     else
       hold(q);
   }
-  if (away_from_home_ || have_target_)
-    max_distance_ = std::max(max_distance_, guard_->max_distance(q));
+  if (away_from_home_ || have_target_) {
+    const double d = guard_->max_distance(q);
+    if (d > radius_ + kOutsideTolerance) {
+      if (outside_ticks_ == 0 || d > max_distance_)
+        ctx.log().debug("{}: t = {:.3f} s, a point of '{}' is {:.4f} m from home (radius {} m)",
+                        ctx.node_name(), now, body_part_, d, radius_);
+      ++outside_ticks_;
+    }
+    max_distance_ = std::max(max_distance_, d);
+  }
 }
 
 void PpsController::finish(NodeContext& ctx) {
   ctx.report_metric("triggers", triggers_);
   ctx.report_metric("triggered_time_s", static_cast<double>(triggered_ticks_) * ctx.period_s());
   ctx.report_metric("max_distance_from_home_m", max_distance_);
+  // Time any point of the part spent beyond the radius (+1 mm): the physics lagging behind.
+  ctx.report_metric("outside_workspace_s", static_cast<double>(outside_ticks_) * ctx.period_s());
 }
 
 }  // namespace somasim::plugins

@@ -69,6 +69,12 @@ class PpsController : public Plugin {
 
   long triggers_ = 0, triggered_ticks_ = 0;
   double max_distance_ = 0.0;
+  std::size_t outside_ticks_ = 0;
+  bool holding_ = false;  ///< holding still at hold_q_ (position mode)
+  Eigen::VectorXd hold_q_;
+  /// A guard scale below this means the part is at the boundary: the arm holds there.
+  static constexpr double kBlockedScale = 1e-3;  ///< control ticks with a point beyond the radius
+  static constexpr double kOutsideTolerance = 1e-3;  ///< [m]
 };
 
 }  // namespace somasim::plugins

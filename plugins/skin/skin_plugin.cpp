@@ -234,12 +234,13 @@ void SkinPlugin::update_poses(const std::vector<Eigen::Isometry3d>& poses) {
 
 void SkinPlugin::apply_contacts(const Contacts& contacts,
                                 const std::vector<Eigen::Isometry3d>& poses) {
-  const auto press = [&](int link, const Eigen::Vector3d& point_link, double force) {
+  const auto press = [&](int link, const Eigen::Vector3d& point_link, double force, double t) {
     if (link < 0 || link >= static_cast<int>(parts_on_link_.size())) return;
     for (int k : parts_on_link_[static_cast<std::size_t>(link)]) {
       Part& part = parts_[static_cast<std::size_t>(k)];
       part.pressed = true;
       part.response->add_contact(point_link, force);
+      if (!(part.step_first_touch <= t)) part.step_first_touch = t;  // (NaN: the first)
     }
   };
   // A world faster than the skin keeps a history: take every point since the last step, so
@@ -266,9 +267,10 @@ void SkinPlugin::apply_contacts(const Contacts& contacts,
     if (!std::isfinite(c.normal_force) || !c.point.allFinite() || !c.point_in_a.allFinite())
       throw RunError(fmt::format("input 'contacts': non-finite contact (links {} / {}, force {})",
                                  c.link_a, c.link_b, c.normal_force));
-    press(c.link_a, c.point_in_a, force);
+    press(c.link_a, c.point_in_a, force, c.time_s);
     if (c.link_b >= 0 && c.link_b < static_cast<int>(poses.size()))
-      press(c.link_b, poses[static_cast<std::size_t>(c.link_b)].inverse() * c.point, force);
+      press(c.link_b, poses[static_cast<std::size_t>(c.link_b)].inverse() * c.point, force,
+            c.time_s);
   }
   last_contact_time_ = newest;
 }
@@ -284,8 +286,15 @@ void SkinPlugin::step(NodeContext& ctx) {
     if (p.pressed) p.response->clear();
     p.pressed_before = p.pressed;
     p.pressed = false;
+    p.step_first_touch = std::numeric_limits<double>::quiet_NaN();
   }
   if (contacts_) apply_contacts(*contacts_, poses);
+  for (auto& p : parts_) {
+    if (!p.pressed)
+      p.episode_first_touch = std::numeric_limits<double>::quiet_NaN();
+    else if (!p.pressed_before || std::isnan(p.episode_first_touch))
+      p.episode_first_touch = p.step_first_touch;
+  }
 
   const double now = ctx.time_s();
   std::size_t out = 0;
@@ -294,6 +303,7 @@ void SkinPlugin::step(NodeContext& ctx) {
       ContactEvent e;
       e.id = next_event_id_++;
       e.time_s = now;
+      e.first_touch_s = std::min(p.episode_first_touch, now);  // NaN stays NaN
       e.body_part = p.layout.body_part;
       e.touched_taxels = std::move(onset->virtual_ids);
       p.touched_virtual.insert(e.touched_taxels.begin(), e.touched_taxels.end());

@@ -1,6 +1,7 @@
 #pragma once
 // skin: taxel layouts on the robot's skin patches, contacts -> pressures -> contact events,
 // and taxel poses in the root frame every tick.
+#include <limits>
 #include <memory>
 #include <set>
 #include <string>
@@ -35,6 +36,10 @@ class SkinPlugin : public Plugin {
     Eigen::Isometry3d posed_at = Eigen::Isometry3d::Identity();
     bool posed = false;
     bool pressed = false, pressed_before = false;
+    // Time of the earliest contact point pressing the part this step, and of the episode
+    // (consecutive pressed steps) so far [s]; NaN when unpressed.
+    double step_first_touch = std::numeric_limits<double>::quiet_NaN();
+    double episode_first_touch = std::numeric_limits<double>::quiet_NaN();
   };
 
   void select_parts(NodeContext& ctx);

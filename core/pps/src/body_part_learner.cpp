@@ -25,6 +25,34 @@ BodyPartLearner::BodyPartLearner(std::string body_part, std::vector<TaxelInfo> t
   for (std::size_t k = 0; k < taxels_.size(); ++k) maps_.emplace_back(map_grid_, params_.parzen);
   touched_.assign(taxels_.size(), 0);
   scratch_poses_.resize(taxels_.size());
+  contact_d_sum_.assign(taxels_.size(), 0.0);
+  contact_count_.assign(taxels_.size(), 0);
+}
+
+void BodyPartLearner::record_contact_offset(std::span<const TaxelPose> taxels_root,
+                                            std::span<const int> touched_ids, double touch_time_s) {
+  if (taxels_root.size() != taxels_.size() || buffer_.empty()) return;
+  const auto& samples = buffer_.samples();
+  const StimulusSample* last = &samples.front();
+  for (const StimulusSample& s : samples)
+    if (s.time <= touch_time_s) last = &s;
+  Stimulus at_touch = last->stimulus;
+  if (touch_time_s > last->time)
+    at_touch.position += at_touch.velocity * (touch_time_s - last->time);
+  for (const int id : touched_ids) {
+    const int k = index_of(id);
+    if (k < 0) continue;
+    const auto kk = static_cast<std::size_t>(k);
+    const TaxelFrameStimulus local = to_taxel_frame(taxels_root[kk], at_touch);
+    contact_d_sum_[kk] += compute_d_ttc(local.p, local.v, params_.ttc).d;
+    ++contact_count_[kk];
+  }
+}
+
+std::optional<double> BodyPartLearner::contact_offset(int k) const {
+  const auto kk = static_cast<std::size_t>(k);
+  if (contact_count_[kk] == 0) return std::nullopt;
+  return contact_d_sum_[kk] / contact_count_[kk];
 }
 
 int BodyPartLearner::index_of(int id) const {

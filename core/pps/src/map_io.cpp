@@ -108,11 +108,16 @@ json part_to_json(const LearnedState& s, bool with_model) {
   for (const LearnedTaxel& t : s.taxels) {
     const Eigen::Vector3d& p = t.pose_link.position;
     const Eigen::Vector3d& n = t.pose_link.normal;
-    taxels.push_back({{"id", t.id},
-                      {"position", {p.x(), p.y(), p.z()}},
-                      {"normal", {n.x(), n.y(), n.z()}},
-                      {"pos", t.pos},
-                      {"neg", t.neg}});
+    json taxel = {{"id", t.id},
+                  {"position", {p.x(), p.y(), p.z()}},
+                  {"normal", {n.x(), n.y(), n.z()}},
+                  {"pos", t.pos},
+                  {"neg", t.neg}};
+    if (t.contact_events > 0) {  // optional: the contact offset estimator's evidence
+      taxel["contact_d_sum"] = t.contact_d_sum;
+      taxel["contact_events"] = t.contact_events;
+    }
+    taxels.push_back(std::move(taxel));
   }
   j["taxels"] = std::move(taxels);
   return j;
@@ -184,6 +189,16 @@ LearnedState part_from_json(const json& j, const std::string& p, bool with_model
       fail(source, "'" + where + "normal' is zero, expected a non-zero vector");
     lt.pos = get_counts(t, "pos", where, n, s.grid, source);
     lt.neg = get_counts(t, "neg", where, n, s.grid, source);
+    if (t.contains("contact_events") || t.contains("contact_d_sum")) {
+      const int events = get_int(t, "contact_events", where, source);
+      if (events < 0)
+        fail(source, "'" + where + "contact_events' is " + std::to_string(events) +
+                         ", expected a count >= 0");
+      lt.contact_events = static_cast<std::uint32_t>(events);
+      lt.contact_d_sum = get_number(t, "contact_d_sum", where, source);
+      if (!std::isfinite(lt.contact_d_sum))
+        fail(source, "'" + where + "contact_d_sum' is not finite, expected a number [m]");
+    }
     s.taxels.push_back(std::move(lt));
   }
   return s;

@@ -2,6 +2,7 @@
 /// @file
 /// Event-driven PPS learning for all taxels of one body part.
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -85,6 +86,24 @@ class BodyPartLearner {
   LearningStats on_contact(const Eigen::Isometry3d& root_from_link,
                            std::span<const int> touched_ids);
 
+  /// The `contact` offset estimator's evidence: the perceived D of the stimulus at the moment
+  /// of contact, per touched taxel (same D as the maps: signed distance of the stimulus surface
+  /// from the taxel). The newest buffered sample not later than `touch_time_s` is carried to
+  /// that time along its velocity. Call before on_contact() (which clears the buffer); taxel
+  /// poses as for on_contact(). Nothing is recorded without a buffered sample.
+  void record_contact_offset(std::span<const TaxelPose> taxels_root,
+                             std::span<const int> touched_ids, double touch_time_s);
+  /// Sum of the recorded contact D of taxel index k [m] and their count.
+  double contact_d_sum(int k) const { return contact_d_sum_[static_cast<std::size_t>(k)]; }
+  std::uint32_t contact_count(int k) const { return contact_count_[static_cast<std::size_t>(k)]; }
+  /// Restores recorded evidence (e.g. from a learned file).
+  void set_contact_offset(int k, double d_sum, std::uint32_t count) {
+    contact_d_sum_[static_cast<std::size_t>(k)] = d_sum;
+    contact_count_[static_cast<std::size_t>(k)] = count;
+  }
+  /// The estimate: mean contact D of taxel index k [m], or nullopt before any contact.
+  std::optional<double> contact_offset(int k) const;
+
   /// Totals over all events so far.
   const LearningStats& totals() const { return totals_; }
 
@@ -105,6 +124,8 @@ class BodyPartLearner {
   LearningStats totals_;
   std::vector<TaxelPose> scratch_poses_;
   std::vector<std::uint8_t> touched_;
+  std::vector<double> contact_d_sum_;
+  std::vector<std::uint32_t> contact_count_;
 };
 
 }  // namespace somasim::pps

@@ -1,6 +1,7 @@
 #pragma once
 /// @file
 /// Learned PPS state of one body part, as saved/loaded/imported (see map_io.hpp, ini_import.hpp).
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,10 @@ struct LearnedTaxel {
   TaxelPose pose_link;               ///< position [m] and normal in the link frame
   std::vector<TaxelMap::Count> pos;  ///< D-major, grid.size() entries
   std::vector<TaxelMap::Count> neg;
+  /// The `contact` offset estimator's evidence (BodyPartLearner::record_contact_offset): sum of
+  /// the perceived D at contact [m] over `contact_events` contacts.
+  double contact_d_sum = 0.0;
+  std::uint32_t contact_events = 0;
 };
 
 struct LearnedState {

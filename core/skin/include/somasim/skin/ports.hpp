@@ -4,6 +4,7 @@
 /// per taxel. Positions and normals are in the robot's root frame (waist: x backward, y to the
 /// robot's right, z up) unless a field says otherwise.
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -32,9 +33,12 @@ struct SkinTaxels {
 /// A contact on the skin of one body part (pressure over threshold on enough taxels).
 struct ContactEvent {
   std::uint64_t id = 0;             ///< strictly increasing per producer; consumers skip seen ids
-  double time_s = 0.0;              ///< sim time of the contact [s]
+  double time_s = 0.0;              ///< sim time the contact was detected [s]
   std::string body_part;            ///< the part that was touched
   std::vector<int> touched_taxels;  ///< ids of the (virtual) taxels touched; may be empty
+  /// Sim time of the first contact point of this contact episode [s] (the world's clock, so
+  /// finer than a slower skin's steps; <= time_s). NaN when the producer does not know it.
+  double first_touch_s = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// The recent contact events of a producer (it prunes old ones; consumers track `id`).
