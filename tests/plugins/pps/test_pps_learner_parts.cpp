@@ -216,13 +216,13 @@ TEST(PpsLearnerParts, OffsetErrorsAgainstTrueOffsetsMatchedByLabel) {
   EXPECT_EQ(h.metric("pps", "offset_taxels_without_estimate"),
             (nlohmann::json{{"contact", 0}, {"floor", 0}, {"ridge", 0}, {"paper", 0}}));
   // The contact estimator: the stimulus's D at the skin's contact time, the last sample of each
-  // approach (-0.01875 m behind the patch, +0.01125 m short of the palm): the main keys.
+  // approach (-0.01875 m behind the patch, +0.01125 m short of the palm).
   EXPECT_NEAR(taxels["patch/10"]["offset_contact_m"].get<double>(), -0.01875, 1e-12);
   EXPECT_NEAR(taxels["palm/1"]["offset_contact_m"].get<double>(), 0.01125, 1e-12);
   EXPECT_EQ(taxels["patch/10"]["contacts"], 2);
-  EXPECT_NEAR(h.metric("pps", "offset_error_max_m").get<double>(), 0.00175, 1e-12);
-  EXPECT_NEAR(h.metric("pps", "offset_error_mean_m").get<double>(), 0.0015, 1e-12);
-  EXPECT_NEAR(h.metric("pps", "offset_mean_m")["patch"].get<double>(), -0.01875, 1e-12);
+  EXPECT_NEAR(h.metric("pps", "offset_error_max_contact_m").get<double>(), 0.00175, 1e-12);
+  EXPECT_NEAR(h.metric("pps", "offset_error_mean_contact_m").get<double>(), 0.0015, 1e-12);
+  EXPECT_NEAR(h.metric("pps", "offset_mean_contact_m")["patch"].get<double>(), -0.01875, 1e-12);
   EXPECT_NEAR(h.metric("pps", "offset_contact_m").get<double>(), -0.00375, 1e-12);
   // The floor and Fig 8: the same statistics from their per-taxel estimates.
   const double floor_patch = taxels["patch/10"]["offset_floor_m"].get<double>();
@@ -230,9 +230,9 @@ TEST(PpsLearnerParts, OffsetErrorsAgainstTrueOffsetsMatchedByLabel) {
   EXPECT_NEAR(floor_patch, -0.02, 0.001);
   EXPECT_NEAR(floor_palm, 0.01, 0.001);
   const double floor_err[] = {std::abs(floor_patch + 0.02), std::abs(floor_palm - 0.013)};
-  EXPECT_DOUBLE_EQ(h.metric("pps", "offset_error_max_floor_m").get<double>(),
+  EXPECT_DOUBLE_EQ(h.metric("pps", "offset_error_max_m").get<double>(),
                    std::max(floor_err[0], floor_err[1]));
-  EXPECT_DOUBLE_EQ(h.metric("pps", "offset_error_mean_floor_m").get<double>(),
+  EXPECT_DOUBLE_EQ(h.metric("pps", "offset_error_mean_m").get<double>(),
                    (floor_err[0] + floor_err[1]) / 2);
   const double paper_patch = taxels["patch/10"]["offset_estimate_m"].get<double>();
   const double paper_palm = taxels["palm/1"]["offset_estimate_m"].get<double>();
@@ -242,17 +242,17 @@ TEST(PpsLearnerParts, OffsetErrorsAgainstTrueOffsetsMatchedByLabel) {
   // only (no floor or ridge estimate, and a Fig 8 line through their activations).
   EXPECT_EQ(taxels["patch/11"]["offset_ridge_m"], nullptr);
   EXPECT_EQ(taxels["patch/11"]["offset_floor_m"], nullptr);
-  EXPECT_DOUBLE_EQ(h.metric("pps", "offset_mean_floor_m")["patch"].get<double>(), floor_patch);
-  EXPECT_DOUBLE_EQ(h.metric("pps", "offset_mean_floor_m")["palm"].get<double>(), floor_palm);
+  EXPECT_DOUBLE_EQ(h.metric("pps", "offset_mean_m")["patch"].get<double>(), floor_patch);
+  EXPECT_DOUBLE_EQ(h.metric("pps", "offset_mean_m")["palm"].get<double>(), floor_palm);
   EXPECT_NEAR(h.metric("pps", "offset_mean_ridge_m")["patch"].get<double>(), -0.02, 1e-12);
   EXPECT_NEAR(h.metric("pps", "offset_mean_ridge_m")["palm"].get<double>(), 0.01, 1e-12);
   EXPECT_NEAR(h.metric("pps", "true_offset_mean_m")["patch"].get<double>(), -0.02, 1e-12);
   EXPECT_NEAR(h.metric("pps", "true_offset_mean_m")["palm"].get<double>(), 0.013, 1e-12);
   EXPECT_TRUE(h.metric("pps", "offset_mean_paper_m")["palm"].is_number());
   const auto per_part = h.metric("pps", "per_part");
-  EXPECT_DOUBLE_EQ(per_part["palm"]["offset_error_max_floor_m"].get<double>(), floor_err[1]);
-  EXPECT_DOUBLE_EQ(per_part["patch"]["offset_error_mean_floor_m"].get<double>(), floor_err[0]);
-  EXPECT_NEAR(per_part["palm"]["offset_error_max_m"].get<double>(), 0.00175, 1e-12);
+  EXPECT_DOUBLE_EQ(per_part["palm"]["offset_error_max_m"].get<double>(), floor_err[1]);
+  EXPECT_DOUBLE_EQ(per_part["patch"]["offset_error_mean_m"].get<double>(), floor_err[0]);
+  EXPECT_NEAR(per_part["palm"]["offset_error_max_contact_m"].get<double>(), 0.00175, 1e-12);
   EXPECT_NEAR(per_part["palm"]["offset_error_max_ridge_m"].get<double>(), 0.003, 1e-12);
   EXPECT_NEAR(per_part["patch"]["offset_error_max_ridge_m"].get<double>(), 0.0, 1e-12);
   EXPECT_DOUBLE_EQ(per_part["palm"]["offset_error_max_paper_m"].get<double>(),
@@ -270,8 +270,8 @@ TEST(PpsLearnerParts, WithoutTrueOffsetsThereAreNoErrorMetrics) {
   EXPECT_TRUE(h.metric("pps", "offset_error_max_m").is_null());
   EXPECT_TRUE(h.metric("pps", "true_offset_mean_m").is_null());
   EXPECT_TRUE(h.metric("pps", "offset_error_max_ridge_m").is_null());
-  EXPECT_NEAR(h.metric("pps", "offset_mean_m")["palm"].get<double>(), 0.01125, 1e-12);
-  EXPECT_NEAR(h.metric("pps", "offset_mean_floor_m")["palm"].get<double>(), 0.01, 0.001);
+  EXPECT_NEAR(h.metric("pps", "offset_mean_contact_m")["palm"].get<double>(), 0.01125, 1e-12);
+  EXPECT_NEAR(h.metric("pps", "offset_mean_m")["palm"].get<double>(), 0.01, 0.001);
   EXPECT_NEAR(h.metric("pps", "offset_mean_ridge_m")["palm"].get<double>(), 0.01, 1e-12);
 }
 
@@ -320,9 +320,8 @@ TEST(PpsLearnerParts, RoundTripThroughTheIcubIniFormat) {
   h.finish();
   EXPECT_EQ(h.metric("pps", "events"), 0);
   // The maps' estimators agree; the .ini format has no contact evidence (nothing to compare).
-  EXPECT_EQ(h.metric("pps", "offset_error_max_floor_m"),
-            learnt.metric("pps", "offset_error_max_floor_m"));
-  EXPECT_TRUE(h.metric("pps", "offset_error_max_m").is_null());
+  EXPECT_EQ(h.metric("pps", "offset_error_max_m"), learnt.metric("pps", "offset_error_max_m"));
+  EXPECT_TRUE(h.metric("pps", "offset_error_max_contact_m").is_null());
   const auto parts = somasim::pps::load_learned_parts((h.out_dir() / "learned.json").string());
   ASSERT_EQ(parts.size(), 2u);
   EXPECT_EQ(parts[0].body_part, "patch");
