@@ -8,8 +8,11 @@ function(somasim_add_plugin name)
   add_library(${target} MODULE ${ARG_SOURCES})
   target_link_libraries(${target} PRIVATE somasim::framework ${ARG_LIBS})
   somasim_enable_warnings(${target})
-  # Unresolved symbols are link errors, not load-time surprises.
-  target_link_options(${target} PRIVATE -Wl,--no-undefined)
+  # Unresolved symbols are link errors, not load-time surprises. (Not in sanitizer builds: there
+  # the sanitizer runtimes live in the executable, and a plugin resolves them when loaded.)
+  if(NOT SOMASIM_SANITIZE AND NOT SOMASIM_FUZZ)
+    target_link_options(${target} PRIVATE -Wl,--no-undefined)
+  endif()
   set_target_properties(${target} PROPERTIES
     PREFIX "lib"
     OUTPUT_NAME somasim_${name}

@@ -112,6 +112,10 @@ LearnedState build(const std::string& path, const Section& s, const ParzenSpec& 
   LearnedState st;
   st.body_part = s.name;
   st.parzen = parzen;
+  if (s.ext && s.ext->size() != 4)  // read as 1D (2 numbers) before a later 'modality 2D'
+    fail(path, s.line,
+         "section [" + s.name + "]: 'ext' has " + std::to_string(s.ext->size()) +
+             " numbers, expected 4 (dmin dmax tmin tmax) for a 2D section");
   if (s.ext) {
     st.grid.d_min = (*s.ext)[0];
     st.grid.d_max = (*s.ext)[1];

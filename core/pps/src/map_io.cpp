@@ -264,7 +264,7 @@ template <typename Input>
 json parse_json(Input&& in, const std::string& source) {
   try {
     return json::parse(std::forward<Input>(in));
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // parse_error, and out_of_range for huge numbers
     throw InputError(source + ": not valid JSON (" + e.what() + ")");
   }
 }

@@ -150,3 +150,15 @@ TEST(PpsIniImport, SectionsWithoutModalityAre2D) {
   ASSERT_EQ(parts.size(), 1u);
   EXPECT_EQ(parts[0].taxels[0].neg, (std::vector<somasim::pps::TaxelMap::Count>{3, 4}));
 }
+
+// Found by fuzz_ini_import: an 'ext' of 2 numbers read before the section said 'modality 2D'
+// was indexed as 4 (heap overflow). Now a located error.
+TEST(PpsIniImport, AnExtReadAs1DInA2DSectionIsAnError) {
+  TempDir dir;
+  const std::string text =
+      "[hand]\nmodality 1D\next (0.0 0.2)\nmodality 2D\nbinsNum (2 1)\nnTaxels 1\n3 (1 2) (3 "
+      "4)\n";
+  EXPECT_EQ(import_error(dir, text),
+            "1: section [hand]: 'ext' has 2 numbers, expected 4 (dmin dmax tmin tmax) for a 2D "
+            "section");
+}
