@@ -40,12 +40,12 @@ PluginSpec PpsLearner::spec() {
       .defaults(std::vector<double>{})
       .describe(
           "taxel ids whose landscapes are drawn, in every part that has them (empty: the first "
-          "four of each part)");
+          "four of each part; for the snapshots, the first four touched so far)");
   s.add_list("snapshot_events")
       .defaults(std::vector<double>{})
       .describe(
           "also draw a part's landscapes after it learned from these many events (e.g. [1, 4] "
-          "as in Fig 9)");
+          "as in Fig 9); a drawn taxel without positive samples yet is named in the log");
   s.add_int("min_samples")
       .defaults(std::int64_t{50})
       .at_least(0)
@@ -281,10 +281,31 @@ void PpsLearner::learn_from_events(NodeContext& ctx) {
       ++p.events;
       if (std::find(snapshot_after_.begin(), snapshot_after_.end(), p.events) !=
           snapshot_after_.end())
-        draw_landscapes(ctx, *p.learner, figure_taxels_,
+        draw_landscapes(ctx, *p.learner, snapshot_taxels(ctx, p),
                         "after_" + std::to_string(p.events) + "_events");
     }
   }
+}
+
+// Fig 9 snapshots show one-shot learning: by default the (first four) taxels touched so far; a
+// listed taxel that has no positive sample yet is drawn blank, and the log says why.
+std::vector<double> PpsLearner::snapshot_taxels(NodeContext& ctx, const LearnerPart& p) const {
+  const pps::BodyPartLearner& learner = *p.learner;
+  std::vector<double> ids = figure_taxels_;
+  if (ids.empty())
+    for (std::size_t k = 0; k < learner.taxels().size() && ids.size() < kSnapshotTaxels; ++k)
+      if (learner.contact_count(static_cast<int>(k)) > 0) ids.push_back(learner.taxels()[k].id);
+  for (double id : ids) {
+    const int k = learner.index_of(static_cast<int>(id));
+    if (k < 0) continue;
+    const auto& pos = learner.maps()[static_cast<std::size_t>(k)].pos();
+    if (std::all_of(pos.begin(), pos.end(), [](auto c) { return c == 0; }))
+      ctx.log().info(
+          "{}: the landscape of {}/{} after {} events is blank: no positive sample yet "
+          "(the taxel has not been touched)",
+          ctx.node_name(), p.name, static_cast<int>(id), p.events);
+  }
+  return ids;
 }
 
 void PpsLearner::update_activations() {

@@ -28,6 +28,8 @@ class PpsLearner : public Plugin {
   void load(NodeContext& ctx, const std::string& file);
   void bind_parts(NodeContext& ctx);
   void add_geometry(LearnerPart& p, const SkinPart& part);
+  std::vector<double> snapshot_taxels(NodeContext& ctx, const LearnerPart& p) const;
+  static constexpr std::size_t kSnapshotTaxels = 4;
   void check_figure_taxels(NodeContext& ctx) const;
   const SkinPart& input_part(NodeContext& ctx, LearnerPart& part) const;
   void learn_from_events(NodeContext& ctx);

@@ -32,6 +32,13 @@ PluginSpec PpsController::spec() {
       .defaults(std::string("avoid"))
       .one_of({"avoid", "reach"})
       .describe("avoid: move P along -N (away from the stimulus); reach: along +N (toward it)");
+  s.add_string("reach_direction")
+      .defaults(std::string("normal"))
+      .one_of({"normal", "stimulus"})
+      .describe(
+          "reach mode: normal moves P along +N (the paper's rule); stimulus moves P straight "
+          "toward the perceived stimulus (input 'stimulus'), which meets objects arriving off "
+          "the normal with the skin first");
   s.add_string("body_part")
       .describe(
           "the skin part whose taxels vote (its link must be in the chain), e.g. left_forearm");
@@ -86,6 +93,8 @@ PluginSpec PpsController::spec() {
                        "body part's taxels are picked by label), or unlabelled with one value "
                        "per taxel of the body part in the order of `taxels`");
   s.input<JointState>("state", "measured joint state");
+  s.input<pps::Stimulus>("stimulus", "the perceived stimulus (for reach_direction: stimulus)",
+                         /*optional=*/true);
   s.output<JointCommand>("command", "velocity commands on the chain dofs (kNone elsewhere)");
   s.output<Eigen::Vector3d>("point", "the last voted point P [m], root frame");
   s.output<Eigen::Vector3d>("velocity", "commanded velocity of the point [m/s], root frame");
@@ -140,6 +149,12 @@ void PpsController::configure(NodeContext& ctx) {
   taxels_ = &ctx.input<SkinTaxels>("taxels");
   activations_ = &ctx.input<TaxelValues>("activations");
   state_ = &ctx.input<JointState>("state");
+  if (reach_ && ctx.param<std::string>("reach_direction") == "stimulus") {
+    if (!ctx.is_wired("stimulus"))
+      ctx.param_error("reach_direction",
+                      "'stimulus' needs the input 'stimulus' wired (e.g. thrower.stimulus)");
+    stimulus_ = &ctx.input<pps::Stimulus>("stimulus");
+  }
   command_ = &ctx.output<JointCommand>("command");
   point_ = &ctx.output<Eigen::Vector3d>("point");
   velocity_ = &ctx.output<Eigen::Vector3d>("velocity");
@@ -285,6 +300,8 @@ void PpsController::step(NodeContext& ctx) {
     *point_ = p;
     point_link_ = data_->link_poses[link_].inverse() * p;
     direction_ = (reach_ ? 1.0 : -1.0) * nrm.normalized();
+    if (stimulus_ && stimulus_->present && (stimulus_->position - p).norm() > kMinAimDistance)
+      direction_ = (stimulus_->position - p).normalized();
     have_target_ = true;
     last_trigger_s_ = now;
     if (!was_triggered_) ++triggers_;

@@ -16,6 +16,7 @@
 #include "somasim/plugin.hpp"
 #include "somasim/port_types.hpp"
 #include "somasim/pps/part_activations.hpp"
+#include "somasim/pps/ports.hpp"
 #include "somasim/robot/kinematics.hpp"
 #include "somasim/robot/ports.hpp"
 #include "somasim/skin/ports.hpp"
@@ -51,6 +52,10 @@ class PpsController : public Plugin {
 
   const SkinTaxels* taxels_ = nullptr;
   const TaxelValues* activations_ = nullptr;
+  /// The perceived stimulus, when reaching toward it (reach_direction: stimulus); else null.
+  const pps::Stimulus* stimulus_ = nullptr;
+  /// Closer than this to P, the stimulus gives no direction: +N is used [m].
+  static constexpr double kMinAimDistance = 1e-3;
   pps::PartActivations part_activations_;
   const JointState* state_ = nullptr;
   JointCommand* command_ = nullptr;
