@@ -1,16 +1,16 @@
 #!/usr/bin/env bash
 # Runs every libFuzzer target for SECONDS each (default 600) and writes a report
 # (fuzz-report.txt: executions, coverage, corpus size, crashes). Findings (crash-*, leak-*,
-# timeout-*, oom-* files) are kept in build-san/fuzz-findings/ ($SOMASIM_SAN_BUILD_DIR).
-# Usage: scripts/fuzz.sh [SECONDS]   (builds build-san/ first, as scripts/sanitize.sh does)
+# timeout-*, oom-* files) are kept in build-fuzz/fuzz-findings/ ($SOMASIM_FUZZ_BUILD_DIR).
+# Usage: scripts/fuzz.sh [SECONDS]   (builds build-fuzz/ first, as scripts/sanitize.sh does)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds="${1:-600}"
-dir="${SOMASIM_SAN_BUILD_DIR:-build-san}"
+dir="${SOMASIM_FUZZ_BUILD_DIR:-build-fuzz}"
 CC=clang CXX=clang++ cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Sanitize \
   -DSOMASIM_FUZZ=ON -DSOMASIM_BUILD_BENCHMARKS=OFF >/dev/null
 targets=(fuzz_experiment_loader fuzz_robot_loader fuzz_learned_map fuzz_ini_import)
-cmake --build "$dir" --parallel "$(nproc)" --target "${targets[@]}" somasim_test_plugins
+cmake --build "$dir" --parallel "$(nproc)" --target somasim_fuzz_targets
 findings="$dir/fuzz-findings"
 mkdir -p "$findings"
 report=fuzz-report.txt
