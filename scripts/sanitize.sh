@@ -5,9 +5,9 @@
 #     or, with --all, the whole suite (slow: Bullet and whole experiments under ASan);
 #  2. build-fuzz/ (the same sanitizers plus libFuzzer coverage): every fuzz target for
 #     SOMASIM_FUZZ_SECONDS (default 20) seconds from its seed corpus.
-# The two builds are apart because clang 14's coverage instrumentation miscompiles one loader
-# path under -O1 (ExperimentLoader.MissingRequiredParameter reads a garbage string only there;
-# clean under ASan+UBSan alone, under -O0 and under valgrind).
+# The builds are apart so that the suite runs without libFuzzer's coverage instrumentation
+# (slower, and one loader test once failed only in the combined build; it passes under
+# ASan+UBSan alone, at -O0 and under valgrind).
 # Usage: scripts/sanitize.sh [--all]      (after scripts/setup.sh; scripts/test.sh calls it)
 set -euo pipefail
 cd "$(dirname "$0")/.."
