@@ -314,6 +314,9 @@ void DoubleTouch::perceive(NodeContext& ctx) {
   const bool present = phase_ == Phase::kApproach || phase_ == Phase::kHold;
   perceived_clean_ = pps::Stimulus{pb, vb, finger_radius_, true};
   truth_clean_ = pps::Stimulus{pt, vt, finger_radius_, true};
+  path_history_.push_back({ctx.time_s(), perceived_clean_, truth_clean_});
+  while (path_history_.front().time_s < ctx.time_s() - pps::kOffsetMaxBackoff)
+    path_history_.pop_front();
   *truth_ = pps::Stimulus{pt, vt, finger_radius_, present};
   *stimulus_ = pps::Stimulus{pb, vb, finger_radius_, present};
   auto& rng = ctx.rng();
@@ -355,15 +358,11 @@ void DoubleTouch::read_contacts(NodeContext&) {
 }
 
 void DoubleTouch::add_true_offsets(const ContactEvent& e) {
-  // At the event itself: moving the fingertips back to where the true one reached the skin (as
-  // object_thrower does) fails on the curved forearm, where a touched neighbour taxel's plane is
-  // tilted so that the tip lies behind it long before the touch (the back-off then runs to its
-  // limit).
-  const pps::Stimulus truth{truth_clean_.position, truth_clean_.velocity, finger_radius_};
-  const pps::Stimulus perceived{perceived_clean_.position, perceived_clean_.velocity,
-                                finger_radius_};
-  true_offset_samples_ += offsets_.add_event(
-      e, *taxels_, believed_taxels_ ? *believed_taxels_ : *taxels_, perceived, truth);
+  // The fingertip's path is curved and slows down toward the skin: the offsets are taken on
+  // the recorded path, where the true tip was pps::kOffsetClearance outside the taxel.
+  const std::vector<pps::PathSample> path(path_history_.begin(), path_history_.end());
+  true_offset_samples_ += offsets_.add_event_on_path(
+      e, *taxels_, believed_taxels_ ? *believed_taxels_ : *taxels_, path, pps::kOffsetClearance);
 }
 
 void DoubleTouch::write_command() {

@@ -26,6 +26,7 @@
 // positions would turn 1 mm of noise into ~0.1 m/s at 100 Hz), + `velocity_noise`. Present
 // during the approach and the hold. `true_offsets`: see somasim/pps/true_offsets.hpp (the contact
 // instant is taken where the fingertip reached the skin, as for objects).
+#include <deque>
 #include <functional>
 #include <memory>
 #include <random>
@@ -113,6 +114,7 @@ class DoubleTouch : public Plugin {
   pps::Stimulus truth_clean_;      // true stimulus of this tick (also when not presented)
   Eigen::Vector3d last_perceived_ = Eigen::Vector3d::Zero(), last_true_ = Eigen::Vector3d::Zero();
   bool have_last_ = false;
+  std::deque<pps::PathSample> path_history_;  // the last pps::kOffsetMaxBackoff s (true offsets)
   pps::TrueOffsets offsets_;
   int true_offset_samples_ = 0;
   std::uint64_t last_event_id_ = 0;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
 
 #include "landscape_figure.hpp"
@@ -275,8 +276,12 @@ void PpsLearner::learn_from_events(NodeContext& ctx) {
       if (e.body_part != p.name) continue;
       // The contact estimator: where the stimulus was perceived when it touched (before the
       // buffer is spent on the maps).
+      std::optional<pps::SkinTouch> touch;
+      if (e.contact_point_link.allFinite() && e.contact_normal_link.allFinite())
+        touch = pps::SkinTouch{e.contact_point_link, e.contact_normal_link};
       p.learner->record_contact_offset(p.poses, e.touched_taxels,
-                                       std::isnan(e.first_touch_s) ? e.time_s : e.first_touch_s);
+                                       std::isnan(e.first_touch_s) ? e.time_s : e.first_touch_s,
+                                       touch);
       p.learner->on_contact(p.poses, e.touched_taxels);
       ++p.events;
       if (std::find(snapshot_after_.begin(), snapshot_after_.end(), p.events) !=

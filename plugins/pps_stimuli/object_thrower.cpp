@@ -373,12 +373,11 @@ void ObjectThrower::learn_true_offsets() {
     truth.position = seen_->position + (e.time_s - seen_->time_s) * seen_->velocity;
     truth.velocity = seen_->velocity;
     truth.radius = radius_;
-    truth.position -= pps::time_since_reaching_skin(e, *skin_, truth) * truth.velocity;
     pps::Stimulus perceived = truth;
     perceived.position = seen_->to_perceived * truth.position;
     perceived.velocity = seen_->to_perceived.linear() * truth.velocity;
     true_offsets_.add_event(e, *skin_, believed_taxels_ ? *believed_taxels_ : *skin_, perceived,
-                            truth);
+                            truth, pps::kOffsetClearance);
   }
 }
 

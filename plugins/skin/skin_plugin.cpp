@@ -305,6 +305,8 @@ void SkinPlugin::step(NodeContext& ctx) {
       e.time_s = now;
       e.first_touch_s = std::min(p.episode_first_touch, now);  // NaN stays NaN
       e.body_part = p.layout.body_part;
+      e.contact_point_link = onset->centre_link;
+      e.contact_normal_link = onset->normal_link;
       e.touched_taxels = std::move(onset->virtual_ids);
       p.touched_virtual.insert(e.touched_taxels.begin(), e.touched_taxels.end());
       ++p.events;

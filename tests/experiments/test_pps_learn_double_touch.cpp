@@ -34,3 +34,23 @@ TEST(PpsLearnDoubleTouch, FingertipTouchesTeachTheForearm) {
   EXPECT_EQ(again.metrics["nodes"]["touch"].dump(), touch.dump());
   EXPECT_EQ(again.metrics["nodes"]["pps"].dump(), pps.dump());
 }
+
+// Double touch with kinematic errors of either sign: every evaluated taxel's contact estimate
+// within 1 cm of the truth (the README's offset table reports the full runs).
+class PpsLearnDoubleTouchErrorSets : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(PpsLearnDoubleTouchErrorSets, EveryTaxelEstimateWithinOneCentimetre) {
+  const std::vector<somasim::Override> overrides = {
+      {"nodes.touch.params.touches", "25"},
+      {"nodes.believed.params.joint_offsets_deg", std::string("{") + GetParam() + "}"}};
+  const auto run = run_config("pps_learn_double_touch", overrides, "set");
+  ASSERT_EQ(run.metrics["status"], "completed") << run.metrics["error"];
+  EXPECT_GE(run.metrics["offset_taxels_evaluated"].get<int>(), 5);
+  EXPECT_LE(run.metrics["offset_error_max_m"].get<double>(), 0.01) << GetParam();
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Sets, PpsLearnDoubleTouchErrorSets,
+    ::testing::Values(
+        "l_elbow: 4, l_wrist_prosup: 3, r_elbow: -3, r_wrist_pitch: -4, r_wrist_yaw: 3",
+        "l_elbow: -4, l_wrist_prosup: -3, r_elbow: 3, r_wrist_pitch: 4, r_wrist_yaw: -3"));

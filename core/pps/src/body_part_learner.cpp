@@ -1,7 +1,10 @@
 #include "somasim/pps/body_part_learner.hpp"
 
+#include <cmath>
+#include <limits>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "somasim/error.hpp"
 
@@ -29,24 +32,104 @@ BodyPartLearner::BodyPartLearner(std::string body_part, std::vector<TaxelInfo> t
   contact_count_.assign(taxels_.size(), 0);
 }
 
-void BodyPartLearner::record_contact_offset(std::span<const TaxelPose> taxels_root,
-                                            std::span<const int> touched_ids, double touch_time_s) {
-  if (taxels_root.size() != taxels_.size() || buffer_.empty()) return;
-  const auto& samples = buffer_.samples();
-  const StimulusSample* last = &samples.front();
-  for (const StimulusSample& s : samples)
-    if (s.time <= touch_time_s) last = &s;
-  Stimulus at_touch = last->stimulus;
-  if (touch_time_s > last->time)
-    at_touch.position += at_touch.velocity * (touch_time_s - last->time);
-  for (const int id : touched_ids) {
-    const int k = index_of(id);
-    if (k < 0) continue;
-    const auto kk = static_cast<std::size_t>(k);
-    const TaxelFrameStimulus local = to_taxel_frame(taxels_root[kk], at_touch);
-    contact_d_sum_[kk] += compute_d_ttc(local.p, local.v, params_.ttc).d;
-    ++contact_count_[kk];
+namespace {
+
+// Believed root <- link transform of a part, fitted to its taxels (link vs root positions).
+Eigen::Isometry3d fit_root_from_link(std::span<const TaxelInfo> taxels,
+                                     std::span<const TaxelPose> taxels_root) {
+  Eigen::Matrix3Xd link(3, static_cast<Eigen::Index>(taxels.size()));
+  Eigen::Matrix3Xd root(3, link.cols());
+  for (std::size_t k = 0; k < taxels.size(); ++k) {
+    link.col(static_cast<Eigen::Index>(k)) = taxels[k].pose_link.position;
+    root.col(static_cast<Eigen::Index>(k)) = taxels_root[k].position;
   }
+  return Eigen::Isometry3d(Eigen::umeyama(link, root, false));
+}
+
+}  // namespace
+
+// The perceived stimulus at time t [s]: interpolated between the buffered samples around t,
+// carried along its velocity beyond the first or last one.
+Stimulus BodyPartLearner::perceived_at(double t) const {
+  const auto& samples = buffer_.samples();
+  const StimulusSample* before = nullptr;
+  const StimulusSample* after = nullptr;
+  for (const StimulusSample& s : samples) {
+    if (s.time <= t) before = &s;
+    if (s.time >= t && !after) after = &s;
+  }
+  if (before && after && after->time > before->time) {
+    const double w = (t - before->time) / (after->time - before->time);
+    Stimulus out = before->stimulus;
+    out.position = (1.0 - w) * before->stimulus.position + w * after->stimulus.position;
+    out.velocity = (1.0 - w) * before->stimulus.velocity + w * after->stimulus.velocity;
+    return out;
+  }
+  const StimulusSample& nearest = before ? *before : *after;
+  Stimulus out = nearest.stimulus;
+  out.position += out.velocity * (t - nearest.time);
+  return out;
+}
+
+void BodyPartLearner::record_contact_offset(std::span<const TaxelPose> taxels_root,
+                                            std::span<const int> touched_ids, double touch_time_s,
+                                            const std::optional<SkinTouch>& touch) {
+  if (taxels_root.size() != taxels_.size() || buffer_.empty()) return;
+  std::vector<std::size_t> touched;
+  std::vector<Eigen::Vector3d> touched_link;
+  for (const int id : touched_ids)
+    if (const int k = index_of(id); k >= 0) {
+      touched.push_back(static_cast<std::size_t>(k));
+      touched_link.push_back(taxels_[static_cast<std::size_t>(k)].pose_link.position);
+    }
+  if (touched.empty()) return;
+  const auto record = [&](std::size_t k, const Stimulus& perceived, double skin_d) {
+    const TaxelFrameStimulus local = to_taxel_frame(taxels_root[k], perceived);
+    contact_d_sum_[k] += compute_d_ttc(local.p, local.v, params_.ttc).d - skin_d;
+    ++contact_count_[k];
+  };
+  if (!touch) {  // the contact taken at the taxel centres, at the touch
+    for (const std::size_t k : touched) record(k, perceived_at(touch_time_s), 0.0);
+    return;
+  }
+  const std::size_t k =
+      touched[static_cast<std::size_t>(nearest_point(touched_link, touch->point_link))];
+  // What the skin itself tells (link frame, free of kinematic error): a stimulus of the
+  // perceived radius resting on the skin at the centre of pressure; before the touch, it was
+  // where the perceived path says, relative to the touch — the path carried into the link
+  // frame by the believed link pose (fitted to the taxels), so the error's offset cancels.
+  const Eigen::Isometry3d link_from_root =
+      (taxels_.size() >= 3 ? fit_root_from_link(taxels_, taxels_root)
+                           : Eigen::Isometry3d::Identity())
+          .inverse();
+  const Stimulus at_touch = perceived_at(touch_time_s);
+  Stimulus resting = at_touch;
+  const Eigen::Vector3d resting_at_touch = touch->point_link + at_touch.radius * touch->normal_link;
+  const Eigen::Vector3d path_at_touch = link_from_root * at_touch.position;
+  const TaxelPose& taxel = taxels_[k].pose_link;
+  const auto height = [&](double t) {
+    resting.position = resting_at_touch + link_from_root * perceived_at(t).position - path_at_touch;
+    return to_taxel_frame(taxel, resting).p.z();
+  };
+  // Back along the path to where it was kOffsetClearance outside the taxel (buffered samples,
+  // then linear between the last one out and the next).
+  const auto& samples = buffer_.samples();
+  double later_t = touch_time_s, later_h = height(touch_time_s);
+  double found_t = std::numeric_limits<double>::quiet_NaN();
+  for (auto it = samples.rbegin(); it != samples.rend(); ++it) {
+    if (it->time >= touch_time_s) continue;
+    const double h = height(it->time);
+    if (h >= kOffsetClearance) {
+      found_t = it->time + (later_t - it->time) * (h - kOffsetClearance) / (h - later_h);
+      break;
+    }
+    later_t = it->time;
+    later_h = h;
+  }
+  if (std::isnan(found_t)) return;  // the buffered path never was that far out
+  height(found_t);
+  const TaxelFrameStimulus on_skin = to_taxel_frame(taxel, resting);
+  record(k, perceived_at(found_t), compute_d_ttc(on_skin.p, on_skin.v, params_.ttc).d);
 }
 
 std::optional<double> BodyPartLearner::contact_offset(int k) const {

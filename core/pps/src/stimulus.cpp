@@ -1,5 +1,6 @@
 #include "somasim/pps/stimulus.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <Eigen/Geometry>
@@ -29,6 +30,30 @@ TaxelFrameStimulus to_taxel_frame(const TaxelPose& taxel, const Stimulus& s) {
   out.p.z() -= s.radius;
   out.v = r.transpose() * s.velocity;  // a direction: rotation only
   return out;
+}
+
+double time_since_outside(std::span<const TaxelPose> taxels, const Stimulus& s, double clearance,
+                          double max_s) {
+  double back = 0.0;
+  for (const TaxelPose& taxel : taxels) {
+    const TaxelFrameStimulus local = to_taxel_frame(taxel, s);
+    if (local.p.z() < clearance && local.v.z() < 0.0)
+      back = std::max(back, (clearance - local.p.z()) / -local.v.z());
+  }
+  return std::min(back, max_s);
+}
+
+int nearest_point(std::span<const Eigen::Vector3d> points, const Eigen::Vector3d& target) {
+  int best = -1;
+  double best_d2 = 0.0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const double d2 = (points[i] - target).squaredNorm();
+    if (best < 0 || d2 < best_d2) {
+      best = static_cast<int>(i);
+      best_d2 = d2;
+    }
+  }
+  return best;
 }
 
 DTtc compute_d_ttc(const Eigen::Vector3d& p, const Eigen::Vector3d& v, TtcDefinition def) {

@@ -54,8 +54,18 @@ std::optional<TouchOnset> PartResponse::update(double now_s) {
     TouchOnset t;
     t.physical_count = count;
     std::vector<bool> touched(layout_.virtual_taxels.size(), false);
-    for (std::size_t i = 0; i < over_.size(); ++i)
-      if (over_[i]) touched[static_cast<std::size_t>(layout_.module[i])] = true;
+    Eigen::Vector3d weighted_position = Eigen::Vector3d::Zero();
+    Eigen::Vector3d weighted_normal = Eigen::Vector3d::Zero();
+    double total = 0.0;
+    for (std::size_t i = 0; i < over_.size(); ++i) {
+      if (!over_[i]) continue;
+      touched[static_cast<std::size_t>(layout_.module[i])] = true;
+      weighted_position += pressure_[i] * layout_.positions[i];
+      weighted_normal += pressure_[i] * layout_.normals[i];
+      total += pressure_[i];
+    }
+    t.centre_link = weighted_position / total;  // total > threshold * count > 0
+    if (weighted_normal.norm() > 1e-12) t.normal_link = weighted_normal.normalized();
     for (std::size_t v = 0; v < touched.size(); ++v)
       if (touched[v]) t.virtual_ids.push_back(layout_.virtual_taxels[v].id);
     std::sort(t.virtual_ids.begin(), t.virtual_ids.end());

@@ -104,3 +104,31 @@ TEST(SkinResponse, NoEventBelowThresholdOrOnTooFewTaxels) {
     EXPECT_EQ(r.over_threshold()[0], true);
   }
 }
+
+TEST(SkinResponse, OnsetCarriesTheCentreOfPressure) {
+  const SkinLayout l = grid();
+  ResponseParams p;
+  p.contact_radius = 0.0076;  // the 3 x 3 block around a taxel and no further
+  p.model = PressureModel::kKernel;
+  PartResponse r(l, p);
+  r.add_contact({0.01, 0.01, 0.0}, 1.0);  // on taxel 12: a symmetric block
+  const auto onset = r.update(0.0);
+  ASSERT_TRUE(onset.has_value());
+  EXPECT_LT((onset->centre_link - Eigen::Vector3d(0.01, 0.01, 0.0)).norm(), 1e-12);
+  EXPECT_LT((onset->normal_link - Eigen::Vector3d::UnitZ()).norm(), 1e-12);
+}
+
+TEST(SkinResponse, CentreOfPressureFollowsAContactBetweenTaxels) {
+  const SkinLayout l = grid();
+  ResponseParams p;
+  p.contact_radius = 0.0051;
+  PartResponse r(l, p);
+  // Between taxels 12 and 13 and pressing 13 harder: two contact points of one touch.
+  r.add_contact({0.0125, 0.01, 0.0}, 1.0);
+  r.add_contact({0.015, 0.01, 0.0}, 1.0);
+  const auto onset = r.update(0.0);
+  ASSERT_TRUE(onset.has_value());
+  EXPECT_GT(onset->centre_link.x(), 0.0125);
+  EXPECT_LT(onset->centre_link.x(), 0.015);
+  EXPECT_NEAR(onset->centre_link.y(), 0.01, 1e-12);
+}

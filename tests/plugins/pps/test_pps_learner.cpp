@@ -192,7 +192,8 @@ nodes:
   EXPECT_DOUBLE_EQ(taxel["offset_ridge_m"].get<double>(), ridge);
   const double floor = h.metric("pps", "offset_floor_m").get<double>();
   EXPECT_DOUBLE_EQ(taxel["offset_floor_m"].get<double>(), floor);
-  EXPECT_DOUBLE_EQ(h.metric("pps", "offset_mean_m")["taxel"].get<double>(), floor);
+  EXPECT_DOUBLE_EQ(h.metric("pps", "offset_mean_floor_m")["taxel"].get<double>(), floor);
+  EXPECT_EQ(h.metric("pps", "offset_mean_m"), h.metric("pps", "offset_mean_contact_m"));
   // The contact estimator: the stimulus's D when it touched (the thrower's event time).
   EXPECT_NEAR(h.metric("pps", "offset_mean_contact_m")["taxel"].get<double>(), truth, 0.005);
   EXPECT_NEAR(floor, truth, 0.0375) << floor;

@@ -190,10 +190,10 @@ TEST(PpsLearnerParts, PartsLearnIndependentlyLikeOneLearnerPerPart) {
 }
 
 // Known answer: the ridge-end estimates are -0.02 (patch/10) and +0.01 m (palm/1); with true
-// offsets -0.02 and +0.013 the largest ridge error is 0.003 m on palm/1. The floor (the best
-// estimator, unsuffixed keys) reads the same ends to a fraction of the paper's 3.75 cm bins.
+// offsets -0.02 and +0.013 the largest ridge error is 0.003 m on palm/1. The floor reads the
+// same ends to a fraction of the paper's 3.75 cm bins.
 // Untouched taxels (NaN), taxels with too few samples (palm/2, no estimate at all) and labels
-// of no part are left out.
+// of no part are left out. The unsuffixed keys are the contact estimator's.
 TEST(PpsLearnerParts, OffsetErrorsAgainstTrueOffsetsMatchedByLabel) {
   Harness h(graph("palm patch"));
   set_skin(h);
@@ -230,10 +230,12 @@ TEST(PpsLearnerParts, OffsetErrorsAgainstTrueOffsetsMatchedByLabel) {
   EXPECT_NEAR(floor_patch, -0.02, 0.001);
   EXPECT_NEAR(floor_palm, 0.01, 0.001);
   const double floor_err[] = {std::abs(floor_patch + 0.02), std::abs(floor_palm - 0.013)};
-  EXPECT_DOUBLE_EQ(h.metric("pps", "offset_error_max_m").get<double>(),
+  EXPECT_DOUBLE_EQ(h.metric("pps", "offset_error_max_floor_m").get<double>(),
                    std::max(floor_err[0], floor_err[1]));
-  EXPECT_DOUBLE_EQ(h.metric("pps", "offset_error_mean_m").get<double>(),
+  EXPECT_DOUBLE_EQ(h.metric("pps", "offset_error_mean_floor_m").get<double>(),
                    (floor_err[0] + floor_err[1]) / 2);
+  EXPECT_EQ(h.metric("pps", "offset_error_max_m"), h.metric("pps", "offset_error_max_contact_m"));
+  EXPECT_EQ(h.metric("pps", "offset_error_mean_m"), h.metric("pps", "offset_error_mean_contact_m"));
   const double paper_patch = taxels["patch/10"]["offset_estimate_m"].get<double>();
   const double paper_palm = taxels["palm/1"]["offset_estimate_m"].get<double>();
   EXPECT_DOUBLE_EQ(h.metric("pps", "offset_error_max_paper_m").get<double>(),
@@ -242,16 +244,18 @@ TEST(PpsLearnerParts, OffsetErrorsAgainstTrueOffsetsMatchedByLabel) {
   // only (no floor or ridge estimate, and a Fig 8 line through their activations).
   EXPECT_EQ(taxels["patch/11"]["offset_ridge_m"], nullptr);
   EXPECT_EQ(taxels["patch/11"]["offset_floor_m"], nullptr);
-  EXPECT_DOUBLE_EQ(h.metric("pps", "offset_mean_m")["patch"].get<double>(), floor_patch);
-  EXPECT_DOUBLE_EQ(h.metric("pps", "offset_mean_m")["palm"].get<double>(), floor_palm);
+  EXPECT_DOUBLE_EQ(h.metric("pps", "offset_mean_floor_m")["patch"].get<double>(), floor_patch);
+  EXPECT_DOUBLE_EQ(h.metric("pps", "offset_mean_floor_m")["palm"].get<double>(), floor_palm);
+  EXPECT_EQ(h.metric("pps", "offset_mean_m"), h.metric("pps", "offset_mean_contact_m"));
   EXPECT_NEAR(h.metric("pps", "offset_mean_ridge_m")["patch"].get<double>(), -0.02, 1e-12);
   EXPECT_NEAR(h.metric("pps", "offset_mean_ridge_m")["palm"].get<double>(), 0.01, 1e-12);
   EXPECT_NEAR(h.metric("pps", "true_offset_mean_m")["patch"].get<double>(), -0.02, 1e-12);
   EXPECT_NEAR(h.metric("pps", "true_offset_mean_m")["palm"].get<double>(), 0.013, 1e-12);
   EXPECT_TRUE(h.metric("pps", "offset_mean_paper_m")["palm"].is_number());
   const auto per_part = h.metric("pps", "per_part");
-  EXPECT_DOUBLE_EQ(per_part["palm"]["offset_error_max_m"].get<double>(), floor_err[1]);
-  EXPECT_DOUBLE_EQ(per_part["patch"]["offset_error_mean_m"].get<double>(), floor_err[0]);
+  EXPECT_DOUBLE_EQ(per_part["palm"]["offset_error_max_floor_m"].get<double>(), floor_err[1]);
+  EXPECT_DOUBLE_EQ(per_part["patch"]["offset_error_mean_floor_m"].get<double>(), floor_err[0]);
+  EXPECT_EQ(per_part["palm"]["offset_error_max_m"], per_part["palm"]["offset_error_max_contact_m"]);
   EXPECT_NEAR(per_part["palm"]["offset_error_max_contact_m"].get<double>(), 0.00175, 1e-12);
   EXPECT_NEAR(per_part["palm"]["offset_error_max_ridge_m"].get<double>(), 0.003, 1e-12);
   EXPECT_NEAR(per_part["patch"]["offset_error_max_ridge_m"].get<double>(), 0.0, 1e-12);
@@ -271,7 +275,8 @@ TEST(PpsLearnerParts, WithoutTrueOffsetsThereAreNoErrorMetrics) {
   EXPECT_TRUE(h.metric("pps", "true_offset_mean_m").is_null());
   EXPECT_TRUE(h.metric("pps", "offset_error_max_ridge_m").is_null());
   EXPECT_NEAR(h.metric("pps", "offset_mean_contact_m")["palm"].get<double>(), 0.01125, 1e-12);
-  EXPECT_NEAR(h.metric("pps", "offset_mean_m")["palm"].get<double>(), 0.01, 0.001);
+  EXPECT_NEAR(h.metric("pps", "offset_mean_floor_m")["palm"].get<double>(), 0.01, 0.001);
+  EXPECT_EQ(h.metric("pps", "offset_mean_m"), h.metric("pps", "offset_mean_contact_m"));
   EXPECT_NEAR(h.metric("pps", "offset_mean_ridge_m")["palm"].get<double>(), 0.01, 1e-12);
 }
 
@@ -320,8 +325,10 @@ TEST(PpsLearnerParts, RoundTripThroughTheIcubIniFormat) {
   h.finish();
   EXPECT_EQ(h.metric("pps", "events"), 0);
   // The maps' estimators agree; the .ini format has no contact evidence (nothing to compare).
-  EXPECT_EQ(h.metric("pps", "offset_error_max_m"), learnt.metric("pps", "offset_error_max_m"));
+  EXPECT_EQ(h.metric("pps", "offset_error_max_floor_m"),
+            learnt.metric("pps", "offset_error_max_floor_m"));
   EXPECT_TRUE(h.metric("pps", "offset_error_max_contact_m").is_null());
+  EXPECT_TRUE(h.metric("pps", "offset_error_max_m").is_null());
   const auto parts = somasim::pps::load_learned_parts((h.out_dir() / "learned.json").string());
   ASSERT_EQ(parts.size(), 2u);
   EXPECT_EQ(parts[0].body_part, "patch");

@@ -167,9 +167,9 @@ TEST(ObjectThrowerPerception, ContactsOutsideTheObjectsLifetimeTeachNothing) {
 
 // A flat patch of two taxels 1.5 cm apart, believed 1 cm inside the skin; the skin reports the
 // contact late, after the ball pressed 3 mm into it. The true D of the taxel beside the contact
-// point would then be −|p| (p_z < 0) and the perceived +|p'|; the offsets are taken as the
-// ball reached the skin instead (0.1 mm above its plane).
-TEST(ObjectThrowerPerception, ALateContactIsTakenWhereTheObjectReachedTheSkin) {
+// point would then be −|p| (p_z < 0) and the perceived +|p'|; the offsets are taken where the
+// ball was kOffsetClearance (5 cm) above the skin on its way in instead.
+TEST(ObjectThrowerPerception, ALateContactIsTakenWhereTheObjectApproachedTheSkin) {
   Harness h(thrower("approaches: 1, cone_deg: 0, size: 0.025",
                     "contacts: harness.contacts, believed_taxels: harness.believed_taxels"));
   feed_world(h);
@@ -194,8 +194,9 @@ TEST(ObjectThrowerPerception, ALateContactIsTakenWhereTheObjectReachedTheSkin) {
     ASSERT_TRUE(h.step());
   }
   const std::size_t k = aimed(h), beside = 1 - k;
-  // Where the ball reached the skin: 0.1 mm above both taxels' plane.
-  const Eigen::Vector3d reached = flat.positions[k] + (0.025 + 1e-4) * Eigen::Vector3d::UnitZ();
+  // Where the ball was 5 cm above both taxels' plane.
+  const Eigen::Vector3d reached =
+      flat.positions[k] + (0.025 + somasim::pps::kOffsetClearance) * Eigen::Vector3d::UnitZ();
   const auto& offsets = h.output<TaxelValues>("t.true_offsets");
   for (std::size_t i : {k, beside}) {
     const double expected = d_of(believed.positions[i], believed.normals[i], reached, 0.025) -
@@ -203,8 +204,8 @@ TEST(ObjectThrowerPerception, ALateContactIsTakenWhereTheObjectReachedTheSkin) {
     EXPECT_NEAR(offsets.values[i], expected, 1e-9) << i;
   }
   EXPECT_NEAR(offsets.values[k], 0.01, 1e-9);
-  // Beside the contact: sqrt(1.5² + 1.01²) − sqrt(1.5² + 0.01²) cm, not ≈ 2 × 1.5 cm.
-  EXPECT_NEAR(offsets.values[beside], std::hypot(0.015, 0.0101) - std::hypot(0.015, 1e-4), 1e-9);
+  // Beside the contact: sqrt(1.5² + 6²) − sqrt(1.5² + 5²) cm, not ≈ 2 × 1.5 cm.
+  EXPECT_NEAR(offsets.values[beside], std::hypot(0.015, 0.06) - std::hypot(0.015, 0.05), 1e-9);
 }
 
 // Labels for every taxel of every part of the true taxels input, parts in input order; an

@@ -42,6 +42,13 @@ struct TaxelInfo {
   TaxelPose pose_link;
 };
 
+/// Where the skin was touched: centre of pressure [m] and outward unit normal there, both in
+/// the frame of the part's link.
+struct SkinTouch {
+  Eigen::Vector3d point_link;
+  Eigen::Vector3d normal_link;
+};
+
 /// What one contact event taught.
 struct LearningStats {
   std::size_t buffered_samples = 0;  ///< samples in the buffer at the event
@@ -86,13 +93,21 @@ class BodyPartLearner {
   LearningStats on_contact(const Eigen::Isometry3d& root_from_link,
                            std::span<const int> touched_ids);
 
-  /// The `contact` offset estimator's evidence: the perceived D of the stimulus at the moment
-  /// of contact, per touched taxel (same D as the maps: signed distance of the stimulus surface
-  /// from the taxel). The newest buffered sample not later than `touch_time_s` is carried to
-  /// that time along its velocity. Call before on_contact() (which clears the buffer); taxel
-  /// poses as for on_contact(). Nothing is recorded without a buffered sample.
+  /// The `contact` offset estimator's evidence. With the centre of pressure `touch`: for the
+  /// touched taxel nearest it (nearest_point), the perceived D of the stimulus minus the D the
+  /// skin itself implies, both where the object was kOffsetClearance outside that taxel on its
+  /// way in — the moment the truth is taken at (true_offsets.hpp). The skin's D is that of a
+  /// stimulus of the perceived radius resting on the skin at `touch` (link frame, so free of
+  /// kinematic error), moved back along the perceived velocity (rotated into the link frame by
+  /// the believed link pose, fitted to the taxels); the perceived stimulus is interpolated from
+  /// the buffered samples at that time. Without `touch`: the perceived D at `touch_time_s`
+  /// for every touched taxel (the contact taken at the taxel centres).
+  ///
+  /// Call before on_contact() (which clears the buffer); taxel poses as for on_contact().
+  /// Nothing is recorded without a buffered sample.
   void record_contact_offset(std::span<const TaxelPose> taxels_root,
-                             std::span<const int> touched_ids, double touch_time_s);
+                             std::span<const int> touched_ids, double touch_time_s,
+                             const std::optional<SkinTouch>& touch = std::nullopt);
   /// Sum of the recorded contact D of taxel index k [m] and their count.
   double contact_d_sum(int k) const { return contact_d_sum_[static_cast<std::size_t>(k)]; }
   std::uint32_t contact_count(int k) const { return contact_count_[static_cast<std::size_t>(k)]; }
@@ -124,6 +139,7 @@ class BodyPartLearner {
   LearningStats totals_;
   std::vector<TaxelPose> scratch_poses_;
   std::vector<std::uint8_t> touched_;
+  Stimulus perceived_at(double t) const;
   std::vector<double> contact_d_sum_;
   std::vector<std::uint32_t> contact_count_;
 };

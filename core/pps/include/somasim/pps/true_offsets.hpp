@@ -1,19 +1,24 @@
 #pragma once
 /// @file
 /// The offset each taxel SHOULD show in its learned PPS map (shared contract 2), known here
-/// because the simulation knows the truth: for every skin contact event that touched a taxel,
+/// because the simulation knows the truth: for every skin contact event,
 ///   perceived D − true D,
 /// perceived D = D of the perceived, noise-free stimulus w.r.t. the taxel posed by the BELIEVED
 /// kinematics; true D = D of the true stimulus w.r.t. the taxel posed by the TRUE kinematics
 /// (pps::to_taxel_frame + pps::compute_d_ttc, radius = the stimulus radius); the value of a taxel
 /// is the mean over its events, NaN while it was never touched.
 ///
-/// "At the event" means as the object reached the skin: a skin reports a contact up to one of
-/// its periods late, when the object already presses into it, and D = sign(p_z)|p| of a touched
-/// taxel BESIDE the contact point (p_z ≈ 0, |p| = its distance from the contact point) then flips
-/// to −|p|. So the source moves the true object back along its path to the last instant it was
-/// outside every touched taxel's skin plane (time_since_reaching_skin).
+/// Which taxel: when the event carries the skin's centre of pressure, only the touched taxel
+/// nearest it (pps::nearest_point); else every touched taxel.
+///
+/// When: with a `clearance` (objects on straight paths: pps::kOffsetClearance), both stimuli
+/// are moved back along their velocities to where the true one was that far outside the
+/// taxel's true skin plane — at the contact itself D = sign(p_z)|p| is discontinuous for a
+/// taxel displaced sideways, and the offset's sign would be decided by noise. Without one, at
+/// the stimuli given.
 #include <map>
+#include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -23,11 +28,11 @@
 
 namespace somasim::pps {
 
-/// How long [s] before `truth` (the true stimulus at the event, root frame) the object was
-/// last at least `clearance` [m] outside (p_z ≥ clearance, true kinematics) every taxel the
-/// event touched that it moves toward; 0 when it already is, at most `max_s`.
-double time_since_reaching_skin(const ContactEvent& event, const SkinTaxels& true_taxels,
-                                const Stimulus& truth, double clearance = 1e-4, double max_s = 0.1);
+/// One instant of a stimulus path: the perceived and the true stimulus at `time_s` [s].
+struct PathSample {
+  double time_s = 0.0;
+  Stimulus perceived, truth;
+};
 
 class TrueOffsets {
  public:
@@ -38,8 +43,15 @@ class TrueOffsets {
   /// event's part with the same ids (RunError otherwise; pass `true_taxels` when the robot's
   /// kinematics are exact). Returns the taxels counted.
   int add_event(const ContactEvent& event, const SkinTaxels& true_taxels,
-                const SkinTaxels& believed_taxels, const Stimulus& perceived,
-                const Stimulus& truth);
+                const SkinTaxels& believed_taxels, const Stimulus& perceived, const Stimulus& truth,
+                std::optional<double> clearance = std::nullopt);
+  /// Same for a stimulus on a curved path (a fingertip): the stimuli are taken from `path`
+  /// (time order, ending at the event) where the true one was `clearance` outside the credited
+  /// taxel's true skin plane, interpolated between samples; a taxel whose plane the path never
+  /// was that far outside of is not counted.
+  int add_event_on_path(const ContactEvent& event, const SkinTaxels& true_taxels,
+                        const SkinTaxels& believed_taxels, std::span<const PathSample> path,
+                        double clearance);
   /// Labels and current means (NaN for taxels never touched).
   void write(TaxelValues& out) const;
   /// Per part: mean of the per-taxel means over its touched taxels, and their count.

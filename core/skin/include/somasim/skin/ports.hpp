@@ -39,6 +39,13 @@ struct ContactEvent {
   /// Sim time of the first contact point of this contact episode [s] (the world's clock, so
   /// finer than a slower skin's steps; <= time_s). NaN when the producer does not know it.
   double first_touch_s = std::numeric_limits<double>::quiet_NaN();
+  /// Centre of pressure of the touch [m] and the skin's outward unit normal there, both in the
+  /// frame of the touched part's link (fixed to the skin, so independent of any kinematic
+  /// belief). NaN when the producer does not know them.
+  Eigen::Vector3d contact_point_link =
+      Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  Eigen::Vector3d contact_normal_link =
+      Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
 };
 
 /// The recent contact events of a producer (it prunes old ones; consumers track `id`).

@@ -35,6 +35,11 @@ struct ResponseParams {
 struct TouchOnset {
   std::vector<int> virtual_ids;  ///< virtual taxels with a member over threshold (ascending)
   int physical_count = 0;        ///< physical taxels over threshold
+  /// Centre of pressure [m, link frame]: the pressure-weighted mean position of the physical
+  /// taxels over threshold (what the robot's skin can tell about where it was touched).
+  Eigen::Vector3d centre_link = Eigen::Vector3d::Zero();
+  /// Pressure-weighted mean outward normal of those taxels (unit, link frame).
+  Eigen::Vector3d normal_link = Eigen::Vector3d::UnitZ();
 };
 
 /// Pressures and episode state of one part. Usage per update: clear(); add_contact() for each
