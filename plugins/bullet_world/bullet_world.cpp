@@ -248,7 +248,11 @@ void BulletWorld::spawn_from_port(NodeContext& ctx, double t) {
 void BulletWorld::step(NodeContext& ctx) {
   const double t = ctx.time_s();
   if (commands_) motors_->apply(*commands_, t);
-  if (spawns_) spawn_from_port(ctx, t);
+  if (spawns_) {
+    spawn_from_port(ctx, t);
+    for (const std::string& name : spawns_->withdraw)
+      objects_withdrawn_ += objects_->remove_named(name);
+  }
   objects_->remove_expired(t);
   objects_->move_kinematic(t + dt_);
   motors_->update_limits();
@@ -280,6 +284,7 @@ void BulletWorld::finish(NodeContext& ctx) {
   ctx.report_metric("max_penetration_m", max_penetration_);
   ctx.report_metric("objects_spawned", objects_spawned_);
   ctx.report_metric("objects_out_of_bounds", objects_out_of_bounds_);
+  ctx.report_metric("objects_withdrawn", objects_withdrawn_);
 }
 
 }  // namespace somasim::bullet_world

@@ -80,6 +80,7 @@ class BulletWorld : public Plugin {
   double max_penetration_ = 0.0;
   std::int64_t objects_spawned_ = 0;
   std::int64_t objects_out_of_bounds_ = 0;
+  std::int64_t objects_withdrawn_ = 0;  // removed on request (spawns' `withdraw`)
 };
 
 }  // namespace somasim::bullet_world

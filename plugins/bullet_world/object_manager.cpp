@@ -102,6 +102,16 @@ void ObjectManager::move_kinematic(double t_next) {
   }
 }
 
+int ObjectManager::remove_named(const std::string& name) {
+  int n = 0;
+  for (int i = 0; i < size(); ++i)
+    if (present(i) && objects_[static_cast<std::size_t>(i)].name == name) {
+      remove(i);
+      ++n;
+    }
+  return n;
+}
+
 Eigen::Isometry3d ObjectManager::pose(int i) const {
   const Object& o = objects_[i];
   if (!o.body) return o.last_pose;

@@ -46,6 +46,8 @@ class ObjectManager {
   int remove_beyond(double radius);
   /// Sets the poses kinematic objects must reach at `t_next` [s] (call before stepping).
   void move_kinematic(double t_next);
+  /// Removes the present objects named `name`; returns how many.
+  int remove_named(const std::string& name);
 
   int size() const { return static_cast<int>(objects_.size()); }
   const std::string& name(int i) const { return objects_[i].name; }

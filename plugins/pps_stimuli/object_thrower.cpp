@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include <Eigen/Geometry>
@@ -111,6 +112,15 @@ PluginSpec ObjectThrower::spec() {
       "pause between the removal of an object and the next one");
   s.add_double("linger").unit_is("s").defaults(0.1).range(0, 10).describe(
       "an approaching object is removed this long after reaching the skin");
+  s.add_double("withdraw_after_skin_contact")
+      .unit_is("s")
+      .defaults(-1.0)
+      .range(-1, 100)
+      .describe(
+          "the object is withdrawn (removed from the world) this long after the skin first "
+          "reports a contact during its presentation — a person holding it does not push on "
+          "into an arm that came to meet it; needs the 'contacts' input; < 0: it flies its "
+          "whole planned path");
   s.add_double("position_noise")
       .unit_is("m")
       .defaults(0.0)
@@ -135,7 +145,9 @@ PluginSpec ObjectThrower::spec() {
                       /*optional=*/true);
   s.input<LinkPoses>("link_poses", "robot link poses: start points are drawn clear of the robot",
                      /*optional=*/true);
-  s.input<ContactEvents>("contacts", "skin contact events (for true_offsets)", /*optional=*/true);
+  s.input<ContactEvents>("contacts",
+                         "skin contact events (for true_offsets and withdraw_after_skin_contact)",
+                         /*optional=*/true);
   s.input<SkinTaxels>("believed_taxels",
                       "taxels posed by the believed kinematics (believed_kinematics.taxels), for "
                       "the perceived D of true_offsets; unwired: the true taxels",
@@ -209,6 +221,7 @@ void ObjectThrower::configure(NodeContext& ctx) {
   g.linger = ctx.param<double>("linger");
   presentations_ = ctx.param<int>("approaches");
   pause_ = ctx.param<double>("pause");
+  withdraw_after_skin_contact_ = ctx.param<double>("withdraw_after_skin_contact");
   position_noise_ = ctx.param<double>("position_noise");
   velocity_noise_ = ctx.param<double>("velocity_noise");
 
@@ -237,6 +250,9 @@ void ObjectThrower::configure(NodeContext& ctx) {
   }
   link_poses_ = ctx.is_wired("link_poses") ? &ctx.input<LinkPoses>("link_poses") : nullptr;
   contacts_ = ctx.is_wired("contacts") ? &ctx.input<ContactEvents>("contacts") : nullptr;
+  if (withdraw_after_skin_contact_ >= 0 && !contacts_)
+    ctx.param_error("withdraw_after_skin_contact",
+                    "needs the skin's contact events: wire input 'contacts' (e.g. skin.contacts)");
   believed_taxels_ =
       ctx.is_wired("believed_taxels") ? &ctx.input<SkinTaxels>("believed_taxels") : nullptr;
   spawns_ = &ctx.output<ObjectSpawns>("spawns");
@@ -317,6 +333,8 @@ void ObjectThrower::launch(NodeContext& ctx) {
   p.start_time_s = ctx.time_s();
   p.speed = plan.speed;
   lifetime_ = plan.lifetime;
+  withdraw_at_s_ = std::numeric_limits<double>::infinity();
+  spawns_->withdraw.clear();
   seen_.reset();
   ++per_part_presentations_[part];
   ++per_motion_[motion_name(motion)];
@@ -381,6 +399,20 @@ void ObjectThrower::learn_true_offsets() {
   }
 }
 
+void ObjectThrower::withdraw_when_felt(double now) {
+  const Presentation& p = *presentation_;
+  for (const auto& e : contacts_->recent) {
+    if (e.id <= last_felt_event_id_) continue;
+    last_felt_event_id_ = e.id;
+    if (p.active && e.time_s >= p.start_time_s)
+      withdraw_at_s_ = std::min(withdraw_at_s_, e.time_s + withdraw_after_skin_contact_);
+  }
+  if (p.active && now >= withdraw_at_s_ - 1e-9 && spawns_->withdraw.empty()) {
+    spawns_->withdraw.push_back(p.object);
+    ++withdrawn_;
+  }
+}
+
 void ObjectThrower::step(NodeContext& ctx) {
   const double now = ctx.time_s();
   Presentation& p = *presentation_;
@@ -388,6 +420,7 @@ void ObjectThrower::step(NodeContext& ctx) {
   const bool between = launched_ > 0 && now - p.start_time_s < lifetime_ + pause_ - 1e-9;
   const bool done = !p.active && !between && launched_ >= presentations_;
   if (!p.active && !between && !done) launch(ctx);
+  if (withdraw_after_skin_contact_ >= 0) withdraw_when_felt(now);
   perceive(ctx);
   true_offsets_.sync_layout(*skin_);
   if (contacts_) learn_true_offsets();
@@ -397,6 +430,7 @@ void ObjectThrower::step(NodeContext& ctx) {
 
 void ObjectThrower::finish(NodeContext& ctx) {
   ctx.report_metric("objects_presented", launched_);
+  if (withdraw_after_skin_contact_ >= 0) ctx.report_metric("objects_withdrawn", withdrawn_);
   nlohmann::json per_motion = nlohmann::json::object();
   for (const auto& [motion, n] : per_motion_) per_motion[motion] = n;
   ctx.report_metric("presented_per_motion", per_motion);

@@ -43,6 +43,8 @@ class ObjectThrower : public Plugin {
   void launch(NodeContext& ctx);
   void perceive(NodeContext& ctx);
   void learn_true_offsets();
+  /// Withdraws the current object withdraw_after_skin_contact_ after the skin first felt it.
+  void withdraw_when_felt(double now);
 
   std::shared_ptr<const robot::RobotModel> model_;
   std::unique_ptr<BelievedVision> vision_;  // set when believed_state is wired
@@ -51,6 +53,10 @@ class ObjectThrower : public Plugin {
   std::vector<PresentationMotion> motions_;
   PresentationGeometry geometry_;
   bool box_corner_ = false;
+  double withdraw_after_skin_contact_ = -1.0;  // [s]; < 0: objects fly their whole path
+  double withdraw_at_s_ = 0.0;                 // when the current object goes (inf: not yet)
+  std::uint64_t last_felt_event_id_ = 0;
+  int withdrawn_ = 0;
   double cylinder_half_height_ = 0, position_noise_ = 0, velocity_noise_ = 0, pause_ = 0;
   int presentations_ = 0;
   const SkinTaxels* skin_ = nullptr;

@@ -270,6 +270,27 @@ TEST(BulletWorld, ObjectsAreRemovedAfterTheirLifetimeAndWhenTheyFallAway) {
   EXPECT_EQ(h.metric("world", "objects_out_of_bounds"), 1);
 }
 
+TEST(BulletWorld, ObjectsNamedForWithdrawalAreRemovedAtOnce) {
+  Harness h(world_yaml());
+  auto a =
+      sphere(1, "held", 0.02, Eigen::Vector3d(-0.8, -0.3, 0.2), somasim::ObjectMotion::kKinematic);
+  auto b =
+      sphere(2, "other", 0.02, Eigen::Vector3d(-0.8, 0.3, 0.2), somasim::ObjectMotion::kKinematic);
+  auto& spawns = h.input<ObjectSpawns>("spawns");
+  spawns.recent = {a, b};
+  const auto& objects = h.output<ObjectStates>("world.objects");
+  h.step(10);
+  ASSERT_TRUE(objects.present[0]);
+  spawns.withdraw = {"held", "never_spawned"};
+  h.step();
+  EXPECT_FALSE(objects.present[0]);
+  EXPECT_TRUE(objects.present[1]);
+  h.step(5);  // still listed: nothing more happens
+  EXPECT_TRUE(objects.present[1]);
+  h.finish();
+  EXPECT_EQ(h.metric("world", "objects_withdrawn"), 1);
+}
+
 TEST(BulletWorld, SceneObjectsIncludingMeshesStandAndCarry) {
   // A 20 cm cube mesh as a static table, a dynamic mesh box on it and a ball on the table.
   const TempFile mesh("cube.obj",

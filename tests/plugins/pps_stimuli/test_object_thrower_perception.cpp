@@ -233,3 +233,43 @@ TEST(ObjectThrowerPerception, TrueOffsetsCoverEveryPartInInputOrder) {
     else
       EXPECT_TRUE(std::isnan(offsets.values[i])) << offsets.labels[i];
 }
+
+// withdraw_after_skin_contact: the object is named for withdrawal 0.1 s after the skin first
+// felt it, not at the end of its planned path; the next presentation clears the request.
+TEST(ObjectThrowerPerception, AnObjectTheSkinFeltIsWithdrawn) {
+  Harness h(thrower("approaches: 2, pause: 0.5, withdraw_after_skin_contact: 0.1",
+                    "contacts: harness.contacts"));
+  feed_world(h);
+  ASSERT_TRUE(h.step());
+  const auto spawn = h.output<ObjectSpawns>("t.spawns").recent.back();
+  const auto& withdraw = h.output<ObjectSpawns>("t.spawns").withdraw;
+  const double felt = 0.5;
+  ASSERT_LT(felt + 0.2, spawn.remove_after_s);
+  while (h.time_s() < felt - 1e-9) {
+    feed_object(h, spawn, h.time_s());
+    ASSERT_TRUE(h.step());
+    EXPECT_TRUE(withdraw.empty());
+  }
+  h.input<ContactEvents>("contacts").recent = {touch(1, felt, {0})};
+  while (h.time_s() < felt + 0.1 - 1e-9) {
+    feed_object(h, spawn, h.time_s());
+    ASSERT_TRUE(h.step());
+    EXPECT_TRUE(withdraw.empty()) << h.time_s();
+  }
+  ASSERT_TRUE(h.step());
+  EXPECT_EQ(withdraw, std::vector<std::string>{spawn.name});
+  while (h.output<ObjectSpawns>("t.spawns").recent.back().id == spawn.id) ASSERT_TRUE(h.step());
+  EXPECT_TRUE(withdraw.empty()) << "cleared for the next object";
+  while (h.step()) {
+  }
+  h.finish();
+  EXPECT_EQ(h.metric("t", "objects_withdrawn"), 1);
+}
+
+TEST(ObjectThrowerPerception, WithdrawingNeedsTheSkinContacts) {
+  const std::string msg = error_of(thrower("withdraw_after_skin_contact: 0.1"));
+  EXPECT_NE(msg.find("key 'params.withdraw_after_skin_contact': needs the skin's contact "
+                     "events: wire input 'contacts'"),
+            std::string::npos)
+      << msg;
+}

@@ -79,6 +79,9 @@ struct ObjectSpawn {
 /// Spawn requests of a producer (it prunes old ones; the world tracks ids it has seen).
 struct ObjectSpawns {
   std::vector<ObjectSpawn> recent;
+  /// Names of objects to remove now (e.g. withdrawn by the person holding them); a producer may
+  /// list a name until the object is gone — removing an absent object does nothing.
+  std::vector<std::string> withdraw;
 };
 
 /// State of every object in the world, in spawn order (removed objects keep their slot with
