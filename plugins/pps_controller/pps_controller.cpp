@@ -280,7 +280,8 @@ void PpsController::step(NodeContext& ctx) {
       const Eigen::Isometry3d to_link = home_data_->link_poses[link_].inverse();
       for (const auto& p : part.positions) points.push_back(to_link * p);
     }
-    guard_ = std::make_unique<WorkspaceGuard>(model_, link_, std::move(points), home_q_, radius_);
+    guard_ = std::make_unique<WorkspaceGuard>(model_, link_, std::move(points), home_q_,
+                                              std::max(radius_ - kGuardMargin, 0.5 * radius_));
   }
   robot::forward_kinematics(*model_, *data_, q);
   const double now = ctx.time_s();

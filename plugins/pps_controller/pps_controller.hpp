@@ -43,6 +43,10 @@ class PpsController : public Plugin {
   std::unique_ptr<WorkspaceGuard> guard_;
   /// The guard looks this many control periods ahead (the joints follow with a lag).
   static constexpr double kGuardHorizonTicks = 2.0;
+  /// The guard keeps the points this far [m] inside `workspace_radius`: the arm's servos lag
+  /// its commands and a position hold sags a little under gravity, so the margin keeps the real
+  /// arm (not just its commands) within the radius.
+  static constexpr double kGuardMargin = 2e-3;
   std::unique_ptr<robot::RobotData> data_, home_data_;  ///< at q; at the start posture
   std::string body_part_;
   bool reach_ = false;

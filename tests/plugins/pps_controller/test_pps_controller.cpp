@@ -247,7 +247,8 @@ TEST(PpsController, TheControlledPointStaysWithinTheWorkspaceRadius) {
   }
   EXPECT_LE(farthest, 0.05 + 1e-9);
   EXPECT_LE(farthest_taxel, 0.05 + 1e-9);
-  EXPECT_GT(farthest_taxel, 0.0499);                                 // it went up to the limit
+  // It went up to the guard's limit, 2 mm inside (the margin for the real arm's servo lag).
+  EXPECT_GT(farthest_taxel, 0.0479);
   EXPECT_GT(farthest, 0.045);                                        // (the voted point nearly)
   EXPECT_LT(h.output<Eigen::Vector3d>("pc.velocity").norm(), 1e-3);  // and stopped there
   EXPECT_EQ(h.finish(), "");
@@ -274,7 +275,7 @@ TEST(PpsController, EveryPointOfThePartStaysWithinTheWorkspaceWhateverTheVote) {
         farthest = std::max(farthest, (skin.part.positions[i] - home[i]).norm());
     }
     EXPECT_LE(farthest, 0.03 + 1e-9) << mode;
-    EXPECT_GT(farthest, 0.029) << mode;  // it was pushed to the limit
+    EXPECT_GT(farthest, 0.0279) << mode;  // it was pushed to the guard's limit (2 mm inside)
     EXPECT_EQ(h.finish(), "");
     EXPECT_NEAR(h.metric("pc", "max_distance_from_home_m").get<double>(), farthest, 1e-9) << mode;
   }
