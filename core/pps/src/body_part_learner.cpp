@@ -103,22 +103,24 @@ void BodyPartLearner::record_contact_offset(std::span<const TaxelPose> taxels_ro
                            : Eigen::Isometry3d::Identity())
           .inverse();
   const Stimulus at_touch = perceived_at(touch_time_s);
-  Stimulus resting = at_touch;
   const Eigen::Vector3d resting_at_touch = touch->point_link + at_touch.radius * touch->normal_link;
   const Eigen::Vector3d path_at_touch = link_from_root * at_touch.position;
   const TaxelPose& taxel = taxels_[k].pose_link;
-  const auto height = [&](double t) {
-    resting.position = resting_at_touch + link_from_root * perceived_at(t).position - path_at_touch;
-    return to_taxel_frame(taxel, resting).p.z();
+  const auto resting_at = [&](double t) {  // link frame
+    const Stimulus seen = perceived_at(t);
+    Stimulus resting = seen;
+    resting.position = resting_at_touch + link_from_root * seen.position - path_at_touch;
+    resting.velocity = link_from_root.linear() * seen.velocity;
+    return to_taxel_frame(taxel, resting);
   };
   // Back along the path to where it was kOffsetClearance outside the taxel (buffered samples,
   // then linear between the last one out and the next).
   const auto& samples = buffer_.samples();
-  double later_t = touch_time_s, later_h = height(touch_time_s);
+  double later_t = touch_time_s, later_h = resting_at(touch_time_s).p.z();
   double found_t = std::numeric_limits<double>::quiet_NaN();
   for (auto it = samples.rbegin(); it != samples.rend(); ++it) {
     if (it->time >= touch_time_s) continue;
-    const double h = height(it->time);
+    const double h = resting_at(it->time).p.z();
     if (h >= kOffsetClearance) {
       found_t = it->time + (later_t - it->time) * (h - kOffsetClearance) / (h - later_h);
       break;
@@ -127,8 +129,7 @@ void BodyPartLearner::record_contact_offset(std::span<const TaxelPose> taxels_ro
     later_h = h;
   }
   if (std::isnan(found_t)) return;  // the buffered path never was that far out
-  height(found_t);
-  const TaxelFrameStimulus on_skin = to_taxel_frame(taxel, resting);
+  const TaxelFrameStimulus on_skin = resting_at(found_t);
   record(k, perceived_at(found_t), compute_d_ttc(on_skin.p, on_skin.v, params_.ttc).d);
 }
 
