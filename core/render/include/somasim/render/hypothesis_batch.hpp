@@ -1,0 +1,116 @@
+#pragma once
+/// @file
+/// Batches of body hypotheses rendered as binary silhouettes (or their contours) inside a region
+/// of interest, for the body-schema particle filter ("mental images" of the arm).
+///
+/// A batch: N hypotheses, each a list of poses (root <- mesh) for the same subset of the
+/// uploaded meshes, seen by one or more cameras (left and right eye). Per camera, the region of
+/// interest (ROI) is the pixel rectangle covering the projected bounding boxes of the drawn
+/// meshes under all hypotheses, grown by a margin and clipped to the image. Every hypothesis of
+/// that camera is drawn into a tile of the ROI's size; all tiles of a worker go into one
+/// framebuffer (one glViewport per tile) and come back with one read-back.
+///
+/// Exactness: a tile is drawn with the camera's full-image view-projection matrix (the same
+/// float matrix SceneRenderer uses, so clip coordinates and near/far/image-edge clipping are
+/// identical) and a full-image viewport shifted by whole pixels so that the ROI lands on the
+/// tile. It equals the crop, at the ROI, of a full-image SceneRenderer id mask of the same meshes
+/// (id > 0 -> 255), except that llvmpipe adds the viewport shift in float before snapping
+/// vertices to 1/256 px: about 1 in 10,000 silhouette-boundary pixels (an edge through a pixel
+/// centre) can differ. Results do not depend on the worker count. No depth test: a silhouette is
+/// the union of all meshes.
+///
+/// Cost: one draw call per tile (the batch's meshes are concatenated into one vertex buffer,
+/// posed by an array of at most kMaxMeshesPerHypothesis matrices).
+///
+/// Threads: a HypothesisRenderer owns W worker threads, each with its own OsmesaContext and its
+/// own copy of the meshes. Hypotheses are split into W contiguous, equal (± 1) slices in order.
+/// The tile layout (slot = hypothesis × cameras + camera, in a grid fixed by N, the cameras and
+/// the ROIs) does not depend on W and each worker draws its tiles in their own slots, so results
+/// are byte-identical for any W.
+#include <cstddef>
+#include <memory>
+#include <vector>
+
+#include <Eigen/Geometry>
+#include <opencv2/core.hpp>
+
+#include "somasim/render/camera.hpp"
+#include "somasim/render/tessellate.hpp"
+
+namespace somasim::render {
+
+/// Most meshes one hypothesis may pose (all of a hypothesis is drawn in one call).
+inline constexpr std::size_t kMaxMeshesPerHypothesis = 16;
+
+/// Poses root <- mesh [m], one per entry of HypothesisBatch::meshes, in the same order.
+using Hypothesis = std::vector<Eigen::Isometry3d>;
+
+struct HypothesisBatch {
+  /// Indices of the renderer's meshes to draw (e.g. forearm and hand proxies); 1 to
+  /// kMaxMeshesPerHypothesis of them.
+  std::vector<std::size_t> meshes;
+  std::vector<Hypothesis> hypotheses;  ///< N >= 1
+  std::vector<Camera> cameras;         ///< >= 1 (left and right eye)
+};
+
+struct HypothesisBatchOptions {
+  int margin_px = 4;  ///< added on every side of the projected bounds before clipping [px], >= 0
+  /// false: filled silhouettes; true: their inner boundary, `contour_width` px wide.
+  bool contour = false;
+  int contour_width = 1;  ///< 1 or 2 [px]; see silhouette_contour()
+};
+
+/// The tiles of one camera.
+struct CameraTiles {
+  cv::Rect roi;                ///< in image pixels (x = column, y = row of the top-left corner)
+  std::vector<cv::Mat> tiles;  ///< one per hypothesis: CV_8U, roi.height × roi.width, 0 / 255
+};
+
+struct HypothesisBatchResult {
+  std::vector<CameraTiles> cameras;  ///< in the order of HypothesisBatch::cameras
+};
+
+/// The region of interest of `camera` for `batch` (see the file comment), computed from the
+/// meshes' vertex bounds [mesh frame]. A box partly behind the near plane makes the ROI the
+/// whole image; a box wholly behind it adds nothing. Returns an empty rectangle when nothing
+/// projects into the image.
+cv::Rect region_of_interest(const std::vector<Bounds>& mesh_bounds, const HypothesisBatch& batch,
+                            const Camera& camera, int margin_px);
+
+/// The inner boundary of a 0 / 255 silhouette: silhouette pixels within `width` (1 or 2) steps
+/// of a background pixel along 4-neighbour paths. With width 1, every contour pixel is a
+/// silhouette pixel with a background 4-neighbour. Pixels outside the image are not background
+/// (an object cut by the ROI's edge is not outlined along it).
+cv::Mat silhouette_contour(const cv::Mat& silhouette, int width);
+
+/// Pool of W worker threads rendering hypothesis batches (see the file comment).
+class HypothesisRenderer {
+ public:
+  /// Starts `workers` (>= 1) threads, each creating an OsmesaContext and uploading `meshes`.
+  /// Throws somasim::InputError for workers < 1, somasim::RunError when a context cannot be
+  /// made or a mesh does not upload.
+  HypothesisRenderer(const std::vector<TriangleMesh>& meshes, int workers);
+  ~HypothesisRenderer();
+  HypothesisRenderer(const HypothesisRenderer&) = delete;
+  HypothesisRenderer& operator=(const HypothesisRenderer&) = delete;
+  HypothesisRenderer(HypothesisRenderer&&) = delete;
+  HypothesisRenderer& operator=(HypothesisRenderer&&) = delete;
+
+  /// Renders the batch. Throws somasim::InputError for an empty batch, an unknown mesh index,
+  /// a hypothesis with the wrong number of poses or a non-finite pose, invalid options or
+  /// intrinsics; somasim::RunError naming the camera when its ROI is empty (nothing projects
+  /// into its image) and for GL errors. One call at a time (not to be called concurrently on
+  /// the same renderer); the calling thread needs no GL context.
+  HypothesisBatchResult render(const HypothesisBatch& batch,
+                               const HypothesisBatchOptions& options = {});
+
+  int worker_count() const;
+  std::size_t mesh_count() const { return bounds_.size(); }
+
+ private:
+  struct Pool;
+  std::vector<Bounds> bounds_;
+  std::unique_ptr<Pool> pool_;
+};
+
+}  // namespace somasim::render

@@ -1,0 +1,86 @@
+#include "somasim/render/hypothesis_batch.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <utility>
+
+namespace somasim::render {
+
+cv::Rect region_of_interest(const std::vector<Bounds>& mesh_bounds, const HypothesisBatch& batch,
+                            const Camera& camera, int margin_px) {
+  const PinholeIntrinsics& k = camera.intrinsics;
+  const Eigen::Isometry3d camera_root = camera.pose_root.inverse(Eigen::Isometry);
+  double umin = INFINITY, umax = -INFINITY, vmin = INFINITY, vmax = -INFINITY;
+  bool whole_image = false;
+  for (const Hypothesis& poses : batch.hypotheses) {
+    for (std::size_t m = 0; m < batch.meshes.size() && !whole_image; ++m) {
+      const Bounds& b = mesh_bounds[batch.meshes[m]];
+      const Eigen::Isometry3d camera_mesh = camera_root * poses[m];
+      int in_front = 0;
+      double u0 = INFINITY, u1 = -INFINITY, v0 = INFINITY, v1 = -INFINITY;
+      for (int c = 0; c < 8; ++c) {
+        const Eigen::Vector3d corner((c & 1) ? b.max.x() : b.min.x(),
+                                     (c & 2) ? b.max.y() : b.min.y(),
+                                     (c & 4) ? b.max.z() : b.min.z());
+        const Eigen::Vector3d p = camera_mesh * corner;
+        if (!(p.z() > k.near)) continue;
+        ++in_front;
+        const double u = k.fx * p.x() / p.z() + k.cx, v = k.fy * p.y() / p.z() + k.cy;
+        u0 = std::min(u0, u);
+        u1 = std::max(u1, u);
+        v0 = std::min(v0, v);
+        v1 = std::max(v1, v);
+      }
+      if (in_front == 0) continue;           // wholly clipped by the near plane: draws nothing
+      if (in_front < 8) whole_image = true;  // crosses the near plane: unbounded projection
+      umin = std::min(umin, u0);
+      umax = std::max(umax, u1);
+      vmin = std::min(vmin, v0);
+      vmax = std::max(vmax, v1);
+    }
+  }
+  if (whole_image) return {0, 0, k.width, k.height};
+  if (!(umin <= umax)) return {};
+  // Pixel c covers [c - 0.5, c + 0.5) (camera.hpp). Clamp in double before converting to int.
+  const auto column = [](double u, double limit) {
+    return static_cast<int>(std::clamp(std::floor(u + 0.5), -1.0e6, limit + 1.0e6));
+  };
+  const int x0 = std::max(0, column(umin, k.width) - margin_px);
+  const int x1 = std::min(k.width - 1, column(umax, k.width) + margin_px);
+  const int y0 = std::max(0, column(vmin, k.height) - margin_px);
+  const int y1 = std::min(k.height - 1, column(vmax, k.height) + margin_px);
+  if (x0 > x1 || y0 > y1) return {};
+  return {x0, y0, x1 - x0 + 1, y1 - y0 + 1};
+}
+
+cv::Mat silhouette_contour(const cv::Mat& silhouette, int width) {
+  CV_Assert(silhouette.type() == CV_8U);
+  // Erode `width` times with the 4-neighbour cross; outside the image counts as silhouette.
+  cv::Mat inside = silhouette.clone(), next(silhouette.size(), CV_8U);
+  const int rows = silhouette.rows, cols = silhouette.cols;
+  for (int step = 0; step < width; ++step) {
+    for (int r = 0; r < rows; ++r) {
+      const std::uint8_t* up = inside.ptr<std::uint8_t>(std::max(r - 1, 0));
+      const std::uint8_t* row = inside.ptr<std::uint8_t>(r);
+      const std::uint8_t* down = inside.ptr<std::uint8_t>(std::min(r + 1, rows - 1));
+      std::uint8_t* dst = next.ptr<std::uint8_t>(r);
+      for (int c = 0; c < cols; ++c) {
+        const bool keep = row[c] != 0 && up[c] != 0 && down[c] != 0 &&
+                          row[std::max(c - 1, 0)] != 0 && row[std::min(c + 1, cols - 1)] != 0;
+        dst[c] = keep ? 255 : 0;
+      }
+    }
+    std::swap(inside, next);
+  }
+  cv::Mat contour(silhouette.size(), CV_8U);
+  for (int r = 0; r < rows; ++r) {
+    const std::uint8_t* s = silhouette.ptr<std::uint8_t>(r);
+    const std::uint8_t* i = inside.ptr<std::uint8_t>(r);
+    std::uint8_t* dst = contour.ptr<std::uint8_t>(r);
+    for (int c = 0; c < cols; ++c) dst[c] = (s[c] != 0 && i[c] == 0) ? 255 : 0;
+  }
+  return contour;
+}
+
+}  // namespace somasim::render

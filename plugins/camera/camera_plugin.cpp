@@ -1,0 +1,286 @@
+#include "camera_plugin.hpp"
+
+#include <algorithm>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "backdrop.hpp"
+#include "somasim/error.hpp"
+#include "somasim/robot/experiment_robot.hpp"
+#include "somasim/robot/kinematics.hpp"
+
+namespace somasim::plugins {
+namespace {
+
+// One OSMesa context per thread (a second one on a thread is refused), shared by the camera
+// nodes that run on it and released with the last of them.
+std::shared_ptr<render::OsmesaContext> thread_context(bool& created) {
+  thread_local std::weak_ptr<render::OsmesaContext> shared;
+  auto context = shared.lock();
+  created = !context;
+  if (!context) {
+    context = std::make_shared<render::OsmesaContext>();
+    shared = context;
+  }
+  return context;
+}
+
+std::vector<std::string> words(const std::string& text) {
+  std::string s = text;
+  for (char& c : s)
+    if (c == ',') c = ' ';
+  std::istringstream in(s);
+  std::vector<std::string> out;
+  for (std::string w; in >> w;) out.push_back(w);
+  return out;
+}
+
+}  // namespace
+
+PluginSpec CameraPlugin::spec() {
+  PluginSpec s("camera",
+               "The robot's eyes: renders the views of the robot model's cameras (OSMesa, "
+               "Lambert + ambient shading) from the world's link and object poses: RGB, metric "
+               "depth and id masks (link i -> i + 1, object k -> 1000 + k, backdrop 60000).");
+  robot::add_robot_param(s);
+  s.add_string_list("cameras")
+      .defaults(std::vector<std::string>{"left_eye", "right_eye"})
+      .describe(
+          "1 or 2 cameras of the robot model; the first feeds the ports left_eye_*, the second "
+          "right_eye_*");
+  s.add_string_list("outputs")
+      .defaults(std::vector<std::string>{"rgb", "depth", "mask"})
+      .describe("images to render: any of rgb, depth, mask (the others stay empty)");
+  s.add_string("background")
+      .defaults(std::string("0.35 0.45 0.55"))
+      .describe(
+          "'R G B' in [0, 1], a name (black, white, grey, blue) or 'textured': clutter "
+          "(rectangles and bars of random colours from the node's random stream) on a plane "
+          "1.2 m in front of the first camera at q = 0");
+  s.add_int("resolution")
+      .defaults(std::int64_t{24})
+      .range(3, 256)
+      .describe("segments around curved primitives (spheres, cylinders, capsules)");
+  s.add_int("save_every")
+      .defaults(std::int64_t{0})
+      .at_least(0)
+      .describe(
+          "write every N-th frame's images as PNG under frames/NODE.PORT/ in the run folder "
+          "(encodings as when recorded: somasim/render/ports.hpp); 0 = never");
+  s.add_list("sheet_times")
+      .defaults(std::vector<double>{})
+      .describe(
+          "[s] sim times of the rows of the contact sheet figures/stereo_frames.png (the RGB "
+          "views side by side); empty = no sheet");
+  s.input<LinkPoses>("link_poses",
+                     "poses of all robot links (root frame): world.link_poses for the true eyes, "
+                     "believed link poses for believed eye kinematics; empty = q = 0");
+  s.input<ObjectStates>("objects", "the world's objects (drawn with their shapes)", true);
+  for (const char* slot : kSlots) {
+    s.output<Image>(fmt::format("{}_rgb", slot),
+                    "rgb8 view of that camera (somasim/render/ports.hpp)");
+    s.output<Image>(fmt::format("{}_depth", slot), "depth32f [m] along the optical axis");
+    s.output<Image>(fmt::format("{}_mask", slot), "id32s: what each pixel shows");
+  }
+  return s;
+}
+
+void CameraPlugin::parse_background(NodeContext& ctx) {
+  const std::string text = ctx.param<std::string>("background");
+  if (text == "textured") return;  // backdrop items made once the scene exists
+  const std::vector<std::string> w = words(text);
+  if (w.size() == 1) {
+    if (w[0] == "black") return void(options_.background = {0.f, 0.f, 0.f});
+    if (w[0] == "white") return void(options_.background = {1.f, 1.f, 1.f});
+    if (w[0] == "grey" || w[0] == "gray") return void(options_.background = {0.5f, 0.5f, 0.5f});
+    if (w[0] == "blue") return void(options_.background = {0.35f, 0.45f, 0.55f});
+  }
+  bool ok = w.size() == 3;
+  for (int i = 0; ok && i < 3; ++i) {
+    try {
+      std::size_t used = 0;
+      const double v = std::stod(w[i], &used);
+      ok = used == w[i].size() && v >= 0.0 && v <= 1.0;
+      options_.background[i] = static_cast<float>(v);
+    } catch (const std::exception&) {
+      ok = false;
+    }
+  }
+  if (!ok)
+    ctx.param_error("background",
+                    fmt::format("expected 'R G B' (three numbers in [0, 1]), black, white, grey, "
+                                "blue or textured, got '{}'",
+                                text));
+}
+
+void CameraPlugin::configure(NodeContext& ctx) {
+  model_ = robot::experiment_robot(ctx);
+  for (const std::string& o : ctx.param<std::vector<std::string>>("outputs")) {
+    if (o == "rgb")
+      want_rgb_ = true;
+    else if (o == "depth")
+      want_depth_ = true;
+    else if (o == "mask")
+      want_mask_ = true;
+    else
+      ctx.param_error("outputs", fmt::format("unknown output '{}' (expected rgb, depth, mask)", o));
+  }
+  const auto cameras = ctx.param<std::vector<std::string>>("cameras");
+  if (cameras.empty() || cameras.size() > kSlots.size())
+    ctx.param_error("cameras", fmt::format("expected 1 or 2 camera names (ports left_eye_*, "
+                                           "right_eye_*), got {}",
+                                           cameras.size()));
+  robot::RobotData rest(*model_);
+  robot::forward_kinematics(*model_, rest, Eigen::VectorXd::Zero(model_->num_dofs()));
+  for (std::size_t i = 0; i < cameras.size(); ++i) {
+    try {
+      render::camera_for(*model_, cameras[i], rest.link_poses);
+    } catch (const InputError& e) {
+      ctx.param_error("cameras", e.what());
+    }
+    View v;
+    v.camera = cameras[i];
+    v.slot = kSlots[i];
+    v.rgb = &ctx.output<Image>(v.slot + "_rgb");
+    v.depth = &ctx.output<Image>(v.slot + "_depth");
+    v.mask = &ctx.output<Image>(v.slot + "_mask");
+    views_.push_back(v);
+  }
+  parse_background(ctx);
+  save_every_ = ctx.param<int>("save_every");
+  sheet_times_ = ctx.param<std::vector<double>>("sheet_times");
+  if (!sheet_times_.empty() && !want_rgb_)
+    ctx.param_error("sheet_times", "the contact sheet needs the rgb output (outputs: rgb ...)");
+  options_.read_rgb = want_rgb_;
+  options_.read_depth = want_depth_;
+  options_.read_ids = true;      // for check_drawn(); the mask output is filled on request
+  options_.check_drawn = false;  // see check_drawn()
+  options_.light_direction_root = Eigen::Vector3d(0.7, 0.2, 1.0);  // above, behind the eyes
+
+  bool created = false;
+  context_ = thread_context(created);
+  if (created)
+    ctx.log().info("camera: OpenGL renderer '{}', version '{}'", context_->renderer(),
+                   context_->version());
+  renderer_ = std::make_unique<render::SceneRenderer>(context_->gl());
+  render::RobotSceneOptions scene_options;
+  scene_options.segments = ctx.param<int>("resolution");
+  scene_ = std::make_unique<render::RobotScene>(*renderer_, model_, scene_options);
+  if (ctx.param<std::string>("background") == "textured") {
+    const render::Camera first = render::camera_for(*model_, cameras[0], rest.link_poses);
+    const Eigen::Vector3d forward = first.pose_root.linear().col(2);
+    BackdropSpec spec;
+    spec.centre_root = first.pose_root.translation() + 1.2 * forward;
+    spec.normal_root = -forward;
+    spec.id = render::kFirstSceneExtraId;
+    backdrop_ = make_backdrop(*renderer_, spec, ctx.rng());
+  }
+  ctx.log().info("camera: {} view(s) of robot '{}' ({} triangles), outputs{}{}{}", views_.size(),
+                 model_->name(), scene_->triangle_count(), want_rgb_ ? " rgb" : "",
+                 want_depth_ ? " depth" : "", want_mask_ ? " mask" : "");
+  link_poses_ = &ctx.input<LinkPoses>("link_poses");
+  objects_ = ctx.is_wired("objects") ? &ctx.input<ObjectStates>("objects") : nullptr;
+  rest_poses_ = rest.link_poses;
+}
+
+void CameraPlugin::step(NodeContext& ctx) {
+  const auto& poses = link_poses_->poses.empty() ? rest_poses_ : link_poses_->poses;
+  ++frame_;
+  const bool sheet_row =
+      sheet_.size() < sheet_times_.size() && ctx.time_s() + 1e-9 >= sheet_times_[sheet_.size()];
+  if (sheet_row) sheet_.push_back({ctx.time_s(), {}});
+  for (const View& v : views_) {
+    const render::Camera camera = render::camera_for(*model_, v.camera, poses);
+    const Eigen::Vector3d viewpoint = camera.pose_root.translation();
+    items_.clear();
+    scene_->add_robot(poses, items_, &viewpoint);
+    if (objects_) scene_->add_objects(*objects_, items_);
+    items_.insert(items_.end(), backdrop_.begin(), backdrop_.end());
+    render::RenderedImages images = renderer_->render(items_, camera, options_);
+    check_drawn(camera, images.ids);
+    auto fill = [&](Image* out, cv::Mat data, ImageEncoding encoding) {
+      out->data = std::move(data);
+      out->encoding = encoding;
+      out->camera = v.camera;
+      out->time_s = ctx.time_s();
+      out->frame = frame_;
+    };
+    if (want_rgb_) fill(v.rgb, images.rgb, ImageEncoding::kRgb8);
+    if (want_depth_) fill(v.depth, images.depth, ImageEncoding::kDepth32f);
+    if (want_mask_) fill(v.mask, images.ids, ImageEncoding::kId32s);
+    if (save_every_ > 0 && (frame_ - 1) % static_cast<std::uint64_t>(save_every_) == 0)
+      save_frames(ctx, v);
+    if (sheet_row) sheet_.back().views.push_back(images.rgb.clone());
+  }
+}
+
+// The renderer's own check tests the projected bounding box of each item, which for a thin
+// rotated shape (a finger) at the image border can overlap the image while the shape does not;
+// this one asks whether a vertex of a robot or object item projects into the image and, for an
+// id with no pixel, draws that id's items alone: nothing drawn then is an error.
+void CameraPlugin::check_drawn(const render::Camera& camera, const cv::Mat& ids) {
+  std::vector<std::int32_t> present;
+  for (auto it = ids.begin<std::int32_t>(); it != ids.end<std::int32_t>(); ++it)
+    if (*it != 0 && (present.empty() || present.back() != *it)) present.push_back(*it);
+  std::sort(present.begin(), present.end());
+  present.erase(std::unique(present.begin(), present.end()), present.end());
+  const render::PinholeIntrinsics& k = camera.intrinsics;
+  const Eigen::Isometry3d camera_root = camera.pose_root.inverse(Eigen::Isometry);
+  std::vector<std::int32_t> checked;
+  for (const render::DrawItem& item : items_) {
+    if (std::binary_search(present.begin(), present.end(), item.id)) continue;
+    if (std::find(checked.begin(), checked.end(), item.id) != checked.end()) continue;
+    const auto* vertices = scene_->vertices(item.mesh);
+    if (!vertices) continue;
+    const Eigen::Isometry3d camera_item = camera_root * item.pose_root;
+    bool inside = false;
+    for (const Eigen::Vector3f& v : *vertices) {
+      const Eigen::Vector3d p = camera_item * v.cast<double>();
+      if (!(p.z() > k.near && p.z() < k.far)) continue;
+      const double u = k.fx * p.x() / p.z() + k.cx, w = k.fy * p.y() / p.z() + k.cy;
+      if (u >= 0.0 && u <= k.width - 1.0 && w >= 0.0 && w <= k.height - 1.0) {
+        inside = true;
+        break;
+      }
+    }
+    if (!inside) continue;
+    checked.push_back(item.id);
+    std::vector<render::DrawItem> alone;
+    for (const render::DrawItem& other : items_)
+      if (other.id == item.id) alone.push_back(other);
+    render::RenderOptions ids_only;
+    ids_only.read_rgb = ids_only.read_depth = false;
+    ids_only.check_drawn = false;
+    const cv::Mat own = renderer_->render(alone, camera, ids_only).ids;
+    if (cv::countNonZero(own) == 0)
+      throw RunError(fmt::format("camera '{}': id {} projects into the image but drew no pixel",
+                                 camera.name, item.id));
+  }
+}
+
+void CameraPlugin::save_frames(NodeContext& ctx, const View& view) {
+  for (const auto& [image, kind] :
+       {std::pair{view.rgb, "rgb"}, std::pair{view.depth, "depth"}, std::pair{view.mask, "mask"}}) {
+    if (image->frame != frame_) continue;
+    render::write_png(*image,
+                      ctx.output_path(fmt::format("frames/{}.{}_{}/{:06d}.png", ctx.node_name(),
+                                                  view.slot, kind, frame_)));
+  }
+}
+
+void CameraPlugin::finish(NodeContext& ctx) {
+  ctx.report_metric("frames", frame_);
+  if (!sheet_.empty()) {
+    std::vector<std::string> names;
+    for (const View& v : views_) names.push_back(v.camera);
+    if (sheet_.back().views.size() < views_.size()) sheet_.pop_back();  // interrupted row
+    write_contact_sheet(sheet_, names, ctx.figure_path("stereo_frames.png"));
+  }
+  // GL objects before the context (all on this thread).
+  scene_.reset();
+  renderer_.reset();
+  context_.reset();
+}
+
+}  // namespace somasim::plugins

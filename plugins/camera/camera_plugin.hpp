@@ -1,0 +1,61 @@
+#pragma once
+// camera: the robot's eyes. Renders the views of the robot model's cameras (default the iCub's
+// left_eye and right_eye) from the world's link and object poses, with OSMesa.
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "contact_sheet.hpp"
+#include "somasim/plugin.hpp"
+#include "somasim/render/context.hpp"
+#include "somasim/render/ports.hpp"
+#include "somasim/render/robot_scene.hpp"
+#include "somasim/render/scene_renderer.hpp"
+#include "somasim/robot/ports.hpp"
+#include "somasim/robot/robot_model.hpp"
+
+namespace somasim::plugins {
+
+class CameraPlugin : public Plugin {
+ public:
+  static PluginSpec spec();
+  void configure(NodeContext& ctx) override;
+  void step(NodeContext& ctx) override;
+  void finish(NodeContext& ctx) override;
+
+  /// Port slots: the i-th camera of `cameras` feeds the ports `<slot>_rgb|depth|mask`.
+  static constexpr std::array<const char*, 2> kSlots = {"left_eye", "right_eye"};
+
+ private:
+  struct View {
+    std::string camera;  // the model's camera name
+    std::string slot;
+    Image* rgb = nullptr;
+    Image* depth = nullptr;
+    Image* mask = nullptr;
+  };
+  void parse_background(NodeContext& ctx);
+  void save_frames(NodeContext& ctx, const View& view);
+  void check_drawn(const render::Camera& camera, const cv::Mat& ids);
+
+  std::shared_ptr<const robot::RobotModel> model_;
+  std::shared_ptr<render::OsmesaContext> context_;
+  std::unique_ptr<render::SceneRenderer> renderer_;
+  std::unique_ptr<render::RobotScene> scene_;
+  std::vector<render::DrawItem> backdrop_;
+  render::RenderOptions options_;
+  bool want_rgb_ = false, want_depth_ = false, want_mask_ = false;
+  int save_every_ = 0;
+  std::uint64_t frame_ = 0;
+  std::vector<View> views_;
+  std::vector<double> sheet_times_;
+  std::vector<SheetRow> sheet_;
+  std::vector<render::DrawItem> items_;  // reused every frame
+
+  const LinkPoses* link_poses_ = nullptr;
+  const ObjectStates* objects_ = nullptr;
+  std::vector<Eigen::Isometry3d> rest_poses_;  // link poses at q = 0
+};
+
+}  // namespace somasim::plugins

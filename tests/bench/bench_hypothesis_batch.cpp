@@ -1,0 +1,111 @@
+// One batch of 200 forearm + hand hypotheses in both eyes (320 x 240, iCub intrinsics) through
+// HypothesisRenderer with W = 1 and 2 workers, beside the baseline of one full SceneRenderer
+// render + id read-back per hypothesis and eye (same geometry, same run).
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+
+#include "somasim/render/context.hpp"
+#include "somasim/render/hypothesis_batch.hpp"
+#include "somasim/render/scene_renderer.hpp"
+
+using namespace somasim::render;
+
+namespace {
+
+constexpr int kHypotheses = 200;
+
+Camera eye(const std::string& name, double y) {
+  Camera c;
+  c.name = name;
+  c.intrinsics = {320, 240, 257.34, 257.34, 160.0, 120.0, 0.02, 5.0};
+  Eigen::Matrix3d r;
+  r.col(0) = -Eigen::Vector3d::UnitY();
+  r.col(1) = -Eigen::Vector3d::UnitZ();
+  r.col(2) = Eigen::Vector3d::UnitX();
+  c.pose_root.linear() = r;
+  c.pose_root.translation() = Eigen::Vector3d(0.0, y, 0.0);
+  return c;
+}
+
+// Forearm cylinder, palm box, thumb box and two finger cylinders: 232 triangles.
+std::vector<TriangleMesh> arm_meshes() {
+  return {tessellate_cylinder(0.025, 0.16, 16), tessellate_box(Eigen::Vector3d(0.07, 0.025, 0.08)),
+          tessellate_box(Eigen::Vector3d(0.015, 0.015, 0.04)), tessellate_cylinder(0.008, 0.05, 8),
+          tessellate_cylinder(0.008, 0.05, 8)};
+}
+
+HypothesisBatch arm_batch() {
+  HypothesisBatch batch;
+  batch.meshes = {0, 1, 2, 3, 4};
+  batch.cameras = {eye("left_eye", 0.034), eye("right_eye", -0.034)};
+  for (int k = 0; k < kHypotheses; ++k) {
+    // Joint-offset-like perturbations of a forearm held 0.35 m in front of the eyes.
+    const double a = 0.05 * std::sin(0.37 * k), b = 0.05 * std::cos(0.23 * k);
+    Eigen::Isometry3d forearm = Eigen::Isometry3d::Identity();
+    forearm.translation() = Eigen::Vector3d(0.35, 0.02 + 0.2 * a, -0.05 + 0.2 * b);
+    forearm.linear() = (Eigen::AngleAxisd(0.9 + a, Eigen::Vector3d::UnitY()) *
+                        Eigen::AngleAxisd(-0.4 + b, Eigen::Vector3d::UnitX()))
+                           .toRotationMatrix();
+    Eigen::Isometry3d hand = forearm;
+    hand.translate(Eigen::Vector3d(0.0, 0.0, 0.12));
+    hand.rotate(Eigen::AngleAxisd(3.0 * a, Eigen::Vector3d::UnitX()));
+    Eigen::Isometry3d thumb = hand, finger1 = hand, finger2 = hand;
+    thumb.translate(Eigen::Vector3d(0.04, 0.0, 0.0));
+    thumb.rotate(Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitY()));
+    finger1.translate(Eigen::Vector3d(-0.02, 0.0, 0.065));
+    finger2.translate(Eigen::Vector3d(0.015, 0.0, 0.065));
+    batch.hypotheses.push_back({forearm, hand, thumb, finger1, finger2});
+  }
+  return batch;
+}
+
+void BM_HypothesisBatch(benchmark::State& state) {
+  HypothesisRenderer renderer(arm_meshes(), static_cast<int>(state.range(0)));
+  const HypothesisBatch batch = arm_batch();
+  HypothesisBatchOptions options;
+  options.contour = state.range(1) != 0;
+  for (auto _ : state) benchmark::DoNotOptimize(renderer.render(batch, options));
+  const HypothesisBatchResult result = renderer.render(batch, options);
+  state.counters["hypotheses/s"] = benchmark::Counter(
+      static_cast<double>(state.iterations()) * kHypotheses, benchmark::Counter::kIsRate);
+  state.counters["views/s"] = benchmark::Counter(
+      static_cast<double>(state.iterations()) * kHypotheses * 2, benchmark::Counter::kIsRate);
+  state.counters["roi_w"] = result.cameras[0].roi.width;
+  state.counters["roi_h"] = result.cameras[0].roi.height;
+}
+BENCHMARK(BM_HypothesisBatch)
+    ->ArgNames({"workers", "contour"})
+    ->Args({1, 0})
+    ->Args({2, 0})
+    ->Args({2, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// Baseline: every hypothesis and eye rendered alone at full size by SceneRenderer, reading back
+// only the id mask (the "drew no pixel" check off), on one thread.
+void BM_FullRenderPerHypothesis(benchmark::State& state) {
+  OsmesaContext context;
+  SceneRenderer scene(context.gl());
+  for (const TriangleMesh& mesh : arm_meshes()) scene.upload(mesh);
+  const HypothesisBatch batch = arm_batch();
+  RenderOptions options;
+  options.read_rgb = options.read_depth = options.check_drawn = false;
+  std::vector<DrawItem> items(batch.meshes.size());
+  for (auto _ : state) {
+    for (const Hypothesis& poses : batch.hypotheses)
+      for (const Camera& camera : batch.cameras) {
+        for (std::size_t m = 0; m < items.size(); ++m)
+          items[m] = {MeshHandle{batch.meshes[m]}, poses[m], Eigen::Vector3f::Ones(),
+                      static_cast<std::int32_t>(m + 1)};
+        benchmark::DoNotOptimize(scene.render(items, camera, options));
+      }
+  }
+  state.counters["hypotheses/s"] = benchmark::Counter(
+      static_cast<double>(state.iterations()) * kHypotheses, benchmark::Counter::kIsRate);
+  state.counters["views/s"] = benchmark::Counter(
+      static_cast<double>(state.iterations()) * kHypotheses * 2, benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_FullRenderPerHypothesis)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace

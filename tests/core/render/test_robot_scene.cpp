@@ -1,0 +1,159 @@
+// The robot's scene: meshes from the RobotModel, cameras from its camera frames, id masks
+// checked against render::Camera::project.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "somasim/error.hpp"
+#include "somasim/render/context.hpp"
+#include "somasim/render/robot_scene.hpp"
+#include "somasim/render/scene_renderer.hpp"
+#include "somasim/robot/kinematics.hpp"
+#include "somasim/robot/robot_loader.hpp"
+#include "somasim/units.hpp"
+
+namespace render = somasim::render;
+namespace robot = somasim::robot;
+
+namespace {
+
+std::shared_ptr<const robot::RobotModel> icub() {
+  static const auto m =
+      robot::load_robot_model_shared(SOMASIM_SOURCE_DIR "/assets/robots/icub_v1.yaml");
+  return m;
+}
+
+// Link poses at `posture` (joint name -> degrees), the other joints at 0.
+std::vector<Eigen::Isometry3d> poses(const std::map<std::string, double>& posture = {}) {
+  robot::RobotData data(*icub());
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(icub()->num_dofs());
+  for (const auto& [joint, deg] : posture) q[icub()->dof_index(joint)] = somasim::deg_to_rad(deg);
+  robot::forward_kinematics(*icub(), data, q);
+  return data.link_poses;
+}
+
+// The right hand in front of the eyes (palm about 0.28 m ahead, near both image centres).
+const std::map<std::string, double> kHandBeforeEyes = {
+    {"r_shoulder_pitch", -90}, {"r_shoulder_roll", 5}, {"r_shoulder_yaw", 25}, {"r_elbow", 40}};
+
+// Pixels of `ids` equal to `id`: count, centroid (u, v), bounding rectangle.
+struct Blob {
+  int count = 0;
+  Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
+  int u_min = 1 << 30, u_max = -1, v_min = 1 << 30, v_max = -1;
+};
+Blob blob(const cv::Mat& ids, std::int32_t id) {
+  Blob b;
+  for (int r = 0; r < ids.rows; ++r)
+    for (int c = 0; c < ids.cols; ++c)
+      if (ids.at<std::int32_t>(r, c) == id) {
+        ++b.count;
+        b.centroid += Eigen::Vector2d(c, r);
+        b.u_min = std::min(b.u_min, c), b.u_max = std::max(b.u_max, c);
+        b.v_min = std::min(b.v_min, r), b.v_max = std::max(b.v_max, r);
+      }
+  if (b.count) b.centroid /= b.count;
+  return b;
+}
+
+struct Renderer {
+  render::OsmesaContext context;
+  render::SceneRenderer renderer{context.gl()};
+  render::RobotScene scene{renderer, icub(), {32}};
+};
+
+}  // namespace
+
+TEST(RobotScene, CameraFrameIsTheModelsCameraFrame) {
+  const auto p = poses({{"neck_yaw", 20}, {"l_eye_pan", -10}});
+  const render::Camera cam = render::camera_for(*icub(), "left_eye", p);
+  const robot::Camera& model_cam = icub()->cameras()[icub()->find_camera("left_eye")];
+  EXPECT_TRUE(cam.pose_root.isApprox(p[model_cam.link] * model_cam.pose, 1e-12));
+  EXPECT_EQ(cam.name, "left_eye");
+  EXPECT_EQ(cam.intrinsics.width, 320);
+  EXPECT_EQ(cam.intrinsics.height, 240);
+  EXPECT_DOUBLE_EQ(cam.intrinsics.fx, 257.34);
+  EXPECT_DOUBLE_EQ(cam.intrinsics.cx, 160);
+  // The eyes look forward: the iCub's front is -x of its root frame.
+  EXPECT_LT(render::camera_for(*icub(), "right_eye", poses()).pose_root.linear()(0, 2), -0.9);
+}
+
+TEST(RobotScene, UnknownCameraListsTheModelsCameras) {
+  try {
+    render::camera_for(*icub(), "nose", poses());
+    FAIL();
+  } catch (const somasim::InputError& e) {
+    EXPECT_STREQ(e.what(),
+                 "camera 'nose' is not in robot 'icub_v1' (cameras: left_eye, right_eye)");
+  }
+}
+
+TEST(RobotScene, WrongNumberOfLinkPosesIsAnError) {
+  try {
+    render::camera_for(*icub(), "left_eye", {});
+    FAIL();
+  } catch (const somasim::RunError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "link poses: expected " + std::to_string(icub()->num_links()) + ", got 0");
+  }
+}
+
+TEST(RobotScene, SphereProjectsWhereTheCameraSays) {
+  Renderer r;
+  const auto p = poses({{"neck_pitch", -10}, {"neck_yaw", 15}});
+  for (const char* eye : {"left_eye", "right_eye"}) {
+    const render::Camera cam = render::camera_for(*icub(), eye, p);
+    for (const Eigen::Vector3d& in_cam :
+         {Eigen::Vector3d(0.03, -0.02, 0.45), Eigen::Vector3d(-0.08, 0.05, 0.6)}) {
+      somasim::ObjectStates objects;
+      objects.names = {"ball"};
+      objects.present = {true};
+      objects.shape = {somasim::ObjectShape::kSphere};
+      objects.size = {Eigen::Vector3d(0.01, 0, 0)};
+      objects.poses = {Eigen::Isometry3d(Eigen::Translation3d(cam.pose_root * in_cam))};
+      std::vector<render::DrawItem> items;
+      const Eigen::Vector3d viewpoint = cam.pose_root.translation();
+      r.scene.add_robot(p, items, &viewpoint);
+      r.scene.add_objects(objects, items);
+      const auto images = r.renderer.render(items, cam);
+      const Blob b = blob(images.ids, render::object_id(0));
+      ASSERT_GT(b.count, 20) << eye;
+      const Eigen::Vector2d expected = *cam.project(objects.poses[0].translation());
+      EXPECT_LT((b.centroid - expected).norm(), 0.5) << eye << " " << in_cam.transpose();
+    }
+  }
+}
+
+TEST(RobotScene, RightHandBeforeTheEyesIsSeenByBothWithinItsProjectedBounds) {
+  Renderer r;
+  const auto p = poses(kHandBeforeEyes);
+  const int hand = icub()->link_index("r_hand");
+  EXPECT_GT(r.scene.triangle_count(), 1000u);  // includes the forearm cover mesh
+  for (const char* eye : {"left_eye", "right_eye"}) {
+    const render::Camera cam = render::camera_for(*icub(), eye, p);
+    std::vector<render::DrawItem> items;
+    const Eigen::Vector3d viewpoint = cam.pose_root.translation();
+    r.scene.add_robot(p, items, &viewpoint);
+    const auto images = r.renderer.render(items, cam);
+    const Blob b = blob(images.ids, render::link_id(hand));
+    EXPECT_GT(b.count, 1000) << eye;
+    // Bounds of the hand's projected shapes (corners of each shape's bounding box).
+    double u0 = 1e9, u1 = -1e9, v0 = 1e9, v1 = -1e9;
+    for (const robot::Geometry& g : icub()->link(hand).collision) {
+      const render::Bounds box = render::bounds(render::geometry_mesh(g, 32));
+      for (int k = 0; k < 8; ++k) {
+        const Eigen::Vector3d corner((k & 1) ? box.max.x() : box.min.x(),
+                                     (k & 2) ? box.max.y() : box.min.y(),
+                                     (k & 4) ? box.max.z() : box.min.z());
+        const auto uv = cam.project(p[hand] * g.origin * corner);
+        ASSERT_TRUE(uv);
+        u0 = std::min(u0, uv->x()), u1 = std::max(u1, uv->x());
+        v0 = std::min(v0, uv->y()), v1 = std::max(v1, uv->y());
+      }
+    }
+    EXPECT_GE(b.u_min, std::floor(u0)) << eye;
+    EXPECT_LE(b.u_max, std::ceil(u1)) << eye;
+    EXPECT_GE(b.v_min, std::floor(v0)) << eye;
+    EXPECT_LE(b.v_max, std::ceil(v1)) << eye;
+  }
+}
