@@ -154,8 +154,8 @@ void CameraPlugin::configure(NodeContext& ctx) {
     ctx.param_error("sheet_times", "the contact sheet needs the rgb output (outputs: rgb ...)");
   options_.read_rgb = want_rgb_;
   options_.read_depth = want_depth_;
-  options_.read_ids = true;      // for check_drawn(); the mask output is filled on request
-  options_.check_drawn = false;  // see check_drawn()
+  options_.read_ids = want_mask_;
+  options_.check_drawn = true;  // an item in view that draws nothing is an error (never blank)
   options_.light_direction_root = Eigen::Vector3d(0.7, 0.2, 1.0);  // above, behind the eyes
 
   bool created = false;
@@ -198,7 +198,6 @@ void CameraPlugin::step(NodeContext& ctx) {
     if (objects_) scene_->add_objects(*objects_, items_);
     items_.insert(items_.end(), backdrop_.begin(), backdrop_.end());
     render::RenderedImages images = renderer_->render(items_, camera, options_);
-    check_drawn(camera, images.ids);
     auto fill = [&](Image* out, cv::Mat data, ImageEncoding encoding) {
       out->data = std::move(data);
       out->encoding = encoding;
@@ -212,50 +211,6 @@ void CameraPlugin::step(NodeContext& ctx) {
     if (save_every_ > 0 && (frame_ - 1) % static_cast<std::uint64_t>(save_every_) == 0)
       save_frames(ctx, v);
     if (sheet_row) sheet_.back().views.push_back(images.rgb.clone());
-  }
-}
-
-// The renderer's own check tests the projected bounding box of each item, which for a thin
-// rotated shape (a finger) at the image border can overlap the image while the shape does not;
-// this one asks whether a vertex of a robot or object item projects into the image and, for an
-// id with no pixel, draws that id's items alone: nothing drawn then is an error.
-void CameraPlugin::check_drawn(const render::Camera& camera, const cv::Mat& ids) {
-  std::vector<std::int32_t> present;
-  for (auto it = ids.begin<std::int32_t>(); it != ids.end<std::int32_t>(); ++it)
-    if (*it != 0 && (present.empty() || present.back() != *it)) present.push_back(*it);
-  std::sort(present.begin(), present.end());
-  present.erase(std::unique(present.begin(), present.end()), present.end());
-  const render::PinholeIntrinsics& k = camera.intrinsics;
-  const Eigen::Isometry3d camera_root = camera.pose_root.inverse(Eigen::Isometry);
-  std::vector<std::int32_t> checked;
-  for (const render::DrawItem& item : items_) {
-    if (std::binary_search(present.begin(), present.end(), item.id)) continue;
-    if (std::find(checked.begin(), checked.end(), item.id) != checked.end()) continue;
-    const auto* vertices = scene_->vertices(item.mesh);
-    if (!vertices) continue;
-    const Eigen::Isometry3d camera_item = camera_root * item.pose_root;
-    bool inside = false;
-    for (const Eigen::Vector3f& v : *vertices) {
-      const Eigen::Vector3d p = camera_item * v.cast<double>();
-      if (!(p.z() > k.near && p.z() < k.far)) continue;
-      const double u = k.fx * p.x() / p.z() + k.cx, w = k.fy * p.y() / p.z() + k.cy;
-      if (u >= 0.0 && u <= k.width - 1.0 && w >= 0.0 && w <= k.height - 1.0) {
-        inside = true;
-        break;
-      }
-    }
-    if (!inside) continue;
-    checked.push_back(item.id);
-    std::vector<render::DrawItem> alone;
-    for (const render::DrawItem& other : items_)
-      if (other.id == item.id) alone.push_back(other);
-    render::RenderOptions ids_only;
-    ids_only.read_rgb = ids_only.read_depth = false;
-    ids_only.check_drawn = false;
-    const cv::Mat own = renderer_->render(alone, camera, ids_only).ids;
-    if (cv::countNonZero(own) == 0)
-      throw RunError(fmt::format("camera '{}': id {} projects into the image but drew no pixel",
-                                 camera.name, item.id));
   }
 }
 

@@ -37,7 +37,6 @@ class CameraPlugin : public Plugin {
   };
   void parse_background(NodeContext& ctx);
   void save_frames(NodeContext& ctx, const View& view);
-  void check_drawn(const render::Camera& camera, const cv::Mat& ids);
 
   std::shared_ptr<const robot::RobotModel> model_;
   std::shared_ptr<render::OsmesaContext> context_;

@@ -63,6 +63,7 @@ SceneRenderer::~SceneRenderer() {
 
 MeshHandle SceneRenderer::upload(const TriangleMesh& mesh) {
   meshes_.emplace_back(*gl_, mesh, fmt::format("render: mesh {}", meshes_.size()));
+  vertices_.push_back(mesh.positions);
   return MeshHandle{meshes_.size() - 1};
 }
 
@@ -179,28 +180,22 @@ void SceneRenderer::check_drawn(const std::vector<DrawItem>& items, const Camera
   for (std::size_t i = 0; i < items.size(); ++i) {
     const DrawItem& item = items[i];
     if (std::binary_search(present.begin(), present.end(), item.id)) continue;
-    // Does its bounding box lie between the clipping planes and project onto the image?
+    // Does one of its vertices lie between the clipping planes and project into the image?
+    // (Its bounding box would be too coarse: a thin, turned part at the image edge can have its
+    // box overlap the image while the part itself is outside.)
     const MeshBuffer& mesh = meshes_[item.mesh.index];
-    const Bounds& b = mesh.bounds();
     const Eigen::Isometry3d camera_item = camera_root * item.pose_root;
-    bool in_depth_range = true;
-    double umin = INFINITY, umax = -INFINITY, vmin = INFINITY, vmax = -INFINITY;
-    for (int c = 0; c < 8; ++c) {
-      const Eigen::Vector3d corner((c & 1) ? b.max.x() : b.min.x(), (c & 2) ? b.max.y() : b.min.y(),
-                                   (c & 4) ? b.max.z() : b.min.z());
-      const Eigen::Vector3d p = camera_item * corner;
-      if (!(p.z() > k.near && p.z() < k.far)) {
-        in_depth_range = false;
+    bool vertex_in_view = false;
+    for (const Eigen::Vector3f& vertex : vertices_[item.mesh.index]) {
+      const Eigen::Vector3d p = camera_item * vertex.cast<double>();
+      if (!(p.z() > k.near && p.z() < k.far)) continue;
+      const double u = k.fx * p.x() / p.z() + k.cx, v = k.fy * p.y() / p.z() + k.cy;
+      if (u >= -0.5 && u <= k.width - 0.5 && v >= -0.5 && v <= k.height - 0.5) {
+        vertex_in_view = true;
         break;
       }
-      const double u = k.fx * p.x() / p.z() + k.cx, v = k.fy * p.y() / p.z() + k.cy;
-      umin = std::min(umin, u);
-      umax = std::max(umax, u);
-      vmin = std::min(vmin, v);
-      vmax = std::max(vmax, v);
     }
-    if (!in_depth_range) continue;
-    if (umax < -0.5 || umin > k.width - 0.5 || vmax < -0.5 || vmin > k.height - 0.5) continue;
+    if (!vertex_in_view) continue;
 
     // Hidden behind other items, or really drawing nothing? Draw it alone (depth only).
     gl.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);

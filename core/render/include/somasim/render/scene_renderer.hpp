@@ -16,13 +16,14 @@
 ///   - ids:   CV_32S, the id of the item seen at each pixel; 0 = background.
 /// Each requested output is one glReadPixels of the framebuffer.
 ///
-/// "Never a silent black frame": with `check_drawn` on, after reading back, every item whose
-/// bounding box lies between the near and far planes and projects onto the image but whose id
-/// has no pixel in the id mask is drawn again alone; if it still covers no pixel (so it was not
-/// merely hidden behind other items) render() throws RunError "camera 'X': item N (id I) projects
-/// into the image but drew no pixel". The extra cost is one scan of the id mask, plus a redraw
-/// only for items that show no pixel. Items smaller than a pixel that fall between pixel centres
-/// also trigger it; items sharing an id are checked together.
+/// "Never a silent black frame": with `check_drawn` on, after reading back, every item with a
+/// vertex between the near and far planes that projects into the image but whose id has no
+/// pixel in the id mask is drawn again alone; if it still covers no pixel (so it was not merely
+/// hidden behind other items) render() throws RunError "camera 'X': item N (id I) projects into
+/// the image but drew no pixel". The extra cost is one scan of the id mask, plus a vertex scan
+/// and a redraw only for items that show no pixel. Items thinner than a pixel that fall between
+/// pixel centres also trigger it; items sharing an id are checked together; an item seen only
+/// through a triangle whose vertices all lie outside the image is not checked.
 ///
 /// Threads: as every GL object, a SceneRenderer lives on its context's thread (context.hpp).
 #include <cstdint>
@@ -103,6 +104,7 @@ class SceneRenderer {
   ShaderProgram program_;
   GLint u_mvp_ = -1, u_light_ = -1, u_albedo_ = -1, u_ambient_ = -1, u_id_ = -1;
   std::vector<MeshBuffer> meshes_;
+  std::vector<std::vector<Eigen::Vector3f>> vertices_;  ///< per mesh, for check_drawn
   std::optional<Framebuffer> framebuffer_;
   GLuint query_ = 0;
 };
