@@ -86,4 +86,10 @@ void check_gl(const GlApi& gl, std::string_view what) {
     throw RunError(fmt::format("{}: GL error {}", what, fmt::join(errors, ", ")));
 }
 
+void check_framebuffer_complete(const GlApi& gl, std::string_view what) {
+  const GLenum status = gl.CheckFramebufferStatus(GL_FRAMEBUFFER);
+  if (status != GL_FRAMEBUFFER_COMPLETE)
+    throw RunError(fmt::format("{} is incomplete ({})", what, gl_framebuffer_status_name(status)));
+}
+
 }  // namespace somasim::render

@@ -43,10 +43,7 @@ Framebuffer::Framebuffer(const GlApi& gl, int width, int height, std::string own
     gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_);
     check_gl(gl, fmt::format("{}: creating a {} x {} framebuffer", owner_, width, height));
 
-    const GLenum status = gl.CheckFramebufferStatus(GL_FRAMEBUFFER);
-    if (status != GL_FRAMEBUFFER_COMPLETE)
-      throw RunError(fmt::format("{}: framebuffer {} x {} is incomplete ({})", owner_, width,
-                                 height, gl_framebuffer_status_name(status)));
+    check_framebuffer_complete(gl, fmt::format("{}: framebuffer {} x {}", owner_, width, height));
     gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
   } catch (...) {
     gl.BindFramebuffer(GL_FRAMEBUFFER, 0);

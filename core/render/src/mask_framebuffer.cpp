@@ -2,8 +2,6 @@
 
 #include <fmt/format.h>
 
-#include "somasim/error.hpp"
-
 namespace somasim::render {
 
 MaskFramebuffer::MaskFramebuffer(const GlApi& gl, int width, int height, const std::string& owner)
@@ -18,10 +16,8 @@ MaskFramebuffer::MaskFramebuffer(const GlApi& gl, int width, int height, const s
     gl.BindRenderbuffer(GL_RENDERBUFFER, 0);
     gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour_);
     check_gl(gl, fmt::format("{}: creating a {} x {} mask framebuffer", owner, width, height));
-    const GLenum status = gl.CheckFramebufferStatus(GL_FRAMEBUFFER);
-    if (status != GL_FRAMEBUFFER_COMPLETE)
-      throw RunError(fmt::format("{}: mask framebuffer {} x {} is incomplete ({})", owner, width,
-                                 height, gl_framebuffer_status_name(status)));
+    check_framebuffer_complete(gl,
+                               fmt::format("{}: mask framebuffer {} x {}", owner, width, height));
     gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
   } catch (...) {
     gl.BindFramebuffer(GL_FRAMEBUFFER, 0);

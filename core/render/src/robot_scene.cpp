@@ -69,7 +69,6 @@ RobotScene::RobotScene(SceneRenderer& renderer, std::shared_ptr<const robot::Rob
       const TriangleMesh mesh = geometry_mesh(g, options_.segments);
       triangles_ += mesh.triangle_count();
       parts_.push_back({i, renderer_->upload(mesh), g.origin, bounds(mesh)});
-      vertices_[parts_.back().mesh.index] = mesh.positions;
     }
   }
 }
@@ -124,7 +123,6 @@ void RobotScene::add_objects(const ObjectStates& objects, std::vector<DrawItem>&
           break;
       }
       it = object_meshes_.emplace(key, renderer_->upload(mesh)).first;
-      vertices_[it->second.index] = mesh.positions;
     }
     DrawItem item;
     item.mesh = it->second;
@@ -146,11 +144,6 @@ void RobotScene::add_objects(const ObjectStates& objects, std::vector<DrawItem>&
     }
     items.push_back(item);
   }
-}
-
-const std::vector<Eigen::Vector3f>* RobotScene::vertices(MeshHandle mesh) const {
-  const auto it = vertices_.find(mesh.index);
-  return it == vertices_.end() ? nullptr : &it->second;
 }
 
 Camera camera_for(const robot::RobotModel& model, const std::string& camera_name,

@@ -113,4 +113,8 @@ std::string gl_framebuffer_status_name(GLenum status);
 /// errors are drained and named).
 void check_gl(const GlApi& gl, std::string_view what);
 
+/// Throws somasim::RunError "`what` is incomplete (GL_FRAMEBUFFER_...)" unless the bound
+/// framebuffer is complete.
+void check_framebuffer_complete(const GlApi& gl, std::string_view what);
+
 }  // namespace somasim::render

@@ -67,9 +67,6 @@ class RobotScene {
   /// grey); an object shape seen for the first time is tessellated and uploaded.
   void add_objects(const ObjectStates& objects, std::vector<DrawItem>& items);
 
-  /// Vertices [m] (mesh frame) of a mesh this scene uploaded; nullptr for other handles.
-  const std::vector<Eigen::Vector3f>* vertices(MeshHandle mesh) const;
-
   const robot::RobotModel& model() const { return *model_; }
   std::size_t triangle_count() const { return triangles_; }  ///< of the robot's meshes
 
@@ -87,7 +84,6 @@ class RobotScene {
   std::vector<Eigen::Vector3f> colours_;             // per link
   std::map<std::string, MeshHandle> object_meshes_;  // by shape and size
   std::size_t triangles_ = 0;
-  std::map<std::size_t, std::vector<Eigen::Vector3f>> vertices_;  // by MeshHandle::index
 };
 
 /// The render camera of the model's camera `camera_name` posed by `link_poses` (root <- link).
