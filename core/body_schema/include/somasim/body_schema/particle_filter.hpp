@@ -1,0 +1,86 @@
+#pragma once
+/// @file
+/// The body-schema particle filter over joint offsets β (Vicente et al. 2016; PAPERS.md B):
+/// M particles, each a vector of per-joint offsets [deg]. One frame = predict() (add the
+/// artificial dynamic noise N(0, σ_s²)), the caller scores every particle (rendered hypotheses
+/// against the camera images), update() (weights ∝ likelihoods, KDE-smoothed estimate,
+/// systematic resampling, next σ_s). Every particle has weight 1/M at the start of a frame.
+///
+/// Determinism: every random draw comes from the filter's own std::mt19937_64 seeded by the
+/// caller, in a fixed order, so the same seed and likelihoods give the same particles.
+#include <cstdint>
+#include <random>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "somasim/body_schema/noise_schedule.hpp"
+
+namespace somasim::body_schema {
+
+/// KDE smoothing of the estimate: ω'_i = ω_i + α (1/M) Σ_m ω_m K(β_i, β_m) with the Gaussian
+/// kernel K = exp(−½ ‖β_i − β_m‖² / σ²) / |Σ|, Σ = σ² I (σ in degrees; paper: σ = 1°, α = 500).
+struct KdeOptions {
+  double sigma_deg = 1.0;
+  double alpha = 500.0;
+};
+
+/// What one update() saw and did.
+struct FilterUpdate {
+  double best_likelihood = 0.0;  ///< largest likelihood of the frame
+  double mean_likelihood = 0.0;
+  double effective_sample_size = 0.0;  ///< 1 / Σ w², w the normalised weights (1 ... M)
+  bool resampled = false;
+  double sigma_deg = 0.0;  ///< σ_s used by this frame's prediction
+  int best_particle = 0;   ///< index (before resampling) of the particle chosen as the estimate
+};
+
+class OffsetParticleFilter {
+ public:
+  /// `dims` offsets (>= 1), `particles` M (>= 1). Throws somasim::InputError otherwise
+  /// ("body schema filter: M must be >= 1, got 0"). Calls reset().
+  OffsetParticleFilter(int dims, int particles, const NoiseSchedule& schedule, std::uint64_t seed,
+                       const KdeOptions& kde = {});
+
+  /// New movement: particles drawn from N(0, σ_i² I), σ_s back to its first value, estimate 0.
+  void reset();
+  /// Adds N(0, σ_s² I) to every particle (particle 0 set to 0 first under reset_particle_zero).
+  void predict();
+  /// Weights the particles by `likelihoods` (size M, finite, >= 0), picks the estimate, resamples
+  /// (systematic) when the schedule says so and sets the next σ_s. A frame whose likelihoods are
+  /// all 0 keeps the particles and the estimate, does not resample and returns best = 0: the
+  /// caller decides (see the body_schema_filter plugin). Throws somasim::InputError for a wrong
+  /// size or a negative or non-finite likelihood.
+  FilterUpdate update(const std::vector<double>& likelihoods);
+
+  const Eigen::MatrixXd& particles() const { return particles_; }  ///< dims × M [deg]
+  /// Replaces the particles (dims × M [deg]); for tests and for ranks that receive them.
+  void set_particles(const Eigen::MatrixXd& particles);
+  const Eigen::VectorXd& estimate() const { return estimate_; }  ///< β̂ [deg]
+  double sigma_deg() const { return sigma_; }                    ///< σ_s of the next predict()
+  int size() const { return static_cast<int>(particles_.cols()); }
+  int dims() const { return static_cast<int>(particles_.rows()); }
+  const NoiseSchedule& schedule() const { return schedule_; }
+
+  /// Multiplies σ_s by `factor` (clamped to the schedule's bounds); used to re-inflate the noise
+  /// after a frame in which no particle explained the images.
+  void inflate_sigma(double factor);
+
+ private:
+  int kde_best(const Eigen::VectorXd& weights) const;
+  void resample_systematic(const Eigen::VectorXd& weights);
+
+  NoiseSchedule schedule_;
+  KdeOptions kde_;
+  std::uint64_t seed_;
+  std::mt19937_64 rng_;
+  Eigen::MatrixXd particles_;
+  Eigen::VectorXd estimate_;
+  double sigma_ = 0.0;
+};
+
+/// Indices chosen by systematic resampling of normalised `weights` (sum 1) with the offset
+/// u0 in [0, 1/M): particle i is copied floor or ceil of M·w_i times, in index order.
+std::vector<int> systematic_resample(const Eigen::VectorXd& weights, double u0);
+
+}  // namespace somasim::body_schema

@@ -1,0 +1,162 @@
+// The offset particle filter: systematic resampling, KDE estimate, convergence on a synthetic
+// likelihood for every schedule preset, determinism and its errors.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "somasim/body_schema/particle_filter.hpp"
+#include "somasim/error.hpp"
+
+namespace somasim::body_schema {
+namespace {
+
+const Eigen::Matrix<double, 7, 1> kTrueOffsets =
+    (Eigen::Matrix<double, 7, 1>() << 5, 4, 3, -2, 3, -7, 3).finished();
+
+// A smooth, unimodal stand-in for the image likelihood: 1 at the true offsets.
+std::vector<double> synthetic_likelihoods(const OffsetParticleFilter& f, double width_deg) {
+  std::vector<double> l(static_cast<std::size_t>(f.size()));
+  for (int m = 0; m < f.size(); ++m) {
+    const double d2 = (f.particles().col(m) - kTrueOffsets).squaredNorm();
+    l[static_cast<std::size_t>(m)] = std::exp(-0.5 * d2 / (width_deg * width_deg));
+  }
+  return l;
+}
+
+// The code presets resample only when the best likelihood exceeds 0.55 and otherwise let the
+// noise grow: they need a likelihood wide enough (8 deg here) that some initial particle passes.
+Eigen::VectorXd run(const std::string& preset, int particles, int frames, std::uint64_t seed,
+                    double width_deg) {
+  OffsetParticleFilter f(7, particles, noise_schedule_preset(preset), seed);
+  for (int t = 0; t < frames; ++t) {
+    f.predict();
+    f.update(synthetic_likelihoods(f, width_deg));
+  }
+  return f.estimate();
+}
+
+TEST(SystematicResample, CopiesParticlesInProportionToTheirWeights) {
+  Eigen::VectorXd w(4);
+  w << 0.5, 0.25, 0.25, 0.0;
+  EXPECT_EQ(systematic_resample(w, 0.1), (std::vector<int>{0, 0, 1, 2}));
+  EXPECT_EQ(systematic_resample(w, 0.0), (std::vector<int>{0, 0, 1, 2}));
+  EXPECT_EQ(systematic_resample(w, 0.2499), (std::vector<int>{0, 0, 1, 2}));
+  Eigen::VectorXd one = Eigen::VectorXd::Zero(5);
+  one[3] = 1.0;
+  EXPECT_EQ(systematic_resample(one, 0.19), (std::vector<int>(5, 3)));
+}
+
+TEST(OffsetParticleFilter, ConvergesToTheTrueOffsetsWithEveryPreset) {
+  for (const std::string& preset : noise_schedule_names()) {
+    for (std::uint64_t seed : {1U, 2U, 3U}) {
+      const Eigen::VectorXd estimate = run(preset, 200, 80, seed, preset == "paper" ? 3.0 : 8.0);
+      // The wider likelihood of the code presets leaves a wider posterior.
+      EXPECT_LT((estimate - kTrueOffsets).cwiseAbs().maxCoeff(), preset == "paper" ? 1.5 : 2.5)
+          << preset << " seed " << seed << ": " << estimate.transpose();
+    }
+  }
+}
+
+TEST(OffsetParticleFilter, EstimateIsZeroBeforeTheFirstUpdateAndAfterReset) {
+  OffsetParticleFilter f(7, 50, noise_schedule_preset("paper"), 4);
+  EXPECT_EQ(f.estimate(), Eigen::VectorXd::Zero(7));
+  f.predict();
+  f.update(synthetic_likelihoods(f, 3.0));
+  EXPECT_NE(f.estimate(), Eigen::VectorXd::Zero(7));
+  f.reset();
+  EXPECT_EQ(f.estimate(), Eigen::VectorXd::Zero(7));
+  EXPECT_DOUBLE_EQ(f.sigma_deg(), 4.0);
+}
+
+TEST(OffsetParticleFilter, SameSeedSameParticlesOtherSeedOtherParticles) {
+  EXPECT_EQ(run("paper", 100, 10, 7, 3.0), run("paper", 100, 10, 7, 3.0));
+  EXPECT_NE(run("paper", 100, 10, 7, 3.0), run("paper", 100, 10, 8, 3.0));
+}
+
+TEST(OffsetParticleFilter, KdePrefersAClusterToAnIsolatedHeavierParticle) {
+  Eigen::MatrixXd p = Eigen::MatrixXd::Zero(2, 6);
+  p.col(0) << 10.0, 10.0;  // isolated
+  for (int m = 1; m < 6; ++m) p.col(m) << 0.1 * m, 0.0;
+  const std::vector<double> l = {0.3, 0.14, 0.14, 0.14, 0.14, 0.14};
+  for (double alpha : {0.0, 500.0}) {
+    OffsetParticleFilter f(2, 6, noise_schedule_preset("paper"), 1, KdeOptions{1.0, alpha});
+    f.set_particles(p);
+    const FilterUpdate u = f.update(l);
+    if (alpha == 0.0) {
+      EXPECT_EQ(u.best_particle, 0);
+    } else {
+      EXPECT_GE(u.best_particle, 1);
+      EXPECT_LE(u.best_particle, 5);
+    }
+  }
+}
+
+TEST(OffsetParticleFilter, Code2016ResamplesOnlyAboveTheThreshold) {
+  OffsetParticleFilter f(7, 10, noise_schedule_preset("code2016"), 1);
+  const Eigen::MatrixXd before = f.particles();
+  FilterUpdate u = f.update(std::vector<double>(10, 0.5));
+  EXPECT_FALSE(u.resampled);
+  EXPECT_EQ(f.particles(), before);
+  EXPECT_DOUBLE_EQ(f.sigma_deg(), 3.45);
+  std::vector<double> l(10, 0.01);
+  l[4] = 0.9;
+  u = f.update(l);
+  EXPECT_TRUE(u.resampled);
+  EXPECT_DOUBLE_EQ(u.sigma_deg, 3.45);
+  EXPECT_NEAR(f.sigma_deg(), 3.45 * 0.85, 1e-12);
+  EXPECT_EQ(u.best_particle, 4);
+  EXPECT_NEAR(u.effective_sample_size, 1.0 / ((0.9 * 0.9 + 9e-4) / (0.99 * 0.99)), 1e-9);
+}
+
+TEST(OffsetParticleFilter, Code2017KeepsParticleZeroAtTheNominalModel) {
+  OffsetParticleFilter f(7, 20, noise_schedule_preset("code2017"), 3);
+  f.predict();
+  EXPECT_EQ(Eigen::VectorXd(f.particles().col(0)), Eigen::VectorXd::Zero(7));
+  EXPECT_NE(Eigen::VectorXd(f.particles().col(1)), Eigen::VectorXd::Zero(7));
+}
+
+TEST(OffsetParticleFilter, AllZeroLikelihoodsChangeNothing) {
+  OffsetParticleFilter f(7, 20, noise_schedule_preset("paper"), 3);
+  f.predict();
+  const Eigen::MatrixXd before = f.particles();
+  const FilterUpdate u = f.update(std::vector<double>(20, 0.0));
+  EXPECT_EQ(u.best_likelihood, 0.0);
+  EXPECT_FALSE(u.resampled);
+  EXPECT_EQ(f.particles(), before);
+  EXPECT_EQ(f.estimate(), Eigen::VectorXd::Zero(7));
+  EXPECT_DOUBLE_EQ(f.sigma_deg(), 4.0);
+  f.inflate_sigma(1.5);
+  EXPECT_DOUBLE_EQ(f.sigma_deg(), 6.0);
+}
+
+template <class F>
+std::string error_of(F&& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(OffsetParticleFilter, Errors) {
+  const NoiseSchedule s = noise_schedule_preset("paper");
+  EXPECT_EQ(error_of([&] { OffsetParticleFilter(7, 0, s, 1); }),
+            "body schema filter: M must be >= 1, got 0");
+  EXPECT_EQ(error_of([&] { OffsetParticleFilter(0, 10, s, 1); }),
+            "body schema filter: need at least one offset, got 0");
+  OffsetParticleFilter f(7, 3, s, 1);
+  EXPECT_EQ(error_of([&] {
+              f.update({1.0, 1.0});
+            }),
+            "body schema filter: expected 3 likelihoods, got 2");
+  EXPECT_EQ(error_of([&] {
+              f.update({1.0, -0.5, 1.0});
+            }),
+            "body schema filter: likelihood of particle 1 is -0.5 (expected finite and >= 0)");
+  EXPECT_EQ(error_of([&] { f.set_particles(Eigen::MatrixXd::Zero(7, 4)); }),
+            "body schema filter: particles must be 7 x 3, got 7 x 4");
+}
+
+}  // namespace
+}  // namespace somasim::body_schema
