@@ -25,6 +25,14 @@ PluginSpec BulletWorld::spec() {
       .describe(
           "initial joint values held by the motors, 'joint: value, ...' in degrees (prismatic: "
           "m); unlisted joints start at 0 clamped into their limits");
+  s.add_string("encoder_offsets_deg")
+      .accepts_map_as_text()
+      .defaults(std::string(""))
+      .describe(
+          "miscalibrated encoders, 'joint: beta, ...' in degrees: the real joint values are the "
+          "encoder readings plus beta (body-schema study). joint_state reports real - beta and "
+          "position commands are encoder values (the motors drive real = command + beta); "
+          "initial_posture_deg and link_poses are real");
   s.add_string_list("locked_joints")
       .defaults(std::vector<std::string>{})
       .describe(
@@ -145,6 +153,13 @@ void BulletWorld::configure(NodeContext& ctx) {
   } catch (const InputError& e) {
     ctx.param_error("initial_posture_deg", e.what());
   }
+  try {
+    encoder_offsets_ =
+        robot::parse_joint_offsets(*model_, ctx.param<std::string>("encoder_offsets_deg"));
+  } catch (const InputError& e) {
+    ctx.param_error("encoder_offsets_deg", e.what());
+  }
+  miscalibrated_ = !encoder_offsets_.isZero();
   std::vector<bool> locked;
   try {
     locked = parse_locked_joints(ctx.param<std::vector<std::string>>("locked_joints"), *model_);
@@ -247,7 +262,7 @@ void BulletWorld::spawn_from_port(NodeContext& ctx, double t) {
 
 void BulletWorld::step(NodeContext& ctx) {
   const double t = ctx.time_s();
-  if (commands_) motors_->apply(*commands_, t);
+  if (commands_) motors_->apply(real_commands(*commands_), t);
   if (spawns_) {
     spawn_from_port(ctx, t);
     for (const std::string& name : spawns_->withdraw)
@@ -261,8 +276,19 @@ void BulletWorld::step(NodeContext& ctx) {
   publish(t + dt_);
 }
 
+const JointCommand& BulletWorld::real_commands(const JointCommand& commands) {
+  if (!miscalibrated_) return commands;
+  real_commands_ = commands;
+  for (std::size_t d = 0; d < commands.mode.size(); ++d)
+    if (commands.mode[d] == JointCommandMode::kPosition)
+      real_commands_.position[static_cast<Eigen::Index>(d)] +=
+          encoder_offsets_[static_cast<Eigen::Index>(d)];
+  return real_commands_;
+}
+
 void BulletWorld::publish(double t) {
   robot_->read_joint_state(*joint_state_);
+  if (miscalibrated_) joint_state_->position -= encoder_offsets_;
   robot_->link_poses(link_poses_->poses);
   const Penetration deepest =
       extract_contacts(physics_->dispatcher(), *robot_, link_poses_->poses, *objects_, dt_,

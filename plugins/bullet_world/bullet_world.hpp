@@ -47,6 +47,8 @@ class BulletWorld : public Plugin {
  private:
   void spawn_from_port(NodeContext& ctx, double t);
   void publish(double t);
+  /// The commands with position targets shifted from encoder to real values (encoder offsets).
+  const JointCommand& real_commands(const JointCommand& commands);
 
   // Declaration order = reverse destruction order: bodies go before shapes, filter and world.
   std::shared_ptr<const robot::RobotModel> model_;
@@ -71,6 +73,11 @@ class BulletWorld : public Plugin {
   ObjectStates* object_states_ = nullptr;
   Contacts* contacts_ = nullptr;
   const JointCommand* commands_ = nullptr;
+  // Miscalibrated encoders (encoder_offsets_deg): readings = real - offsets [rad].
+  Eigen::VectorXd encoder_offsets_;
+  bool miscalibrated_ = false;
+  JointCommand real_commands_;  // commands shifted to real joint values, reused
+
   const ObjectSpawns* spawns_ = nullptr;
 
   // Metrics.

@@ -464,3 +464,31 @@ TEST(BulletWorldLocked, AllLockedRobotIsStaticGeometryThatCarriesABallOnTheForea
   EXPECT_LT(dp, 1e-9);
   EXPECT_LT(dr, 1e-9);
 }
+
+TEST(BulletWorld, MiscalibratedEncodersReadRealMinusOffsetAndCommandsAreEncoderValues) {
+  const auto model = icub();
+  const Eigen::VectorXd q0 = rest_posture(*model);
+  Harness h(world_yaml("initial_posture_deg: " + posture_param(*model, q0) +
+                       ", encoder_offsets_deg: 'r_elbow: 5, r_wrist_pitch: -7'"));
+  const int elbow = model->dof_index("r_elbow"), wrist = model->dof_index("r_wrist_pitch");
+  const double rad = M_PI / 180.0;
+  // The initial posture is real: the encoders read it minus the offsets.
+  h.input<JointCommand>("cmd") = hold(q0 - Eigen::VectorXd::Unit(q0.size(), elbow) * 5 * rad +
+                                      Eigen::VectorXd::Unit(q0.size(), wrist) * 7 * rad);
+  h.step();
+  const JointState& js = h.output<JointState>("world.joint_state");
+  EXPECT_NEAR(js.position[elbow], q0[elbow] - 5 * rad, 1e-3);
+  EXPECT_NEAR(js.position[wrist], q0[wrist] + 7 * rad, 1e-3);
+  // An encoder target of 40 deg at the elbow drives the real joint to 45 deg.
+  JointCommand cmd = h.input<JointCommand>("cmd");
+  cmd.position[elbow] = 40 * rad;
+  h.input<JointCommand>("cmd") = cmd;
+  for (int k = 0; k < 1500; ++k) h.step();
+  EXPECT_NEAR(h.output<JointState>("world.joint_state").position[elbow], 40 * rad, 2e-3);
+  Eigen::VectorXd real = h.output<JointState>("world.joint_state").position;
+  real[elbow] += 5 * rad;
+  real[wrist] -= 7 * rad;
+  const auto [dp, dr] = link_pose_error(*model, real, h.output<LinkPoses>("world.link_poses"));
+  EXPECT_LT(dp, 1e-4);
+  EXPECT_LT(dr, 1e-3);
+}
