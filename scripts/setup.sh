@@ -7,7 +7,7 @@ cd "$(dirname "$0")/.."
 packages=(
   build-essential cmake ninja-build pkg-config git
   libeigen3-dev libyaml-cpp-dev libspdlog-dev libfmt-dev nlohmann-json3-dev libcli11-dev
-  libopencv-dev libbullet-dev libosmesa6-dev libegl-dev libassimp-dev
+  libopencv-dev libbullet-dev libosmesa6-dev libegl-dev libegl-mesa0 libassimp-dev
   libgtest-dev libgmock-dev libbenchmark-dev clang-format clang-tidy
   clang libclang-rt-14-dev
 )

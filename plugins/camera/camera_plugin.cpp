@@ -13,14 +13,16 @@
 namespace somasim::plugins {
 namespace {
 
-// One OSMesa context per thread (a second one on a thread is refused), shared by the camera
-// nodes that run on it and released with the last of them.
-std::shared_ptr<render::OsmesaContext> thread_context(bool& created) {
-  thread_local std::weak_ptr<render::OsmesaContext> shared;
-  auto context = shared.lock();
+// One GL context per thread (a second one on a thread is refused, whatever its back end),
+// shared by the camera nodes that run on it and released with the last of them. The first node
+// on a thread chooses the back end.
+std::shared_ptr<render::RenderContext> thread_context(render::RenderBackend backend,
+                                                      bool& created) {
+  thread_local std::weak_ptr<render::RenderContext> shared;
+  std::shared_ptr<render::RenderContext> context = shared.lock();
   created = !context;
   if (!context) {
-    context = std::make_shared<render::OsmesaContext>();
+    context = render::make_render_context(backend);
     shared = context;
   }
   return context;
@@ -39,10 +41,11 @@ std::vector<std::string> words(const std::string& text) {
 }  // namespace
 
 PluginSpec CameraPlugin::spec() {
-  PluginSpec s("camera",
-               "The robot's eyes: renders the views of the robot model's cameras (OSMesa, "
-               "Lambert + ambient shading) from the world's link and object poses: RGB, metric "
-               "depth and id masks (link i -> i + 1, object k -> 1000 + k, backdrop 60000).");
+  PluginSpec s(
+      "camera",
+      "The robot's eyes: renders the views of the robot model's cameras (OSMesa or "
+      "EGL, Lambert + ambient shading) from the world's link and object poses: RGB, metric "
+      "depth and id masks (link i -> i + 1, object k -> 1000 + k, backdrop 60000).");
   robot::add_robot_param(s);
   s.add_string_list("cameras")
       .defaults(std::vector<std::string>{"left_eye", "right_eye"})
@@ -62,6 +65,13 @@ PluginSpec CameraPlugin::spec() {
       .defaults(std::int64_t{24})
       .range(3, 256)
       .describe("segments around curved primitives (spheres, cylinders, capsules)");
+  s.add_string("backend")
+      .defaults(std::string("osmesa"))
+      .one_of(render::render_backend_names())
+      .describe(
+          "where the OpenGL context comes from: osmesa (Mesa's llvmpipe, software) or egl "
+          "(EGL's surfaceless platform: the node's GPU through Mesa, else llvmpipe; needs "
+          "libegl-mesa0); camera nodes on one thread share one context and so one backend");
   s.add_int("save_every")
       .defaults(std::int64_t{0})
       .at_least(0)
@@ -158,11 +168,19 @@ void CameraPlugin::configure(NodeContext& ctx) {
   options_.check_drawn = true;  // an item in view that draws nothing is an error (never blank)
   options_.light_direction_root = Eigen::Vector3d(0.7, 0.2, 1.0);  // above, behind the eyes
 
+  const std::string backend_name = ctx.param<std::string>("backend");  // checked by one_of
+  const render::RenderBackend backend = render::parse_render_backend(backend_name);
   bool created = false;
-  context_ = thread_context(created);
+  context_ = thread_context(backend, created);
+  if (context_->backend() != backend)
+    ctx.param_error("backend",
+                    fmt::format("'{}', but another camera node on this thread already renders with "
+                                "'{}' (one OpenGL context per thread: give the camera nodes of a "
+                                "thread the same backend)",
+                                backend_name, render::render_backend_name(context_->backend())));
   if (created)
-    ctx.log().info("camera: OpenGL renderer '{}', version '{}'", context_->renderer(),
-                   context_->version());
+    ctx.log().info("camera: OpenGL renderer '{}', version '{}' (backend {})", context_->renderer(),
+                   context_->version(), backend_name);
   renderer_ = std::make_unique<render::SceneRenderer>(context_->gl());
   render::RobotSceneOptions scene_options;
   scene_options.segments = ctx.param<int>("resolution");

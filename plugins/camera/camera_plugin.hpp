@@ -1,6 +1,6 @@
 #pragma once
 // camera: the robot's eyes. Renders the views of the robot model's cameras (default the iCub's
-// left_eye and right_eye) from the world's link and object poses, with OSMesa.
+// left_eye and right_eye) from the world's link and object poses, with OSMesa or EGL.
 #include <array>
 #include <memory>
 #include <string>
@@ -39,7 +39,7 @@ class CameraPlugin : public Plugin {
   void save_frames(NodeContext& ctx, const View& view);
 
   std::shared_ptr<const robot::RobotModel> model_;
-  std::shared_ptr<render::OsmesaContext> context_;
+  std::shared_ptr<render::RenderContext> context_;
   std::unique_ptr<render::SceneRenderer> renderer_;
   std::unique_ptr<render::RobotScene> scene_;
   std::vector<render::DrawItem> backdrop_;

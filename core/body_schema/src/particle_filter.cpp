@@ -54,7 +54,9 @@ void OffsetParticleFilter::set_particles(const Eigen::MatrixXd& particles) {
 }
 
 void OffsetParticleFilter::inflate_sigma(double factor) {
-  sigma_ = std::clamp(sigma_ * factor, schedule_.min_sigma_deg, schedule_.max_sigma_deg);
+  const double ceiling = std::min(schedule_.max_sigma_deg,
+                                  std::max(schedule_.initial_sigma_deg, schedule_.step_sigma_deg));
+  sigma_ = std::clamp(sigma_ * factor, schedule_.min_sigma_deg, std::max(ceiling, sigma_));
 }
 
 FilterUpdate OffsetParticleFilter::update(const std::vector<double>& likelihoods) {

@@ -15,32 +15,75 @@
 
 #include <array>
 
+#include "somasim/diagnostics.hpp"
 #include "somasim/error.hpp"
+#include "somasim/render/egl_context.hpp"
 
 namespace somasim::render {
 
 namespace {
 
-// The OsmesaContext of this thread, if any (one per thread).
-thread_local const OsmesaContext* g_thread_context = nullptr;
+// The context of this thread, if any (one per thread, whatever its back end: Mesa's GL dispatch
+// has one current context per thread).
+thread_local const RenderContext* g_thread_context = nullptr;
 
 std::string gl_string(const GlApi& gl, GLenum name) {
   const GLubyte* s = gl.GetString(name);
   return s == nullptr ? std::string("?") : std::string(reinterpret_cast<const char*>(s));
 }
 
+const char* backend_label(RenderBackend backend) {
+  return backend == RenderBackend::kEgl ? "EGL" : "OSMesa";
+}
+
 }  // namespace
+
+RenderBackend parse_render_backend(const std::string& name) {
+  if (name == "osmesa") return RenderBackend::kOsmesa;
+  if (name == "egl") return RenderBackend::kEgl;
+  throw InputError(fmt::format("unknown render backend '{}'; expected 'osmesa' or 'egl'{}", name,
+                               did_you_mean(name, render_backend_names())));
+}
+
+std::string render_backend_name(RenderBackend backend) {
+  return backend == RenderBackend::kEgl ? "egl" : "osmesa";
+}
+
+std::vector<std::string> render_backend_names() {
+  return {"osmesa", "egl"};
+}
+
+RenderContext::RenderContext(RenderBackend backend) : backend_(backend) {
+  if (g_thread_context != nullptr)
+    throw RunError(fmt::format(
+        "render: this thread already has an {} context (one context per thread; create one "
+        "context per rendering thread)",
+        backend_label(g_thread_context->backend())));
+  g_thread_context = this;
+}
+
+RenderContext::~RenderContext() {
+  if (g_thread_context == this) g_thread_context = nullptr;
+}
+
+void RenderContext::load_gl(const GlProcLoader& loader) {
+  gl_ = load_gl_api(loader);
+  renderer_ = gl_string(gl_, GL_RENDERER);
+  version_ = gl_string(gl_, GL_VERSION);
+}
+
+std::unique_ptr<RenderContext> make_render_context(RenderBackend backend, int major, int minor) {
+  if (backend == RenderBackend::kEgl) return std::make_unique<EglContext>(major, minor);
+  return std::make_unique<OsmesaContext>(major, minor);
+}
 
 struct OsmesaContext::Impl {
   OSMesaContext context = nullptr;
   std::array<unsigned char, 4> dummy{};  // 1 x 1 RGBA: the context's own buffer, never read
 };
 
-OsmesaContext::OsmesaContext(int major, int minor) : impl_(std::make_unique<Impl>()) {
-  if (g_thread_context != nullptr)
-    throw RunError(
-        "render: this thread already has an OSMesa context (one context per thread; create one "
-        "context per rendering thread)");
+OsmesaContext::OsmesaContext(int major, int minor)
+    : RenderContext(RenderBackend::kOsmesa), impl_(std::make_unique<Impl>()) {
   const std::array<int, 11> attribs = {OSMESA_FORMAT,
                                        OSMESA_RGBA,
                                        OSMESA_PROFILE,
@@ -63,21 +106,17 @@ OsmesaContext::OsmesaContext(int major, int minor) : impl_(std::make_unique<Impl
     throw RunError("render: OSMesaMakeCurrent failed for a new OSMesa context");
   }
   try {
-    gl_ = load_gl_api([](const char* name) -> GlProc { return OSMesaGetProcAddress(name); });
+    load_gl([](const char* name) -> GlProc { return OSMesaGetProcAddress(name); });
   } catch (...) {
     OSMesaMakeCurrent(nullptr, nullptr, 0, 0, 0);
     OSMesaDestroyContext(impl_->context);
     throw;
   }
-  renderer_ = gl_string(gl_, GL_RENDERER);
-  version_ = gl_string(gl_, GL_VERSION);
-  g_thread_context = this;
 }
 
 OsmesaContext::~OsmesaContext() {
   if (OSMesaGetCurrentContext() == impl_->context) OSMesaMakeCurrent(nullptr, nullptr, 0, 0, 0);
   OSMesaDestroyContext(impl_->context);
-  if (g_thread_context == this) g_thread_context = nullptr;
 }
 
 }  // namespace somasim::render

@@ -16,9 +16,26 @@ namespace somasim::render {
 // ---------------------------------------------------------------------------------------------
 // Framebuffer
 
+int max_framebuffer_side(const GlApi& gl) {
+  GLint texture = 0, renderbuffer = 0;
+  std::array<GLint, 2> viewport = {0, 0};
+  gl.GetIntegerv(GL_MAX_TEXTURE_SIZE, &texture);
+  gl.GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &renderbuffer);
+  gl.GetIntegerv(GL_MAX_VIEWPORT_DIMS, viewport.data());
+  return std::min({texture, renderbuffer, viewport[0], viewport[1]});
+}
+
 Framebuffer::Framebuffer(const GlApi& gl, int width, int height, std::string owner)
     : gl_(&gl), width_(width), height_(height), owner_(std::move(owner)) {
   check_gl(gl, fmt::format("{}: before creating the framebuffer", owner_));
+  if (width < 1 || height < 1)
+    throw RunError(fmt::format("{}: image size {} x {} px: both sides must be at least 1 px",
+                               owner_, width, height));
+  if (const int max_side = max_framebuffer_side(gl); width > max_side || height > max_side)
+    throw RunError(fmt::format(
+        "{}: image size {} x {} px is above the maximum of this OpenGL context: at most {} px "
+        "per side (GL_MAX_TEXTURE_SIZE, GL_MAX_RENDERBUFFER_SIZE, GL_MAX_VIEWPORT_DIMS)",
+        owner_, width, height, max_side));
   try {
     gl.GenFramebuffers(1, &fbo_);
     gl.BindFramebuffer(GL_FRAMEBUFFER, fbo_);

@@ -1,5 +1,5 @@
 // HypothesisRenderer: validation of a batch, ROIs, and the pool of worker threads, each with its
-// own OSMesa context and HypothesisTiler.
+// own GL context (OSMesa or EGL) and HypothesisTiler.
 #include <fmt/format.h>
 
 #include <condition_variable>
@@ -33,12 +33,13 @@ struct HypothesisRenderer::Pool {
   Job job;
   std::vector<std::exception_ptr> errors;  // per worker, of start-up or of the current job
   std::vector<std::thread> threads;
+  RenderBackend backend = RenderBackend::kOsmesa;
 
   void run(std::size_t index, const std::vector<TriangleMesh>& meshes) {
     const std::size_t workers = threads.size();
     try {
-      OsmesaContext context;
-      HypothesisTiler tiler(context.gl(), meshes);
+      const std::unique_ptr<RenderContext> context = make_render_context(backend);
+      HypothesisTiler tiler(context->gl(), meshes);
       std::uint64_t seen = 0;
       {
         std::lock_guard lock(mutex);
@@ -96,13 +97,15 @@ struct HypothesisRenderer::Pool {
   }
 };
 
-HypothesisRenderer::HypothesisRenderer(const std::vector<TriangleMesh>& meshes, int workers)
+HypothesisRenderer::HypothesisRenderer(const std::vector<TriangleMesh>& meshes, int workers,
+                                       RenderBackend backend)
     : pool_(std::make_unique<Pool>()) {
   if (workers < 1)
     throw InputError(fmt::format("hypothesis renderer: needs at least 1 worker, got {}", workers));
   bounds_.reserve(meshes.size());
   for (const TriangleMesh& mesh : meshes) bounds_.push_back(bounds(mesh));
   Pool& pool = *pool_;
+  pool.backend = backend;
   pool.errors.resize(static_cast<std::size_t>(workers));
   pool.threads.resize(static_cast<std::size_t>(workers));
   for (std::size_t i = 0; i < pool.threads.size(); ++i)
@@ -124,6 +127,10 @@ HypothesisRenderer::~HypothesisRenderer() {
 
 int HypothesisRenderer::worker_count() const {
   return static_cast<int>(pool_->threads.size());
+}
+
+RenderBackend HypothesisRenderer::backend() const {
+  return pool_->backend;
 }
 
 HypothesisBatchResult HypothesisRenderer::render(const HypothesisBatch& batch,

@@ -6,8 +6,10 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <string>
 
 #include "somasim/error.hpp"
+#include "subpixel_snap.hpp"
 
 namespace somasim::render {
 
@@ -15,14 +17,18 @@ namespace {
 
 // One draw call per tile: the batch's meshes are concatenated into one buffer whose "normal"
 // attribute carries, in x, the index of the part (the mesh of the batch) each vertex belongs to.
-constexpr const char* kVertexShader = R"(#version 330 core
+// The position is snapped to the rasterizer's sub-pixel grid in full-image pixel coordinates,
+// exactly as SceneRenderer's shader does (subpixel_snap.hpp).
+std::string vertex_shader() {
+  return std::string("#version 330 core\n") + kSubpixelSnapGlsl + R"(
 uniform mat4 mvp[16];
 in vec3 position;
 in vec3 normal;
 void main() {
-  gl_Position = mvp[int(normal.x + 0.5)] * vec4(position, 1.0);
+  gl_Position = snap_to_subpixel_grid(mvp[int(normal.x + 0.5)] * vec4(position, 1.0));
 }
 )";
+}
 
 constexpr const char* kFragmentShader = R"(#version 330 core
 out vec4 out_colour;
@@ -38,8 +44,10 @@ constexpr int kMaxFramebufferSide = 4096;
 
 HypothesisTiler::HypothesisTiler(const GlApi& gl, const std::vector<TriangleMesh>& meshes)
     : gl_(&gl),
-      program_(gl, "render: hypothesis silhouette shader", kVertexShader, kFragmentShader) {
+      program_(gl, "render: hypothesis silhouette shader", vertex_shader(), kFragmentShader) {
   u_mvp_ = program_.uniform("mvp");
+  snap_ = SnapUniforms::of(program_);
+  largest_viewport_ = largest_viewport_side(gl);
   meshes_ = meshes;
   GLint texture = 0, renderbuffer = 0;
   std::array<GLint, 2> viewport = {0, 0};
@@ -72,7 +80,7 @@ void HypothesisTiler::render(const HypothesisBatch& batch, const std::vector<cv:
   if (begin >= end) return;
   const GlApi& gl = *gl_;
   // The layout is a function of the whole batch, never of this worker's slice: a tile's place
-  // in the framebuffer changes the float rounding of its window coordinates (see
+  // in the framebuffer still changes the rounding of vertices made by near-plane clipping (see
   // hypothesis_batch.hpp), so every worker count must put every tile in the same place. Slots
   // are numbered hypothesis-major (slot = h * cameras + c) so that a slice of hypotheses is a
   // run of slots; all slots share the largest ROI's size and fill a roughly square grid of
@@ -91,13 +99,19 @@ void HypothesisTiler::render(const HypothesisBatch& batch, const std::vector<cv:
   const int rows = std::min(static_cast<int>((total + cols - 1) / cols), max_rows);
   const std::size_t per_pass = static_cast<std::size_t>(cols) * rows;
 
-  // Per camera: the full image's projection, exactly as SceneRenderer computes it; each tile's
-  // viewport is the whole image shifted by whole pixels so that the ROI lands on the tile. The
-  // clip coordinates and the clipping are then bit-identical to a full render's; only the
-  // viewport translation differs. Nothing spills into neighbouring tiles because the ROI holds
-  // every projection that lies inside the image.
+  // Per camera: the full image's projection and snapping viewport, exactly as SceneRenderer
+  // computes them; each tile's viewport is SceneRenderer's shifted by whole pixels so that the
+  // ROI lands on the tile. The clip coordinates (snapped to the sub-pixel grid in image pixels)
+  // and the clipping are then bit-identical to a full render's, and the viewport shift is exact
+  // (subpixel_snap.hpp). The viewport reaches far beyond the image, so a scissor box keeps each
+  // tile's drawing inside its ROI.
   std::vector<Eigen::Matrix4d> view_projection(cameras);
-  for (std::size_t c = 0; c < cameras; ++c) view_projection[c] = batch.cameras[c].view_projection();
+  std::vector<SnapViewport> snap(cameras);
+  for (std::size_t c = 0; c < cameras; ++c) {
+    view_projection[c] = batch.cameras[c].view_projection();
+    snap[c] = snap_viewport(batch.cameras[c].intrinsics, largest_viewport_,
+                            fmt::format("camera '{}'", batch.cameras[c].name));
+  }
   const MeshBuffer& parts = combined(batch.meshes);
   std::array<Eigen::Matrix4f, kMaxMeshesPerHypothesis> mvp;
   const std::array<GLfloat, 4> clear = {0.0f, 0.0f, 0.0f, 0.0f};
@@ -123,13 +137,21 @@ void HypothesisTiler::render(const HypothesisBatch& batch, const std::vector<cv:
     gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
     program_.use();
+    gl.Disable(GL_SCISSOR_TEST);
     gl.ClearBufferfv(GL_COLOR, 0, clear.data());
+    gl.Enable(GL_SCISSOR_TEST);
+    std::size_t snap_camera = cameras;  // camera whose snapping uniforms are set
     for (std::size_t slot = first; slot < last; ++slot) {
       const std::size_t h = slot / cameras, c = slot % cameras;
       const int i = static_cast<int>(slot - base);
       const cv::Rect& roi = rois[c];
-      const PinholeIntrinsics& k = batch.cameras[c].intrinsics;
-      gl.Viewport((i % cols) * slot_w - roi.x, (i / cols) * slot_h - roi.y, k.width, k.height);
+      const int tile_x = (i % cols) * slot_w, tile_y = (i / cols) * slot_h;
+      if (c != snap_camera) {
+        snap_.set(gl, batch.cameras[c].intrinsics, snap[c]);
+        snap_camera = c;
+      }
+      set_snap_viewport(gl, snap[c], tile_x - roi.x, tile_y - roi.y);
+      gl.Scissor(tile_x, tile_y, roi.width, roi.height);
       const Hypothesis& poses = batch.hypotheses[h];
       for (std::size_t m = 0; m < batch.meshes.size(); ++m)
         // Same arithmetic as SceneRenderer: (view_projection * pose) in double, then float.
@@ -139,11 +161,13 @@ void HypothesisTiler::render(const HypothesisBatch& batch, const std::vector<cv:
       parts.draw();
     }
     gl.BindVertexArray(0);
+    gl.Disable(GL_SCISSOR_TEST);
     // One read-back of the rows this worker drew in this pass.
     pixels_.create((row_hi - row_lo + 1) * slot_h, fb_w, CV_8U);
     gl.ReadPixels(0, row_lo * slot_h, fb_w, pixels_.rows, GL_RED, GL_UNSIGNED_BYTE, pixels_.data);
     check_gl(gl, fmt::format("render: hypothesis batch: drawing and reading {} tiles of {} x {}",
                              last - first, slot_w, slot_h));
+    if (!options.extract) continue;
     for (std::size_t slot = first; slot < last; ++slot) {
       const std::size_t h = slot / cameras, c = slot % cameras;
       const int i = static_cast<int>(slot - base);

@@ -11,6 +11,7 @@
 #include "somasim/render/gl_api.hpp"
 #include "somasim/render/gl_objects.hpp"
 #include "somasim/render/hypothesis_batch.hpp"
+#include "subpixel_snap.hpp"
 
 namespace somasim::render {
 
@@ -31,6 +32,8 @@ class HypothesisTiler {
   const GlApi* gl_;
   ShaderProgram program_;
   GLint u_mvp_ = -1;
+  SnapUniforms snap_;         // sub-pixel snapping uniforms (subpixel_snap.hpp)
+  int largest_viewport_ = 0;  // GL_MAX_VIEWPORT_DIMS [px]
   // The batch's meshes concatenated into one buffer (built once per list of mesh indices).
   const MeshBuffer& combined(const std::vector<std::size_t>& parts);
 

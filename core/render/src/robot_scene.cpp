@@ -35,6 +35,25 @@ TriangleMesh flat_mesh(const robot::TriangleMesh& loaded) {
   return m;
 }
 
+// The shapes a link is drawn with (kVisual) or its collision shapes, and their kind's name.
+const std::vector<robot::Geometry>& shapes_of(const robot::Link& link, LinkShapes which,
+                                              const char*& kind) {
+  const bool visual = which == LinkShapes::kVisual && !link.visual.empty();
+  kind = visual ? "visual" : "collision";
+  return visual ? link.visual : link.collision;
+}
+
+// geometry_mesh() with its errors naming the robot, the link and the shape.
+TriangleMesh shape_mesh(const robot::RobotModel& model, const robot::Link& link, const char* kind,
+                        std::size_t index, const robot::Geometry& geometry, int segments) {
+  try {
+    return geometry_mesh(geometry, segments);
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("robot '{}', link '{}', {} shape {}: {}", model.name(), link.name,
+                                 kind, index, e.what()));
+  }
+}
+
 }  // namespace
 
 Eigen::Vector3f link_colour(const std::string& name) {
@@ -56,6 +75,29 @@ TriangleMesh geometry_mesh(const robot::Geometry& geometry, int segments) {
   return tessellate(geometry, segments);
 }
 
+TriangleMesh link_mesh(const robot::RobotModel& model, const std::string& link_name, int segments,
+                       LinkShapes which) {
+  const robot::Link& link = model.link(model.link_index(link_name));
+  const char* kind = nullptr;
+  const std::vector<robot::Geometry>& shapes = shapes_of(link, which, kind);
+  if (shapes.empty())
+    throw InputError(
+        fmt::format("robot '{}', link '{}': no {}geometry", model.name(), link.name,
+                    which == LinkShapes::kVisual ? "visual or collision " : "collision "));
+  TriangleMesh merged;
+  for (std::size_t s = 0; s < shapes.size(); ++s) {
+    const TriangleMesh mesh = shape_mesh(model, link, kind, s, shapes[s], segments);
+    const Eigen::Isometry3f origin = shapes[s].origin.cast<float>();
+    const auto base = static_cast<std::uint32_t>(merged.positions.size());
+    for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+      merged.positions.push_back(origin * mesh.positions[v]);
+      merged.normals.push_back(origin.linear() * mesh.normals[v]);
+    }
+    for (const std::uint32_t i : mesh.indices) merged.indices.push_back(base + i);
+  }
+  return merged;
+}
+
 RobotScene::RobotScene(SceneRenderer& renderer, std::shared_ptr<const robot::RobotModel> model,
                        const RobotSceneOptions& options)
     : renderer_(&renderer), model_(std::move(model)), options_(options) {
@@ -64,11 +106,12 @@ RobotScene::RobotScene(SceneRenderer& renderer, std::shared_ptr<const robot::Rob
   for (int i = 0; i < model_->num_links(); ++i) {
     const robot::Link& link = model_->link(i);
     colours_.push_back(link_colour(link.name));
-    const auto& shapes = link.visual.empty() ? link.collision : link.visual;
-    for (const robot::Geometry& g : shapes) {
-      const TriangleMesh mesh = geometry_mesh(g, options_.segments);
+    const char* kind = nullptr;
+    const std::vector<robot::Geometry>& shapes = shapes_of(link, LinkShapes::kVisual, kind);
+    for (std::size_t s = 0; s < shapes.size(); ++s) {
+      const TriangleMesh mesh = shape_mesh(*model_, link, kind, s, shapes[s], options_.segments);
       triangles_ += mesh.triangle_count();
-      parts_.push_back({i, renderer_->upload(mesh), g.origin, bounds(mesh)});
+      parts_.push_back({i, renderer_->upload(mesh), shapes[s].origin, bounds(mesh)});
     }
   }
 }

@@ -5,23 +5,29 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <string>
 
 #include "somasim/error.hpp"
+#include "subpixel_snap.hpp"
 
 namespace somasim::render {
 
 namespace {
 
-constexpr const char* kVertexShader = R"(#version 330 core
+// The position is snapped to the rasterizer's sub-pixel grid exactly as the hypothesis tiler's
+// shader does (subpixel_snap.hpp), so that tiles equal crops of these images pixel for pixel.
+std::string vertex_shader() {
+  return std::string("#version 330 core\n") + kSubpixelSnapGlsl + R"(
 uniform mat4 mvp;
 in vec3 position;
 in vec3 normal;
 out vec3 v_normal;
 void main() {
   v_normal = normal;
-  gl_Position = mvp * vec4(position, 1.0);
+  gl_Position = snap_to_subpixel_grid(mvp * vec4(position, 1.0));
 }
 )";
+}
 
 // light_dir is the unit direction towards the light in the mesh frame, so the normal needs no
 // transformation.
@@ -47,8 +53,12 @@ std::string owner_of(const Camera& camera) {
 }  // namespace
 
 SceneRenderer::SceneRenderer(const GlApi& gl)
-    : gl_(&gl), program_(gl, "render: scene shader", kVertexShader, kFragmentShader) {
+    : gl_(&gl), program_(gl, "render: scene shader", vertex_shader(), kFragmentShader) {
   u_mvp_ = program_.uniform("mvp");
+  const SnapUniforms snap = SnapUniforms::of(program_);
+  u_snap_image_ = snap.image;
+  u_snap_ndc_per_px_ = snap.ndc_per_px;
+  largest_viewport_ = largest_viewport_side(gl);
   u_light_ = program_.uniform("light_dir");
   u_albedo_ = program_.uniform("albedo");
   u_ambient_ = program_.uniform("ambient");
@@ -86,13 +96,16 @@ RenderedImages SceneRenderer::render(const std::vector<DrawItem>& items, const C
       throw RunError(fmt::format("{}: item {} (id {}) has a non-finite pose", owner, i, item.id));
   }
 
+  const SnapViewport snap = snap_viewport(k, largest_viewport_, owner);
+
   check_gl(gl, fmt::format("{}: before rendering", owner));
   if (!framebuffer_ || framebuffer_->width() != k.width || framebuffer_->height() != k.height) {
     framebuffer_.reset();
     framebuffer_.emplace(gl, k.width, k.height, owner);
   }
   framebuffer_->bind();
-  draw_items(items, camera, options);
+  set_snap_viewport(gl, snap, 0, 0);
+  draw_items(items, camera, options, snap);
   check_gl(gl, fmt::format("{}: drawing {} items", owner, items.size()));
 
   RenderedImages out;
@@ -128,7 +141,7 @@ RenderedImages SceneRenderer::render(const std::vector<DrawItem>& items, const C
 }
 
 void SceneRenderer::draw_items(const std::vector<DrawItem>& items, const Camera& camera,
-                               const RenderOptions& options) const {
+                               const RenderOptions& options, const SnapViewport& snap) const {
   const GlApi& gl = *gl_;
   gl.Enable(GL_DEPTH_TEST);
   gl.DepthFunc(GL_LESS);
@@ -145,6 +158,7 @@ void SceneRenderer::draw_items(const std::vector<DrawItem>& items, const Camera&
   gl.ClearBufferfv(GL_DEPTH, 0, &far_depth);
 
   program_.use();
+  SnapUniforms{u_snap_image_, u_snap_ndc_per_px_}.set(gl, camera.intrinsics, snap);
   gl.Uniform1f(u_ambient_, options.ambient);
   const Eigen::Matrix4d view_projection = camera.view_projection();
   const Eigen::Vector3d light = options.light_direction_root.normalized();

@@ -125,8 +125,10 @@ TEST(OffsetParticleFilter, AllZeroLikelihoodsChangeNothing) {
   EXPECT_EQ(f.particles(), before);
   EXPECT_EQ(f.estimate(), Eigen::VectorXd::Zero(7));
   EXPECT_DOUBLE_EQ(f.sigma_deg(), 4.0);
-  f.inflate_sigma(1.5);
-  EXPECT_DOUBLE_EQ(f.sigma_deg(), 6.0);
+  f.inflate_sigma(1.2);
+  EXPECT_DOUBLE_EQ(f.sigma_deg(), 4.8);
+  f.inflate_sigma(2.0);
+  EXPECT_DOUBLE_EQ(f.sigma_deg(), 5.0);  // up to σ_i, not beyond
 }
 
 template <class F>

@@ -2,6 +2,7 @@
 // contours, identical results for any worker count, and the errors users can meet.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <iostream>
@@ -82,52 +83,72 @@ std::string error_of(const std::function<void()>& f) {
   return "no error";
 }
 
-}  // namespace
+// Tiles compared with crops of full renders.
+struct CropComparison {
+  int tiles = 0;
+  int mismatched = 0;         // tile pixels that differ from the crop, over all tiles
+  int boundary_pixels = 0;    // silhouette pixels with a background 4-neighbour, over all tiles
+  int framebuffer_width = 0;  // of the tiler's layout for this batch [px]
+};
 
-// Tiles use the full render's exact clip coordinates; only glViewport's translation differs (by
-// whole pixels). llvmpipe adds that translation in float before snapping vertices to 1/256 px, so
-// a vertex whose window coordinate lies within a float ulp of a snapping midpoint can snap
-// differently and flip one edge pixel whose centre lies on the edge (measured: 23 of 218,083
-// boundary pixels over 900 tiles with 4096-px framebuffers, 4 with 512-px ones). The test
-// therefore demands equality except for rare single edge pixels.
-TEST(HypothesisBatch, TileEqualsCropOfFullRenderForRotatedAndOffsetCameras) {
-  const std::vector<TriangleMesh> meshes = arm_meshes();
-  const std::vector<Camera> cameras = {
-      camera_at("straight", Eigen::Vector3d(0.0, 0.0, 0.0), 0.0, 0.0),
-      camera_at("rolled_offset", Eigen::Vector3d(0.05, 0.08, -0.03), 0.15, 0.4, 171.3, 103.8),
-      camera_at("yawed", Eigen::Vector3d(-0.1, -0.06, 0.05), -0.2, -0.9, 150.0, 130.25)};
-  const HypothesisBatch batch = arm_batch(60, cameras);
-  HypothesisRenderer hypotheses(meshes, 2);
-  const HypothesisBatchResult result = hypotheses.render(batch);
+// The tiler's layout (hypothesis_tiler.cpp): slots of the largest ROI in a roughly square grid
+// no wider than 4096 px. Only used to show which framebuffer widths a test reaches.
+int framebuffer_width(const HypothesisBatchResult& result, std::size_t hypotheses) {
+  int slot_w = 1, slot_h = 1;
+  for (const CameraTiles& c : result.cameras) {
+    slot_w = std::max(slot_w, c.roi.width);
+    slot_h = std::max(slot_h, c.roi.height);
+  }
+  const double total = static_cast<double>(hypotheses * result.cameras.size());
+  const int cols = std::clamp(static_cast<int>(std::ceil(std::sqrt(total * slot_h / slot_w))), 1,
+                              std::max(1, 4096 / slot_w));
+  return cols * slot_w;
+}
 
+// Compares every tile with the crop, at the ROI, of a full SceneRenderer id mask of the same
+// meshes (id > 0 -> 255). `exact`: every tile must equal its crop and show the arm; otherwise
+// differences may only be edge pixels (each with a 4-neighbour of the other value in the crop).
+CropComparison compare_with_full_renders(const std::vector<TriangleMesh>& meshes,
+                                         const HypothesisBatch& batch,
+                                         const HypothesisBatchResult& result, bool exact) {
   OsmesaContext context;
   SceneRenderer scene(context.gl());
   for (const TriangleMesh& mesh : meshes) scene.upload(mesh);
   RenderOptions options;
   options.read_rgb = options.read_depth = options.check_drawn = false;
-  ASSERT_EQ(result.cameras.size(), cameras.size());
-  int mismatched = 0, boundary_pixels = 0;
-  for (std::size_t c = 0; c < cameras.size(); ++c) {
+  CropComparison out;
+  out.framebuffer_width = framebuffer_width(result, batch.hypotheses.size());
+  EXPECT_EQ(result.cameras.size(), batch.cameras.size());
+  for (std::size_t c = 0; c < batch.cameras.size(); ++c) {
+    const Camera& camera = batch.cameras[c];
     const CameraTiles& tiles = result.cameras[c];
-    ASSERT_EQ(tiles.tiles.size(), batch.hypotheses.size());
+    EXPECT_EQ(tiles.tiles.size(), batch.hypotheses.size());
     for (std::size_t h = 0; h < batch.hypotheses.size(); ++h) {
       std::vector<DrawItem> items;
       for (std::size_t m = 0; m < batch.meshes.size(); ++m)
         items.push_back({MeshHandle{batch.meshes[m]}, batch.hypotheses[h][m],
                          Eigen::Vector3f::Ones(), static_cast<std::int32_t>(m + 1)});
-      const cv::Mat ids = scene.render(items, cameras[c], options).ids;
+      const cv::Mat ids = scene.render(items, camera, options).ids;
       const cv::Mat expected = ids(tiles.roi) > 0;
       const cv::Mat& tile = tiles.tiles[h];
-      ASSERT_EQ(tile.type(), CV_8U);
-      ASSERT_EQ(tile.size(), tiles.roi.size());
-      EXPECT_GT(cv::countNonZero(tile), 100) << cameras[c].name << " hypothesis " << h;
-      // Differences may only be edge pixels decided by a last-bit rounding (see the note at
-      // the top of this test): each must have a 4-neighbour of the other value.
+      EXPECT_EQ(tile.type(), CV_8U);
+      EXPECT_EQ(tile.size(), tiles.roi.size());
+      if (tile.type() != CV_8U || tile.size() != tiles.roi.size()) continue;
+      ++out.tiles;
+      out.boundary_pixels += cv::countNonZero(silhouette_contour(expected, 1));
+      // Nothing outside the ROI in the full render.
+      EXPECT_EQ(cv::countNonZero(ids > 0), cv::countNonZero(expected)) << camera.name;
       const cv::Mat differ = tile != expected;
+      out.mismatched += cv::countNonZero(differ);
+      if (exact) {
+        // Not two empty images: the arm covers many pixels of every tile.
+        EXPECT_GT(cv::countNonZero(tile), 100) << camera.name << " hypothesis " << h;
+        EXPECT_EQ(cv::countNonZero(differ), 0) << camera.name << " hypothesis " << h;
+        continue;
+      }
       for (int r = 0; r < differ.rows; ++r)
         for (int col = 0; col < differ.cols; ++col) {
           if (!differ.at<uchar>(r, col)) continue;
-          ++mismatched;
           const uchar v = expected.at<uchar>(r, col);
           const auto other = [&](int rr, int cc) {
             return rr >= 0 && cc >= 0 && rr < differ.rows && cc < differ.cols &&
@@ -135,16 +156,104 @@ TEST(HypothesisBatch, TileEqualsCropOfFullRenderForRotatedAndOffsetCameras) {
           };
           EXPECT_TRUE(other(r - 1, col) || other(r + 1, col) || other(r, col - 1) ||
                       other(r, col + 1))
-              << cameras[c].name << " hypothesis " << h << " pixel " << col << "," << r;
+              << camera.name << " hypothesis " << h << " pixel " << col << "," << r;
         }
-      boundary_pixels += cv::countNonZero(silhouette_contour(expected, 1));
-      // Nothing outside the ROI in the full render.
-      EXPECT_EQ(cv::countNonZero(ids > 0), cv::countNonZero(expected)) << cameras[c].name;
     }
   }
-  std::cout << "tiles " << cameras.size() * batch.hypotheses.size() << ", boundary pixels "
-            << boundary_pixels << ", mismatched pixels " << mismatched << "\n";
-  EXPECT_LE(mismatched * 1000, boundary_pixels);
+  std::cout << "tiles " << out.tiles << ", framebuffer width " << out.framebuffer_width
+            << " px, boundary pixels " << out.boundary_pixels << ", mismatched pixels "
+            << out.mismatched << "\n";
+  return out;
+}
+
+// Rotated, offset and off-centre cameras; in the last one the arm leaves the image at its left
+// edge (its ROI is clipped to the image and triangles cross the image border).
+std::vector<Camera> varied_cameras() {
+  return {camera_at("straight", Eigen::Vector3d(0.0, 0.0, 0.0), 0.0, 0.0),
+          camera_at("rolled_offset", Eigen::Vector3d(0.05, 0.08, -0.03), 0.15, 0.4, 171.3, 103.8),
+          camera_at("yawed", Eigen::Vector3d(-0.1, -0.06, 0.05), -0.2, -0.9, 150.0, 130.25),
+          camera_at("arm_at_left_edge", Eigen::Vector3d(0.0, -0.13, 0.01), -0.25, 0.2)};
+}
+
+}  // namespace
+
+// Tile k equals the crop of a full render of hypothesis k, pixel for pixel. Both vertex shaders
+// round vertices to llvmpipe's 1/256 px grid in image pixels, so a tile's whole-pixel viewport
+// shift no longer changes how they round (src/subpixel_snap.hpp). Without that rounding (same
+// viewports, window coordinates not rounded in the shader) the 4096-px test below measured 7 to
+// 19 differing pixels per 520 tiles (~1.2e5 boundary pixels); small framebuffers had none: the
+// larger the window coordinates, the coarser the float ulps. Hence both layouts.
+TEST(HypothesisBatch, TileEqualsCropOfFullRenderForRotatedAndOffsetCameras) {
+  const std::vector<TriangleMesh> meshes = arm_meshes();
+  HypothesisRenderer hypotheses(meshes, 2);
+  CropComparison all;
+  for (int b = 0; b < 6; ++b) {
+    // Six small batches (20 tiles each) around different arm positions.
+    const HypothesisBatch batch =
+        arm_batch(5, varied_cameras(), Eigen::Vector3d(0.45, 0.01 * b - 0.02, 0.008 * b - 0.02));
+    const HypothesisBatchResult result = hypotheses.render(batch);
+    EXPECT_EQ(result.cameras[3].roi.x, 0);  // clipped at the image's left edge
+    const CropComparison c = compare_with_full_renders(meshes, batch, result, true);
+    EXPECT_LE(c.framebuffer_width, 1024);
+    all.tiles += c.tiles;
+    all.boundary_pixels += c.boundary_pixels;
+    all.mismatched += c.mismatched;
+  }
+  EXPECT_EQ(all.tiles, 120);
+  EXPECT_GT(all.boundary_pixels, 120 * 100);
+  EXPECT_EQ(all.mismatched, 0);
+}
+
+TEST(HypothesisBatch, TileEqualsCropOfFullRenderIn4096PxFramebuffers) {
+  const std::vector<TriangleMesh> meshes = arm_meshes();
+  HypothesisRenderer hypotheses(meshes, 2);
+  CropComparison all;
+  for (int b = 0; b < 4; ++b) {
+    // Principal points, camera heights, arm positions and margins vary per batch; a wide
+    // margin makes large tiles: 520 of them need two passes of 4096-px framebuffers.
+    std::vector<Camera> cameras = varied_cameras();
+    for (Camera& camera : cameras) {
+      camera.intrinsics.cx += 0.37 * b;
+      camera.intrinsics.cy -= 0.23 * b;
+      camera.pose_root.translation().z() += 0.002 * b;
+    }
+    const HypothesisBatch batch = arm_batch(
+        130, cameras, Eigen::Vector3d(0.45 + 0.003 * b, 0.002 * b - 0.03, 0.001 * b - 0.015));
+    const HypothesisBatchResult result = hypotheses.render(batch, {54 + 2 * b, false, 1});
+    const CropComparison c = compare_with_full_renders(meshes, batch, result, true);
+    EXPECT_GT(c.framebuffer_width, 3800);
+    all.tiles += c.tiles;
+    all.boundary_pixels += c.boundary_pixels;
+    all.mismatched += c.mismatched;
+  }
+  EXPECT_EQ(all.tiles, 4 * 520);
+  EXPECT_GT(all.boundary_pixels, 4 * 520 * 100);
+  EXPECT_EQ(all.mismatched, 0);
+}
+
+// The documented exception: triangles crossing the near plane are clipped by llvmpipe, which
+// computes the new vertices' window coordinates itself, so their rounding still depends on the
+// tile's place. Here the thumb of every hypothesis crosses the near plane right in front of an
+// eye (both ROIs are the whole image); measured: 8 differing pixels of 118,026 boundary pixels.
+TEST(HypothesisBatch, NearPlaneCrossingTilesDifferAtMostInRareEdgePixels) {
+  const std::vector<TriangleMesh> meshes = arm_meshes();
+  HypothesisBatch batch = arm_batch(150, eyes());
+  for (int h = 0; h < 150; ++h) {
+    Eigen::Isometry3d& thumb = batch.hypotheses[h][2];
+    thumb.linear() = (Eigen::AngleAxisd(1.3 + 0.05 * h, Eigen::Vector3d::UnitY()) *
+                      Eigen::AngleAxisd(0.1 * h, Eigen::Vector3d::UnitX()))
+                         .toRotationMatrix();
+    thumb.translation() = Eigen::Vector3d(0.01 + 0.001 * (h % 11),
+                                          (h % 2 ? 0.034 : -0.034) + 0.002 * (h % 13) - 0.012,
+                                          0.002 * (h % 7) - 0.007);
+  }
+  HypothesisRenderer hypotheses(meshes, 2);
+  const HypothesisBatchResult result = hypotheses.render(batch);
+  ASSERT_EQ(result.cameras[0].roi, cv::Rect(0, 0, 320, 240));
+  const CropComparison c = compare_with_full_renders(meshes, batch, result, false);
+  EXPECT_EQ(c.tiles, 300);
+  EXPECT_GT(c.boundary_pixels, 300 * 100);
+  EXPECT_LE(c.mismatched * 10000, c.boundary_pixels);
 }
 
 TEST(HypothesisBatch, RegionOfInterestContainsAllProjectionsPlusMargin) {

@@ -1,5 +1,5 @@
 // The `camera` plugin through the public harness: output sizes and encodings, determinism,
-// recording and saving PNGs, and its bad-input errors.
+// recording and saving PNGs, the EGL back end, and its bad-input errors.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -176,4 +176,42 @@ TEST(CameraPlugin, UnknownOutputIsAClearError) {
   EXPECT_EQ(input_error(graph("outputs: 'rgb, edges'")),
             "<inline>:7:23: node 'cam', key 'params.outputs': unknown output 'edges' "
             "(expected rgb, depth, mask)");
+}
+
+// The EGL back end (surfaceless, llvmpipe here) renders the same images as OSMesa. Failing to
+// create the EGL context fails this test with the EGL error: CI machines have Mesa's EGL.
+TEST(CameraPlugin, EglBackendRendersTheSameImagesAsOsmesa) {
+  // Same rasteriser as OSMesa even on a node with a GPU (set before any EGL call).
+  ASSERT_EQ(setenv("LIBGL_ALWAYS_SOFTWARE", "1", 1), 0);
+  auto render = [](const std::string& backend) {
+    Harness h(graph("background: textured, backend: " + backend));
+    h.input<LinkPoses>("links").poses = hand_before_eyes();
+    h.step();
+    std::vector<cv::Mat> out;
+    for (const char* port : {"cam.left_eye_rgb", "cam.right_eye_rgb", "cam.left_eye_depth",
+                             "cam.right_eye_depth", "cam.left_eye_mask", "cam.right_eye_mask"})
+      out.push_back(h.output<Image>(port).data.clone());
+    return out;
+  };
+  const auto osmesa = render("osmesa"), egl = render("egl");
+  for (std::size_t k = 0; k < osmesa.size(); ++k) {
+    EXPECT_TRUE(same_bytes(egl[k], osmesa[k])) << k;
+    EXPECT_GT(cv::countNonZero(egl[k].reshape(1)), 1000) << k;
+  }
+}
+
+TEST(CameraPlugin, UnknownBackendIsAClearError) {
+  EXPECT_EQ(input_error(graph("backend: vulkan")),
+            "<inline>:7:23: node 'cam', key 'params.backend': expected a string: one of osmesa, "
+            "egl, got 'vulkan'");
+}
+
+TEST(CameraPlugin, CameraNodesOfOneThreadMustShareTheBackend) {
+  const std::string yaml = graph("backend: osmesa") +
+                           "  cam2:\n    plugin: camera\n    params: {backend: egl}\n"
+                           "    inputs: {link_poses: harness.links}\n";
+  EXPECT_EQ(input_error(yaml),
+            "<inline>:11:23: node 'cam2', key 'params.backend': 'egl', but another camera node on "
+            "this thread already renders with 'osmesa' (one OpenGL context per thread: give the "
+            "camera nodes of a thread the same backend)");
 }

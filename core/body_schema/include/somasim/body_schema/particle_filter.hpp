@@ -62,8 +62,9 @@ class OffsetParticleFilter {
   int dims() const { return static_cast<int>(particles_.rows()); }
   const NoiseSchedule& schedule() const { return schedule_; }
 
-  /// Multiplies σ_s by `factor` (clamped to the schedule's bounds); used to re-inflate the noise
-  /// after a frame in which no particle explained the images.
+  /// Multiplies σ_s by `factor`, up to the larger of σ_i and the first σ_s (never above the
+  /// schedule's ceiling); used to re-inflate the noise after a frame in which no particle
+  /// explained the images.
   void inflate_sigma(double factor);
 
  private:

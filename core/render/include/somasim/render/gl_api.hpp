@@ -27,6 +27,7 @@ namespace somasim::render {
   X(PFNGLDEPTHMASKPROC, DepthMask)                             \
   X(PFNGLCOLORMASKPROC, ColorMask)                             \
   X(PFNGLVIEWPORTPROC, Viewport)                               \
+  X(PFNGLSCISSORPROC, Scissor)                                 \
   X(PFNGLFINISHPROC, Finish)                                   \
   X(PFNGLPIXELSTOREIPROC, PixelStorei)                         \
   X(PFNGLREADPIXELSPROC, ReadPixels)                           \
@@ -69,6 +70,7 @@ namespace somasim::render {
   X(PFNGLUNIFORM1IPROC, Uniform1i)                             \
   X(PFNGLUNIFORM1FPROC, Uniform1f)                             \
   X(PFNGLUNIFORM3FPROC, Uniform3f)                             \
+  X(PFNGLUNIFORM4FPROC, Uniform4f)                             \
   X(PFNGLUNIFORMMATRIX4FVPROC, UniformMatrix4fv)               \
   X(PFNGLGENVERTEXARRAYSPROC, GenVertexArrays)                 \
   X(PFNGLDELETEVERTEXARRAYSPROC, DeleteVertexArrays)           \

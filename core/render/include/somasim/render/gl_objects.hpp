@@ -14,14 +14,24 @@
 
 namespace somasim::render {
 
+/// Largest side [px] of a Framebuffer this context can make: the smallest of
+/// GL_MAX_TEXTURE_SIZE, GL_MAX_RENDERBUFFER_SIZE and both GL_MAX_VIEWPORT_DIMS (16384 on
+/// llvmpipe).
+int max_framebuffer_side(const GlApi& gl);
+
 /// Framebuffer object of width × height pixels with three attachments:
 ///   - colour attachment 0: RGBA8 texture (the shaded image),
 ///   - colour attachment 1: R32I texture (the id mask),
 ///   - depth: DEPTH_COMPONENT32F renderbuffer.
-/// Completeness is checked at construction.
+/// The size is checked before any GL call, completeness at construction.
 class Framebuffer {
  public:
-  /// Throws RunError "`owner`: framebuffer W × H is incomplete (GL_...)" or naming the GL error.
+  /// Throws RunError
+  ///   "`owner`: image size W x H px: both sides must be at least 1 px",
+  ///   "`owner`: image size W x H px is above the maximum of this OpenGL context: at most M px
+  ///    per side (GL_MAX_TEXTURE_SIZE, GL_MAX_RENDERBUFFER_SIZE, GL_MAX_VIEWPORT_DIMS)"
+  ///    (M = max_framebuffer_side()),
+  /// "`owner`: framebuffer W x H is incomplete (GL_...)", or one naming the GL error.
   Framebuffer(const GlApi& gl, int width, int height, std::string owner);
   ~Framebuffer();
   Framebuffer(Framebuffer&& other) noexcept;

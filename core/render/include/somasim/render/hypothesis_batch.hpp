@@ -10,23 +10,25 @@
 /// that camera is drawn into a tile of the ROI's size; all tiles of a worker go into one
 /// framebuffer (one glViewport per tile) and come back with one read-back.
 ///
-/// Exactness: a tile is drawn with the camera's full-image view-projection matrix (the same
-/// float matrix SceneRenderer uses, so clip coordinates and near/far/image-edge clipping are
-/// identical) and a full-image viewport shifted by whole pixels so that the ROI lands on the
-/// tile. It equals the crop, at the ROI, of a full-image SceneRenderer id mask of the same meshes
-/// (id > 0 -> 255), except that llvmpipe adds the viewport shift in float before snapping
-/// vertices to 1/256 px: about 1 in 10,000 silhouette-boundary pixels (an edge through a pixel
-/// centre) can differ. Results do not depend on the worker count. No depth test: a silhouette is
-/// the union of all meshes.
+/// Exactness: a tile equals the crop, at the ROI, of a full-image SceneRenderer id mask of the
+/// same meshes (id > 0 -> 255), pixel for pixel. Both draw with the camera's full-image
+/// view-projection matrix (the same float matrix, so clip coordinates and clipping are
+/// identical), both vertex shaders round vertices to the rasterizer's 1/256 px grid in image
+/// pixels, and a tile's viewport is SceneRenderer's shifted by whole pixels, which llvmpipe then
+/// applies without rounding (src/subpixel_snap.hpp); a scissor box keeps each tile in its slot.
+/// Exception: triangles crossing the near plane (the ROI is then the whole image) get vertices
+/// from llvmpipe's clipper, whose rounding still depends on the tile's place: measured 8 of
+/// 118,026 silhouette-boundary pixels differ (an edge through a pixel centre). Results do not
+/// depend on the worker count. No depth test: a silhouette is the union of all meshes.
 ///
 /// Cost: one draw call per tile (the batch's meshes are concatenated into one vertex buffer,
 /// posed by an array of at most kMaxMeshesPerHypothesis matrices).
 ///
-/// Threads: a HypothesisRenderer owns W worker threads, each with its own OsmesaContext and its
-/// own copy of the meshes. Hypotheses are split into W contiguous, equal (± 1) slices in order.
-/// The tile layout (slot = hypothesis × cameras + camera, in a grid fixed by N, the cameras and
-/// the ROIs) does not depend on W and each worker draws its tiles in their own slots, so results
-/// are byte-identical for any W.
+/// Threads: a HypothesisRenderer owns W worker threads, each with its own GL context (OSMesa or
+/// EGL: somasim/render/context.hpp) and its own copy of the meshes. Hypotheses are split into W
+/// contiguous, equal (± 1) slices in order. The tile layout (slot = hypothesis × cameras + camera,
+/// in a grid fixed by N, the cameras and the ROIs) does not depend on W and each worker draws its
+/// tiles in their own slots, so results are byte-identical for any W.
 #include <cstddef>
 #include <memory>
 #include <vector>
@@ -35,6 +37,7 @@
 #include <opencv2/core.hpp>
 
 #include "somasim/render/camera.hpp"
+#include "somasim/render/context.hpp"
 #include "somasim/render/tessellate.hpp"
 
 namespace somasim::render {
@@ -58,6 +61,10 @@ struct HypothesisBatchOptions {
   /// false: filled silhouettes; true: their inner boundary, `contour_width` px wide.
   bool contour = false;
   int contour_width = 1;  ///< 1 or 2 [px]; see silhouette_contour()
+  /// false: the tiles are drawn and read back as usual, but no silhouette or contour is
+  /// extracted and every CameraTiles::tiles entry stays empty (the bare cost of drawing and
+  /// reading back, which benchmarks measure the extraction against).
+  bool extract = true;
 };
 
 /// The tiles of one camera.
@@ -86,10 +93,12 @@ cv::Mat silhouette_contour(const cv::Mat& silhouette, int width);
 /// Pool of W worker threads rendering hypothesis batches (see the file comment).
 class HypothesisRenderer {
  public:
-  /// Starts `workers` (>= 1) threads, each creating an OsmesaContext and uploading `meshes`.
-  /// Throws somasim::InputError for workers < 1, somasim::RunError when a context cannot be
-  /// made or a mesh does not upload.
-  HypothesisRenderer(const std::vector<TriangleMesh>& meshes, int workers);
+  /// Starts `workers` (>= 1) threads, each creating a context of `backend` and uploading
+  /// `meshes`. Throws somasim::InputError for workers < 1, somasim::RunError when a context
+  /// cannot be made (the back end's message) or a mesh does not upload. Both back ends on
+  /// llvmpipe give byte-identical results.
+  HypothesisRenderer(const std::vector<TriangleMesh>& meshes, int workers,
+                     RenderBackend backend = RenderBackend::kOsmesa);
   ~HypothesisRenderer();
   HypothesisRenderer(const HypothesisRenderer&) = delete;
   HypothesisRenderer& operator=(const HypothesisRenderer&) = delete;
@@ -105,6 +114,7 @@ class HypothesisRenderer {
                                const HypothesisBatchOptions& options = {});
 
   int worker_count() const;
+  RenderBackend backend() const;
   std::size_t mesh_count() const { return bounds_.size(); }
 
  private:

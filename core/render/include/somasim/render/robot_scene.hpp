@@ -45,14 +45,30 @@ Eigen::Vector3f link_colour(const std::string& link_name);
 /// somasim::InputError when a mesh file cannot be read ("mesh file 'F': why").
 TriangleMesh geometry_mesh(const robot::Geometry& geometry, int segments);
 
+/// Which shapes of a link make its mesh.
+enum class LinkShapes {
+  kVisual,     ///< as RobotScene draws it: the visual geometry, else the collision geometry
+  kCollision,  ///< the collision primitives: a low-poly proxy with a small `segments`
+};
+
+/// All shapes of the link `link_name` merged into one mesh in the link frame (each shape's
+/// origin applied), e.g. a hypothesis-batch mesh posed by the link's pose (root <- link).
+/// Throws somasim::InputError "robot 'R': unknown link 'X' (did you mean 'Y'?)" for an unknown
+/// name, "robot 'R', link 'X': no visual or collision geometry" (or "no collision geometry")
+/// when there is nothing to mesh, and as RobotScene for a mesh file that does not load.
+TriangleMesh link_mesh(const robot::RobotModel& model, const std::string& link_name, int segments,
+                       LinkShapes shapes = LinkShapes::kVisual);
+
 struct RobotSceneOptions {
   int segments = 24;  ///< tessellation of curved primitives (>= 3)
 };
 
 class RobotScene {
  public:
-  /// Uploads one mesh per link geometry into `renderer`. Throws somasim::InputError for a
-  /// mesh file that cannot be loaded or segments < 3.
+  /// Uploads one mesh per link geometry into `renderer`. Throws somasim::InputError for
+  /// segments < 3 and for a mesh file that cannot be loaded, naming the robot, the link, the
+  /// shape, the file and assimp's reason: "robot 'R', link 'L', visual shape 0: mesh file 'F':
+  /// cannot be read (<assimp's message>)" (or "...: holds no triangles").
   RobotScene(SceneRenderer& renderer, std::shared_ptr<const robot::RobotModel> model,
              const RobotSceneOptions& options = {});
 

@@ -8,6 +8,14 @@
 /// n the interpolated surface normal, l the unit direction towards the light (root frame).
 /// No anti-aliasing (id masks have exact labels); no back-face culling (meshes may be open).
 ///
+/// Rasterization: the vertex shader rounds every vertex to the rasterizer's sub-pixel grid
+/// (1/256 px) in image pixel coordinates before the viewport transform (a V × V viewport, V =
+/// 8192 for images up to 4096 px, centred on the image), so that the same geometry drawn at any
+/// whole-pixel offset of a larger framebuffer (hypothesis tiles, hypothesis_batch.hpp) covers
+/// exactly the same pixels. Vertices move by at most 1/512 px; depth and the interpolation of
+/// normals are those of the unrounded vertices. Images larger than half of GL_MAX_VIEWPORT_DIMS
+/// (8192 px on llvmpipe) are refused with RunError.
+///
 /// Outputs (all `height` rows × `width` columns, row 0 = top of the image, see camera.hpp):
 ///   - rgb:   CV_8UC3, channel order R, G, B (use cv::cvtColor(..., cv::COLOR_RGB2BGR) before
 ///            cv::imwrite);
@@ -40,6 +48,8 @@
 #include "somasim/render/tessellate.hpp"
 
 namespace somasim::render {
+
+struct SnapViewport;  // internal (src/subpixel_snap.hpp)
 
 /// Index of an uploaded mesh in its SceneRenderer.
 struct MeshHandle {
@@ -96,13 +106,15 @@ class SceneRenderer {
 
  private:
   void draw_items(const std::vector<DrawItem>& items, const Camera& camera,
-                  const RenderOptions& options) const;
+                  const RenderOptions& options, const SnapViewport& snap) const;
   void check_drawn(const std::vector<DrawItem>& items, const Camera& camera,
                    const cv::Mat& ids) const;
 
   const GlApi* gl_;
   ShaderProgram program_;
   GLint u_mvp_ = -1, u_light_ = -1, u_albedo_ = -1, u_ambient_ = -1, u_id_ = -1;
+  GLint u_snap_image_ = -1, u_snap_ndc_per_px_ = -1;  // see src/subpixel_snap.hpp
+  int largest_viewport_ = 0;                          // GL_MAX_VIEWPORT_DIMS [px]
   std::vector<MeshBuffer> meshes_;
   std::vector<std::vector<Eigen::Vector3f>> vertices_;  ///< per mesh, for check_drawn
   std::optional<Framebuffer> framebuffer_;

@@ -1,0 +1,98 @@
+#pragma once
+/// @file
+/// Scores body-schema particles against camera observations: every particle's offsets are
+/// added to the encoder readings, the arm links of the internal model are posed by forward
+/// kinematics and drawn as a hypothesis batch (somasim/render/hypothesis_batch.hpp) in every
+/// camera, and each hypothesis gets the product over the cameras of its likelihood
+/// (likelihood.hpp).
+///
+/// The internal model: each hypothesis link is drawn with its collision geometry (the model's
+/// own simple shapes, not the visual meshes the cameras see), tessellated with `segments`
+/// around curved primitives and merged into one mesh per link in the link frame.
+///
+/// Frames and units: joint values [rad] in model dof order; particles [deg] (one row per offset
+/// joint); cameras posed in the root frame; observations full-size images of each camera.
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <opencv2/core.hpp>
+
+#include "somasim/body_schema/likelihood.hpp"
+#include "somasim/render/hypothesis_batch.hpp"
+#include "somasim/robot/kinematics.hpp"
+#include "somasim/robot/robot_model.hpp"
+
+namespace somasim::body_schema {
+
+/// The links of the internal model drawn as hypotheses and their meshes (link frame).
+struct ArmHypothesisModel {
+  std::vector<int> links;                    ///< model link indices
+  std::vector<render::TriangleMesh> meshes;  ///< one per link: its collision geometry, merged
+};
+/// Throws InputError "unknown link 'X' (links: ...)" and "link 'X' has no collision geometry to
+/// draw", and for more than render::kMaxMeshesPerHypothesis links.
+ArmHypothesisModel arm_hypothesis_model(const robot::RobotModel& model,
+                                        const std::vector<std::string>& link_names, int segments);
+
+enum class LikelihoodKind : std::uint8_t { kSilhouette, kEdges };
+/// "silhouette" or "edges"; InputError otherwise.
+LikelihoodKind likelihood_kind_from_name(const std::string& name);
+
+struct ScorerOptions {
+  LikelihoodKind kind = LikelihoodKind::kSilhouette;
+  SilhouetteForm form = SilhouetteForm::kJaccard;
+  double power = 1.0;         ///< exponent k of the power form
+  double edge_lambda = 0.01;  ///< λ of L = exp(−λ d̄) [1/px]
+  int margin_px = 8;          ///< ROI margin (render/hypothesis_batch.hpp)
+  int contour_width = 1;      ///< edges: width of the hypothesis contours [px]
+};
+
+/// Timing of the last score() call [ms].
+struct ScoreTiming {
+  double kinematics_ms = 0.0;  ///< forward kinematics of every particle
+  double render_ms = 0.0;      ///< the hypothesis batch (draw + read-back + tiles)
+  double compare_ms = 0.0;     ///< likelihoods from the tiles
+};
+
+class HypothesisScorer {
+ public:
+  /// `offset_dofs`: model dof index of each particle row. `workers` render threads.
+  HypothesisScorer(std::shared_ptr<const robot::RobotModel> model, const ArmHypothesisModel& arm,
+                   std::vector<int> offset_dofs, int workers, const ScorerOptions& options,
+                   render::RenderBackend backend = render::RenderBackend::kOsmesa);
+
+  /// The pose (root <- link) of every hypothesis link for encoder values q plus `offsets_deg`.
+  std::vector<Eigen::Isometry3d> link_poses(const Eigen::VectorXd& q,
+                                            const Eigen::VectorXd& offsets_deg);
+
+  /// Likelihood of every particle (columns of `particles_deg`). `observations[c]` is camera c's
+  /// observed silhouette (CV_8U 0 / 255) or edge distance map (CV_8U [px]), full image.
+  /// Throws RunError (from the renderer) naming a camera none of whose hypotheses projects
+  /// into its image.
+  std::vector<double> score(const Eigen::VectorXd& q, const Eigen::MatrixXd& particles_deg,
+                            const std::vector<render::Camera>& cameras,
+                            const std::vector<cv::Mat>& observations);
+
+  /// The rendered hypothesis batch of the last score() call (for figures and tests).
+  const render::HypothesisBatchResult& last_batch() const { return last_; }
+  const ScoreTiming& timing() const { return timing_; }
+  const ScorerOptions& options() const { return options_; }
+
+ private:
+  std::shared_ptr<const robot::RobotModel> model_;
+  std::vector<int> links_;
+  std::vector<int> offset_dofs_;
+  ScorerOptions options_;
+  render::HypothesisRenderer renderer_;
+  robot::RobotData data_;
+  Eigen::VectorXd offsets_rad_;
+  render::HypothesisBatch batch_;
+  render::HypothesisBatchResult last_;
+  ScoreTiming timing_;
+};
+
+}  // namespace somasim::body_schema

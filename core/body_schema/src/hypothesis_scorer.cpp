@@ -1,0 +1,128 @@
+#include "somasim/body_schema/hypothesis_scorer.hpp"
+
+#include <fmt/format.h>
+
+#include <numbers>
+
+#include "somasim/error.hpp"
+#include "somasim/render/robot_scene.hpp"
+
+namespace somasim::body_schema {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+// Appends `part` posed by `origin` (link <- geometry) to `mesh`.
+void append(render::TriangleMesh& mesh, const render::TriangleMesh& part,
+            const Eigen::Isometry3d& origin) {
+  const Eigen::Isometry3f o = origin.cast<float>();
+  const auto base = static_cast<std::uint32_t>(mesh.positions.size());
+  for (std::size_t i = 0; i < part.positions.size(); ++i) {
+    mesh.positions.push_back(o * part.positions[i]);
+    mesh.normals.push_back(o.linear() * part.normals[i]);
+  }
+  for (std::uint32_t index : part.indices) mesh.indices.push_back(base + index);
+}
+
+}  // namespace
+
+ArmHypothesisModel arm_hypothesis_model(const robot::RobotModel& model,
+                                        const std::vector<std::string>& link_names, int segments) {
+  if (link_names.empty() || link_names.size() > render::kMaxMeshesPerHypothesis)
+    throw InputError(fmt::format("expected 1 to {} hypothesis links, got {}",
+                                 render::kMaxMeshesPerHypothesis, link_names.size()));
+  ArmHypothesisModel arm;
+  for (const std::string& name : link_names) {
+    const int link = model.link_index(name);  // InputError for an unknown name
+    const robot::Link& l = model.link(link);
+    if (l.collision.empty())
+      throw InputError(fmt::format("link '{}' has no collision geometry to draw", name));
+    render::TriangleMesh mesh;
+    for (const robot::Geometry& g : l.collision)
+      append(mesh, render::geometry_mesh(g, segments), g.origin);
+    arm.links.push_back(link);
+    arm.meshes.push_back(std::move(mesh));
+  }
+  return arm;
+}
+
+LikelihoodKind likelihood_kind_from_name(const std::string& name) {
+  if (name == "silhouette") return LikelihoodKind::kSilhouette;
+  if (name == "edges") return LikelihoodKind::kEdges;
+  throw InputError(fmt::format("unknown likelihood '{}' (expected silhouette or edges)", name));
+}
+
+HypothesisScorer::HypothesisScorer(std::shared_ptr<const robot::RobotModel> model,
+                                   const ArmHypothesisModel& arm, std::vector<int> offset_dofs,
+                                   int workers, const ScorerOptions& options,
+                                   render::RenderBackend backend)
+    : model_(std::move(model)),
+      links_(arm.links),
+      offset_dofs_(std::move(offset_dofs)),
+      options_(options),
+      renderer_(arm.meshes, workers, backend),
+      data_(*model_),
+      offsets_rad_(Eigen::VectorXd::Zero(model_->num_dofs())) {
+  for (std::size_t m = 0; m < links_.size(); ++m) batch_.meshes.push_back(m);
+}
+
+std::vector<Eigen::Isometry3d> HypothesisScorer::link_poses(const Eigen::VectorXd& q,
+                                                            const Eigen::VectorXd& offsets_deg) {
+  for (std::size_t j = 0; j < offset_dofs_.size(); ++j)
+    offsets_rad_[offset_dofs_[j]] =
+        offsets_deg[static_cast<Eigen::Index>(j)] * std::numbers::pi / 180.0;
+  robot::forward_kinematics(*model_, data_, q, offsets_rad_);
+  std::vector<Eigen::Isometry3d> poses;
+  poses.reserve(links_.size());
+  for (int link : links_) poses.push_back(data_.link_poses[link]);
+  return poses;
+}
+
+std::vector<double> HypothesisScorer::score(const Eigen::VectorXd& q,
+                                            const Eigen::MatrixXd& particles_deg,
+                                            const std::vector<render::Camera>& cameras,
+                                            const std::vector<cv::Mat>& observations) {
+  if (observations.size() != cameras.size())
+    throw InputError(fmt::format("hypothesis scorer: {} cameras but {} observations",
+                                 cameras.size(), observations.size()));
+  auto t0 = Clock::now();
+  const auto m_count = static_cast<std::size_t>(particles_deg.cols());
+  batch_.hypotheses.resize(m_count);
+  for (std::size_t m = 0; m < m_count; ++m)
+    batch_.hypotheses[m] = link_poses(q, particles_deg.col(static_cast<Eigen::Index>(m)));
+  batch_.cameras = cameras;
+  timing_.kinematics_ms = ms_since(t0);
+
+  t0 = Clock::now();
+  render::HypothesisBatchOptions render_options;
+  render_options.margin_px = options_.margin_px;
+  render_options.contour = options_.kind == LikelihoodKind::kEdges;
+  render_options.contour_width = options_.contour_width;
+  last_ = renderer_.render(batch_, render_options);
+  timing_.render_ms = ms_since(t0);
+
+  t0 = Clock::now();
+  std::vector<double> likelihoods(m_count, 1.0);
+  for (std::size_t c = 0; c < cameras.size(); ++c) {
+    const render::CameraTiles& tiles = last_.cameras[c];
+    if (options_.kind == LikelihoodKind::kSilhouette) {
+      const MaskObservation obs = cut_to_roi(observations[c], tiles.roi);
+      for (std::size_t m = 0; m < m_count; ++m)
+        likelihoods[m] *=
+            silhouette_likelihood(jaccard(obs, tiles.tiles[m]), options_.form, options_.power);
+    } else {
+      const cv::Mat distance = observations[c](tiles.roi);
+      for (std::size_t m = 0; m < m_count; ++m)
+        likelihoods[m] *=
+            edge_likelihood(mean_chamfer_distance(distance, tiles.tiles[m]), options_.edge_lambda);
+    }
+  }
+  timing_.compare_ms = ms_since(t0);
+  return likelihoods;
+}
+
+}  // namespace somasim::body_schema

@@ -1,0 +1,445 @@
+#include "body_schema_filter.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <numbers>
+
+#include "somasim/body_schema/pose_error.hpp"
+#include "somasim/error.hpp"
+#include "somasim/render/robot_scene.hpp"
+#include "somasim/robot/experiment_robot.hpp"
+#include "somasim/robot/joint_text.hpp"
+#include "somasim/robot/kinematics.hpp"
+
+namespace somasim::plugins {
+namespace {
+
+constexpr double kRadToDeg = 180.0 / std::numbers::pi;
+const std::vector<std::string> kRightArm = {"r_shoulder_pitch", "r_shoulder_roll", "r_shoulder_yaw",
+                                            "r_elbow",          "r_wrist_prosup",  "r_wrist_pitch",
+                                            "r_wrist_yaw"};
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+  std::nth_element(v.begin(), mid, v.end());
+  return *mid;
+}
+
+}  // namespace
+
+PluginSpec BodySchemaFilter::spec() {
+  PluginSpec s("body_schema_filter",
+               "Online body-schema adaptation (Vicente et al. 2016): a particle filter over the "
+               "arm's joint offsets scores rendered hypotheses of the hand ('mental images') "
+               "against the eye images (colour silhouettes or edges) and estimates the offsets "
+               "and the palm pose in the left-eye frame.");
+  robot::add_robot_param(s);
+  s.add_string("chain")
+      .defaults(std::string("right_arm"))
+      .describe("the arm's chain in the robot model");
+  s.add_string_list("joints").defaults(kRightArm).describe(
+      "joints whose offsets are estimated (all in `chain`), one particle row each");
+  s.add_string_list("links")
+      .defaults(std::vector<std::string>{"r_hand"})
+      .describe("links drawn as hypotheses (their collision geometry: the internal model)");
+  s.add_string("palm_frame")
+      .defaults(std::string("r_palm"))
+      .describe("frame whose pose is estimated");
+  s.add_string_list("cameras")
+      .defaults(std::vector<std::string>{"left_eye", "right_eye"})
+      .describe(
+          "1 or 2 cameras, fed by the inputs left_eye_rgb and right_eye_rgb; the first "
+          "is the frame of the estimated palm pose");
+  s.add_int("particles").defaults(std::int64_t{200}).at_least(1).describe("M");
+  s.add_string("schedule")
+      .defaults(std::string("paper"))
+      .one_of(body_schema::noise_schedule_names())
+      .describe("noise schedule preset (somasim/body_schema/noise_schedule.hpp)");
+  s.add_double("kde_sigma_deg").defaults(1.0).unit_is("deg").describe("σ_KDE of the estimate");
+  s.add_double("kde_alpha").defaults(500.0).at_least(0.0).describe("α of the estimate's KDE");
+  s.add_string("likelihood")
+      .defaults(std::string("silhouette"))
+      .one_of({"silhouette", "edges"})
+      .describe(
+          "silhouette: Jaccard index of colour-segmented and rendered hand masks; edges: "
+          "mean distance-transform value under the rendered contours");
+  s.add_string("silhouette_form")
+      .defaults(std::string("jaccard"))
+      .one_of({"jaccard", "power"})
+      .describe("L = J (paper) or L = J^silhouette_power, per camera, multiplied over cameras");
+  s.add_double("silhouette_power").defaults(1.0).at_least(0.0).describe("k of L = J^k");
+  s.add_double("edge_lambda")
+      .defaults(0.01)
+      .unit_is("1/px")
+      .at_least(0.0)
+      .describe("λ of L = exp(−λ d̄): 0.01 in the paper's text, 25/255 = 0.098 in its code");
+  s.add_list("canny").size(2).defaults(std::vector<double>{65, 195}).describe("Canny thresholds");
+  s.add_list("hand_hsv_low")
+      .size(3)
+      .defaults(std::vector<double>{0, 40, 60})
+      .describe("hand colour segmentation: lower HSV bound (OpenCV: H 0-179, S and V 0-255)");
+  s.add_list("hand_hsv_high")
+      .size(3)
+      .defaults(std::vector<double>{30, 255, 255})
+      .describe("upper HSV bound");
+  s.add_int("proxy_resolution")
+      .defaults(std::int64_t{8})
+      .range(3, 256)
+      .describe("segments around the hypotheses' curved primitives (low-poly internal model)");
+  s.add_int("margin_px").defaults(std::int64_t{8}).range(0, 1000).describe("ROI margin [px]");
+  s.add_int("contour_width").defaults(std::int64_t{1}).range(1, 2).describe("edges: [px]");
+  s.add_int("render_threads").defaults(std::int64_t{2}).range(1, 64).describe("render workers");
+  s.add_string("backend")
+      .defaults(std::string("osmesa"))
+      .one_of({"osmesa", "egl"})
+      .describe("OpenGL back end of the hypothesis renderer");
+  s.add_double("image_noise")
+      .defaults(0.0)
+      .at_least(0.0)
+      .describe(
+          "σ of Gaussian noise added to every RGB channel before the observation [grey levels]");
+  s.add_string("on_no_match")
+      .defaults(std::string("reinflate"))
+      .one_of({"reinflate", "stop"})
+      .describe(
+          "when every particle's likelihood is 0: keep the particles and multiply σ_s by "
+          "reinflate_factor, or stop the run");
+  s.add_double("reinflate_factor").defaults(2.0).at_least(1.0).describe("see on_no_match");
+  s.add_list("compare_particles")
+      .defaults(std::vector<double>{})
+      .describe(
+          "sizes M of further filters run on the same images for the particle study "
+          "(metrics particles_<M>_*, figures/body_schema_particles.png); [] = none");
+  s.add_int("evaluate_frame")
+      .defaults(std::int64_t{120})
+      .at_least(0)
+      .describe(
+          "phase frame at which each filter's estimation error is recorded for the "
+          "particles_<M>_* metrics (needs phase and true_link_poses)");
+  s.add_string("true_offsets_deg")
+      .accepts_map_as_text()
+      .defaults(std::string(""))
+      .describe("the truth ('joint: deg, ...'), for the CSV's offset errors; empty = unknown");
+  s.add_string("csv")
+      .defaults(std::string("body_schema_filter.csv"))
+      .describe("per-frame CSV in the run folder ('' = none)");
+  s.input<JointState>("joint_state", "encoder readings θ (world.joint_state)");
+  s.input<Image>("left_eye_rgb", "rgb8 image of the first camera");
+  s.input<Image>("right_eye_rgb", "rgb8 image of the second camera", true);
+  s.input<ReachPhase>("phase",
+                      "the reach_controller's phase: observe in the open and closed loop, restart "
+                      "with every movement; unwired = observe every step",
+                      true);
+  s.input<LinkPoses>("true_link_poses", "the world's link poses, for the CSV's pose errors", true);
+  s.output<BodySchemaEstimate>("estimate", "β̂ and the estimated palm pose (left-eye frame)");
+  return s;
+}
+
+void BodySchemaFilter::configure_joints(NodeContext& ctx) {
+  const std::string chain_name = ctx.param<std::string>("chain");
+  const robot::ChainInfo* chain = model_->find_chain(chain_name);
+  if (chain == nullptr)
+    ctx.param_error("chain",
+                    fmt::format("no chain '{}' in robot '{}'", chain_name, model_->name()));
+  joint_names_ = ctx.param<std::vector<std::string>>("joints");
+  if (joint_names_.empty()) ctx.param_error("joints", "expected at least one joint");
+  for (const std::string& j : joint_names_) {
+    if (std::find(chain->joints.begin(), chain->joints.end(), j) == chain->joints.end())
+      ctx.param_error("joints", fmt::format("joint '{}' is not in the arm chain '{}' (joints: {})",
+                                            j, chain_name, fmt::join(chain->joints, ", ")));
+    offset_dofs_.push_back(model_->dof_index(j));
+  }
+  try {
+    model_->frame_ref(ctx.param<std::string>("palm_frame"));
+  } catch (const InputError& e) {
+    ctx.param_error("palm_frame", e.what());
+  }
+  const std::string truth = ctx.param<std::string>("true_offsets_deg");
+  if (!truth.empty()) {
+    try {
+      true_offsets_ = robot::parse_joint_offsets(*model_, truth);
+    } catch (const InputError& e) {
+      ctx.param_error("true_offsets_deg", e.what());
+    }
+  }
+}
+
+void BodySchemaFilter::configure_scorer(NodeContext& ctx) {
+  link_names_ = ctx.param<std::vector<std::string>>("links");
+  body_schema::ArmHypothesisModel arm;
+  try {
+    arm =
+        body_schema::arm_hypothesis_model(*model_, link_names_, ctx.param<int>("proxy_resolution"));
+  } catch (const InputError& e) {
+    ctx.param_error("links", e.what());
+  }
+  body_schema::ScorerOptions options;
+  options.kind = body_schema::likelihood_kind_from_name(ctx.param<std::string>("likelihood"));
+  options.form = body_schema::silhouette_form_from_name(ctx.param<std::string>("silhouette_form"));
+  options.power = ctx.param<double>("silhouette_power");
+  options.edge_lambda = ctx.param<double>("edge_lambda");
+  options.margin_px = ctx.param<int>("margin_px");
+  options.contour_width = ctx.param<int>("contour_width");
+  scorer_ = std::make_unique<body_schema::HypothesisScorer>(
+      model_, arm, offset_dofs_, ctx.param<int>("render_threads"), options,
+      render::parse_render_backend(ctx.param<std::string>("backend")));
+}
+
+void BodySchemaFilter::configure(NodeContext& ctx) {
+  model_ = robot::experiment_robot(ctx);
+  configure_joints(ctx);
+  cameras_ = ctx.param<std::vector<std::string>>("cameras");
+  if (cameras_.empty() || cameras_.size() > 2)
+    ctx.param_error("cameras",
+                    fmt::format("expected 1 or 2 camera names, got {}", cameras_.size()));
+  for (const std::string& c : cameras_)
+    if (model_->find_camera(c) < 0)
+      ctx.param_error("cameras",
+                      fmt::format("camera '{}' is not in robot '{}'", c, model_->name()));
+  if (cameras_.size() == 2 && !ctx.is_wired("right_eye_rgb"))
+    ctx.param_error("cameras", "two cameras need the input right_eye_rgb wired");
+
+  body_schema::KdeOptions kde{ctx.param<double>("kde_sigma_deg"), ctx.param<double>("kde_alpha")};
+  if (!(kde.sigma_deg > 0.0)) ctx.param_error("kde_sigma_deg", "expected a value > 0");
+  filter_ = std::make_unique<body_schema::OffsetParticleFilter>(
+      static_cast<int>(offset_dofs_.size()), ctx.param<int>("particles"),
+      body_schema::noise_schedule_preset(ctx.param<std::string>("schedule")), ctx.rng()(), kde);
+
+  const auto low = ctx.param<std::vector<double>>("hand_hsv_low");
+  const auto high = ctx.param<std::vector<double>>("hand_hsv_high");
+  hand_colour_.low = cv::Scalar(low[0], low[1], low[2]);
+  hand_colour_.high = cv::Scalar(high[0], high[1], high[2]);
+  const auto canny = ctx.param<std::vector<double>>("canny");
+  canny_low_ = canny[0];
+  canny_high_ = canny[1];
+  image_noise_ = ctx.param<double>("image_noise");
+  stop_when_lost_ = ctx.param<std::string>("on_no_match") == "stop";
+  reinflate_factor_ = ctx.param<double>("reinflate_factor");
+  csv_name_ = ctx.param<std::string>("csv");
+  if (!csv_name_.empty()) csv_path_ = ctx.output_path_param("csv");
+
+  configure_scorer(ctx);
+  const robot::ChainInfo* chain = model_->find_chain(ctx.param<std::string>("chain"));
+  eye_hand_ = std::make_unique<body_schema::EyeHand>(model_, cameras_[0],
+                                                     ctx.param<std::string>("palm_frame"),
+                                                     model_->link(chain->base_link).name);
+  std::vector<int> sizes;
+  for (double m : ctx.param<std::vector<double>>("compare_particles")) {
+    if (!(m >= 1.0) || m != std::floor(m) || m > 1.0e6)
+      ctx.param_error("compare_particles",
+                      fmt::format("expected whole numbers of particles >= 1, got {}", m));
+    sizes.push_back(static_cast<int>(m));
+  }
+  if (!sizes.empty())
+    comparison_ = std::make_unique<ParticleComparison>(
+        sizes, static_cast<int>(offset_dofs_.size()),
+        body_schema::noise_schedule_preset(ctx.param<std::string>("schedule")), kde, ctx.rng()());
+  main_record_.particles = filter_->size();
+  evaluate_frame_ = ctx.param<int>("evaluate_frame");
+
+  joint_state_ = &ctx.input<JointState>("joint_state");
+  images_.push_back(&ctx.input<Image>("left_eye_rgb"));
+  if (cameras_.size() == 2) images_.push_back(&ctx.input<Image>("right_eye_rgb"));
+  if (ctx.is_wired("phase")) phase_ = &ctx.input<ReachPhase>("phase");
+  if (ctx.is_wired("true_link_poses")) true_poses_ = &ctx.input<LinkPoses>("true_link_poses");
+  estimate_ = &ctx.output<BodySchemaEstimate>("estimate");
+  estimate_->offsets = Eigen::VectorXd::Zero(model_->num_dofs());
+
+  columns_ = {"time [s]", "movement", "frame"};
+  for (const std::string& j : joint_names_) columns_.push_back(fmt::format("beta_{} [deg]", j));
+  for (const char* c : {"sigma_s [deg]", "best likelihood", "mean likelihood", "ess", "resampled"})
+    columns_.emplace_back(c);
+  if (true_offsets_.size() > 0) columns_.emplace_back("offset error max [deg]");
+  if (true_poses_ != nullptr)
+    for (const char* c : {"estimation error [mm]", "estimation error [deg]", "nominal error [mm]",
+                          "nominal error [deg]"})
+      columns_.emplace_back(c);
+  ctx.log().info("body_schema_filter: M = {}, {} joints, links {}, {} likelihood, schedule {}",
+                 filter_->size(), joint_names_.size(), fmt::join(link_names_, " "),
+                 ctx.param<std::string>("likelihood"), ctx.param<std::string>("schedule"));
+}
+
+std::vector<cv::Mat> BodySchemaFilter::observe(NodeContext& ctx) {
+  std::vector<cv::Mat> out;
+  for (std::size_t c = 0; c < images_.size(); ++c) {
+    const Image& image = *images_[c];
+    const robot::Camera& cam =
+        model_->cameras()[static_cast<std::size_t>(model_->find_camera(cameras_[c]))];
+    if (image.frame == 0 || image.encoding != ImageEncoding::kRgb8)
+      throw RunError(fmt::format(
+          "body_schema_filter: no rgb8 image of camera '{}' at t = {:.3f} s (wire a camera "
+          "node's {}_rgb output running at least as often as this node, earlier in the graph)",
+          cameras_[c], ctx.time_s(), c == 0 ? "left_eye" : "right_eye"));
+    if (image.data.cols != cam.width || image.data.rows != cam.height)
+      throw RunError(
+          fmt::format("body_schema_filter: camera '{}' is {}x{} in the robot model "
+                      "but its image is {}x{}",
+                      cameras_[c], cam.width, cam.height, image.data.cols, image.data.rows));
+    cv::Mat rgb = image.data;
+    if (image_noise_ > 0.0) {
+      cv::Mat noise(rgb.size(), CV_32FC3);
+      std::normal_distribution<float> gauss(0.0f, static_cast<float>(image_noise_));
+      for (auto it = noise.begin<cv::Vec3f>(); it != noise.end<cv::Vec3f>(); ++it)
+        *it = cv::Vec3f(gauss(ctx.rng()), gauss(ctx.rng()), gauss(ctx.rng()));
+      cv::Mat noisy;
+      rgb.convertTo(noisy, CV_32FC3);
+      noisy += noise;
+      noisy.convertTo(rgb, CV_8UC3);  // rounds and saturates
+    }
+    if (scorer_->options().kind == body_schema::LikelihoodKind::kSilhouette)
+      out.push_back(body_schema::segment_colour(rgb, hand_colour_));
+    else
+      out.push_back(body_schema::edge_distance_map(rgb, canny_low_, canny_high_));
+  }
+  return out;
+}
+
+void BodySchemaFilter::step(NodeContext& ctx) {
+  if (phase_ != nullptr) {
+    if (phase_->stage != ReachStage::kOpenLoop && phase_->stage != ReachStage::kClosedLoop) return;
+    if (phase_->movement != movement_) {
+      movement_ = phase_->movement;
+      filter_->reset();
+      if (comparison_) comparison_->reset();
+    }
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::vector<cv::Mat> observations = observe(ctx);
+  robot::RobotData data(*model_);
+  robot::forward_kinematics(*model_, data, joint_state_->position);
+  std::vector<render::Camera> cameras;
+  for (const std::string& c : cameras_)
+    cameras.push_back(render::camera_for(*model_, c, data.link_poses));
+
+  filter_->predict();
+  std::vector<double> likelihoods;
+  try {
+    likelihoods =
+        scorer_->score(joint_state_->position, filter_->particles(), cameras, observations);
+  } catch (const RunError& e) {
+    throw RunError(
+        fmt::format("body_schema_filter: movement {}: the hypothesis links ({}) are "
+                    "not visible: {}",
+                    movement_, fmt::join(link_names_, " "), e.what()));
+  }
+  const body_schema::FilterUpdate update = filter_->update(likelihoods);
+  if (!(update.best_likelihood > 0.0)) on_no_match(ctx, update);
+  const double step_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  main_record_.step_ms.push_back(step_ms);
+  render_ms_.push_back(scorer_->timing().render_ms);
+  if (comparison_) comparison_->step(*scorer_, joint_state_->position, cameras, observations);
+  publish(ctx, update);
+  if (phase_ != nullptr && phase_->frame == evaluate_frame_) evaluate(joint_state_->position);
+}
+
+void BodySchemaFilter::on_no_match(NodeContext& ctx, const body_schema::FilterUpdate&) {
+  ++lost_frames_;
+  const std::string what = fmt::format(
+      "body_schema_filter: no particle explains the images at t = {:.3f} s (movement {}): every "
+      "likelihood is 0 (is the hand in view and segmented? hand_hsv_low/high)",
+      ctx.time_s(), movement_);
+  if (stop_when_lost_) {
+    ctx.log().error("{}; stopping the run (on_no_match: stop)", what);
+    ctx.request_stop(what);
+    return;
+  }
+  filter_->inflate_sigma(reinflate_factor_);
+  if (lost_frames_ <= 5)
+    ctx.log().warn("{}; particles kept, σ_s × {} = {:.3g} deg", what, reinflate_factor_,
+                   filter_->sigma_deg());
+}
+
+void BodySchemaFilter::publish(NodeContext& ctx, const body_schema::FilterUpdate& u) {
+  ++frames_;
+  const Eigen::VectorXd& beta_deg = filter_->estimate();
+  BodySchemaEstimate& e = *estimate_;
+  e.frame = frames_;
+  e.movement = movement_;
+  e.offsets.setZero(model_->num_dofs());
+  for (std::size_t j = 0; j < offset_dofs_.size(); ++j)
+    e.offsets[offset_dofs_[j]] = beta_deg[static_cast<Eigen::Index>(j)] / kRadToDeg;
+  const Eigen::VectorXd& q = joint_state_->position;
+  e.palm_eye = eye_hand_->palm_eye(q, e.offsets);
+  e.sigma_deg = u.sigma_deg;
+  e.best_likelihood = u.best_likelihood;
+  e.mean_likelihood = u.mean_likelihood;
+  e.effective_sample_size = u.effective_sample_size;
+
+  std::vector<double> row = {
+      ctx.time_s(), static_cast<double>(movement_),
+      static_cast<double>(phase_ ? phase_->frame : static_cast<int>(frames_))};
+  for (Eigen::Index j = 0; j < beta_deg.size(); ++j) row.push_back(beta_deg[j]);
+  row.insert(row.end(), {u.sigma_deg, u.best_likelihood, u.mean_likelihood, u.effective_sample_size,
+                         u.resampled ? 1.0 : 0.0});
+  if (true_offsets_.size() > 0) {
+    double worst = 0.0;
+    for (std::size_t j = 0; j < offset_dofs_.size(); ++j)
+      worst = std::max(worst, std::abs(beta_deg[static_cast<Eigen::Index>(j)] -
+                                       true_offsets_[offset_dofs_[j]] * kRadToDeg));
+    row.push_back(worst);
+  }
+  if (true_poses_ != nullptr && !true_poses_->poses.empty()) {
+    const Eigen::Isometry3d real = eye_hand_->palm_eye(true_poses_->poses);
+    const Eigen::Isometry3d nominal = eye_hand_->palm_eye(q, Eigen::VectorXd::Zero(q.size()));
+    row.insert(row.end(), {body_schema::position_error_mm(real, e.palm_eye),
+                           body_schema::orientation_error_deg(real.linear(), e.palm_eye.linear()),
+                           body_schema::position_error_mm(real, nominal),
+                           body_schema::orientation_error_deg(real.linear(), nominal.linear())});
+  }
+  if (row.size() == columns_.size()) rows_.push_back(std::move(row));
+}
+
+void BodySchemaFilter::evaluate(const Eigen::VectorXd& q) {
+  if (true_poses_ == nullptr || true_poses_->poses.empty()) return;
+  const Eigen::Isometry3d real = eye_hand_->palm_eye(true_poses_->poses);
+  auto error_of = [&](const Eigen::VectorXd& beta_deg) {
+    Eigen::VectorXd offsets = Eigen::VectorXd::Zero(model_->num_dofs());
+    for (std::size_t j = 0; j < offset_dofs_.size(); ++j)
+      offsets[offset_dofs_[j]] = beta_deg[static_cast<Eigen::Index>(j)] / kRadToDeg;
+    const Eigen::Isometry3d estimated = eye_hand_->palm_eye(q, offsets);
+    return std::pair{body_schema::position_error_mm(real, estimated),
+                     body_schema::orientation_error_deg(real.linear(), estimated.linear())};
+  };
+  const auto [mm, deg] = error_of(filter_->estimate());
+  main_record_.error_mm.push_back(mm);
+  main_record_.error_deg.push_back(deg);
+  if (!comparison_) return;
+  const std::vector<Eigen::VectorXd> estimates = comparison_->estimates();
+  for (std::size_t k = 0; k < estimates.size(); ++k) {
+    const auto [k_mm, k_deg] = error_of(estimates[k]);
+    comparison_->record_error(k, k_mm, k_deg);
+  }
+}
+
+void BodySchemaFilter::write_csv() const {
+  if (csv_name_.empty()) return;
+  std::ofstream out(csv_path_);
+  if (!out)
+    throw RunError(fmt::format("body_schema_filter: cannot write '{}'", csv_path_.string()));
+  out << fmt::format("{}\n", fmt::join(columns_, ","));
+  for (const auto& row : rows_) out << fmt::format("{}\n", fmt::join(row, ","));
+}
+
+void BodySchemaFilter::finish(NodeContext& ctx) {
+  ctx.report_metric("filter_frames", static_cast<std::int64_t>(frames_));
+  ctx.report_metric("filter_particles", filter_ ? filter_->size() : 0);
+  ctx.report_metric("filter_step_ms", median(main_record_.step_ms));
+  ctx.report_metric("filter_render_ms", median(render_ms_));
+  ctx.report_metric("filter_frames_without_match", lost_frames_);
+  std::vector<SizeRecord> records = {main_record_};
+  if (comparison_)
+    records.insert(records.end(), comparison_->records().begin(), comparison_->records().end());
+  const nlohmann::json sizes = particle_metrics(records);
+  for (const auto& [key, value] : sizes.items()) ctx.report_metric(key, value);
+  if (comparison_ && !main_record_.error_mm.empty())
+    write_particle_figure(records, ctx.figure_path("body_schema_particles.png"));
+  write_csv();
+}
+
+}  // namespace somasim::plugins

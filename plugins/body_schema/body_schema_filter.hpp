@@ -1,0 +1,72 @@
+#pragma once
+// body_schema_filter: online estimation of the arm's joint offsets β from the eye images by
+// mental simulation (Vicente et al. 2016; ../../core/body_schema). See README.md.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "particle_comparison.hpp"
+#include "somasim/body_schema/eye_hand.hpp"
+#include "somasim/body_schema/hypothesis_scorer.hpp"
+#include "somasim/body_schema/observation.hpp"
+#include "somasim/body_schema/particle_filter.hpp"
+#include "somasim/body_schema/ports.hpp"
+#include "somasim/plugin.hpp"
+#include "somasim/render/ports.hpp"
+#include "somasim/robot/ports.hpp"
+#include "somasim/robot/robot_model.hpp"
+
+namespace somasim::plugins {
+
+class BodySchemaFilter : public Plugin {
+ public:
+  static PluginSpec spec();
+  void configure(NodeContext& ctx) override;
+  void step(NodeContext& ctx) override;
+  void finish(NodeContext& ctx) override;
+
+ private:
+  void configure_joints(NodeContext& ctx);
+  void configure_scorer(NodeContext& ctx);
+  std::vector<cv::Mat> observe(NodeContext& ctx);
+  void on_no_match(NodeContext& ctx, const body_schema::FilterUpdate& update);
+  void publish(NodeContext& ctx, const body_schema::FilterUpdate& update);
+  void write_csv() const;
+  void evaluate(const Eigen::VectorXd& q);
+
+  std::shared_ptr<const robot::RobotModel> model_;
+  std::vector<std::string> joint_names_;
+  std::vector<int> offset_dofs_;
+  std::vector<std::string> link_names_;
+  std::vector<std::string> cameras_;
+  std::unique_ptr<body_schema::OffsetParticleFilter> filter_;
+  std::unique_ptr<body_schema::HypothesisScorer> scorer_;
+  std::unique_ptr<body_schema::EyeHand> eye_hand_;
+  std::unique_ptr<ParticleComparison> comparison_;
+  SizeRecord main_record_;  // the main filter's errors at evaluate_frame and step times
+  int evaluate_frame_ = 120;
+  body_schema::HsvRange hand_colour_;
+  double canny_low_ = 65.0, canny_high_ = 195.0;
+  double image_noise_ = 0.0;
+  bool stop_when_lost_ = false;
+  double reinflate_factor_ = 2.0;
+  Eigen::VectorXd true_offsets_;  // [rad] per dof; empty when not given
+
+  const JointState* joint_state_ = nullptr;
+  std::vector<const Image*> images_;
+  const ReachPhase* phase_ = nullptr;
+  const LinkPoses* true_poses_ = nullptr;
+  BodySchemaEstimate* estimate_ = nullptr;
+
+  int movement_ = -1;
+  std::uint64_t frames_ = 0;
+  std::int64_t lost_frames_ = 0;
+  std::vector<double> render_ms_;
+  std::string csv_name_;
+  std::filesystem::path csv_path_;
+  std::vector<std::vector<double>> rows_;
+  std::vector<std::string> columns_;
+};
+
+}  // namespace somasim::plugins

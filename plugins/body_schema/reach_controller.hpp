@@ -1,0 +1,64 @@
+#pragma once
+// reach_controller: the body-schema study's reaching protocol (Vicente et al. 2016): per
+// movement, go to a start posture, open loop (linear joint trajectory to the nominal IK solution
+// of the desired palm pose), closed loop (position-based visual servoing with the adapted model
+// K(θ + β̂)); evaluation against the truth. See README.md.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "reach_report.hpp"
+#include "somasim/body_schema/eye_hand.hpp"
+#include "somasim/body_schema/ports.hpp"
+#include "somasim/plugin.hpp"
+#include "somasim/robot/ports.hpp"
+
+namespace somasim::plugins {
+
+class ReachController : public Plugin {
+ public:
+  static PluginSpec spec();
+  void configure(NodeContext& ctx) override;
+  void step(NodeContext& ctx) override;
+  void finish(NodeContext& ctx) override;
+
+ private:
+  struct Target {
+    Eigen::Isometry3d pose_eye;           // desired palm pose, left-eye frame
+    Eigen::VectorXd posture;              // nominal IK solution (encoder values, all dofs)
+    std::vector<Eigen::VectorXd> starts;  // start postures
+  };
+  void plan_targets(NodeContext& ctx, const Eigen::VectorXd& q0);
+  Eigen::VectorXd draw_start(NodeContext& ctx, const Target& target, int index);
+  MovementId movement_id(int movement) const;
+  void begin_movement(int movement);
+  void command(const Eigen::VectorXd& q);
+  void evaluate(int frame);
+  Eigen::VectorXd adapted_offsets() const;
+
+  std::shared_ptr<const robot::RobotModel> model_;
+  std::unique_ptr<body_schema::EyeHand> eye_hand_;
+  std::vector<Target> targets_;
+  int starts_per_target_ = 10, repetitions_ = 3;
+  int to_start_frames_ = 20, open_frames_ = 120, closed_frames_ = 50;
+  double gain_ = 5.0;
+  bool adapt_ = true;
+  std::vector<double> start_distance_;
+  double start_rotation_deg_ = 15.0;
+  int visible_margin_px_ = 30;
+
+  const JointState* joint_state_ = nullptr;
+  const BodySchemaEstimate* estimate_ = nullptr;
+  const LinkPoses* true_poses_ = nullptr;
+  JointCommand* command_ = nullptr;
+  ReachPhase* phase_ = nullptr;
+
+  int movement_ = -1, movements_ = 0;
+  int frame_ = 0;  // within the stage kToStart, then 1..open+closed
+  Eigen::VectorXd from_, goal_;
+  std::unique_ptr<ReachReport> report_;
+  std::string csv_name_;
+  std::filesystem::path csv_path_;
+};
+
+}  // namespace somasim::plugins

@@ -1,0 +1,142 @@
+// configs/body_schema_reaching.yaml, shortened to two short movements: the filter must beat the
+// nominal model, the closed loop must beat the open loop, the outputs must not depend on the
+// render thread count, and every user error is reported in full.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "experiment_runner.hpp"
+#include "somasim/error.hpp"
+
+using somasim::Override;
+using somasim::testing::read_file;
+using somasim::testing::run_config;
+
+namespace {
+
+// One target, two start poses, 40 + 15 frames, M = 100.
+std::vector<Override> short_run(std::vector<Override> extra = {}) {
+  std::vector<Override> o = {
+      {"nodes.reach.params.targets", "[-0.006, 0.007, 0.258, 44.2, -78.7, -66.4]"},
+      {"nodes.reach.params.starts_per_target", "2"},
+      {"nodes.reach.params.repetitions", "1"},
+      {"nodes.reach.params.open_loop_frames", "40"},
+      {"nodes.reach.params.closed_loop_frames", "15"},
+      {"nodes.filter.params.particles", "100"}};
+  for (const Override& e : extra) {  // an extra value replaces the default one
+    auto same =
+        std::find_if(o.begin(), o.end(), [&](const Override& d) { return d.path == e.path; });
+    if (same != o.end())
+      same->value = e.value;
+    else
+      o.push_back(e);
+  }
+  return o;
+}
+
+double num(const nlohmann::json& m, const char* key) {
+  EXPECT_TRUE(m.contains(key) && m[key].is_number()) << key;
+  return m.value(key, 1e9);
+}
+
+}  // namespace
+
+TEST(BodySchemaReaching, AdaptationBeatsTheNominalModelAndTheClosedLoopTheOpenLoop) {
+  const auto run = run_config("body_schema_reaching", short_run(), "short");
+  const auto& m = run.metrics;
+  ASSERT_EQ(m["status"], "completed") << m["error"];
+  EXPECT_EQ(m["reach_movements"], 2);
+  EXPECT_EQ(m["stop_reason"], "node 'reach': 2 movements done");
+  // The nominal model is off by the injected offsets: several centimetres.
+  EXPECT_GT(num(m, "estimation_error_nominal_mm"), 20.0);
+  EXPECT_LT(num(m, "estimation_error_mm"), 0.5 * num(m, "estimation_error_nominal_mm"));
+  EXPECT_LT(num(m, "estimation_error_deg"), num(m, "estimation_error_nominal_deg"));
+  EXPECT_LT(num(m, "reaching_error_closed_loop_mm"), 0.5 * num(m, "reaching_error_open_loop_mm"));
+  EXPECT_GT(num(m, "filter_step_ms"), 0.0);
+  EXPECT_EQ(m["filter_frames"], 2 * 55);
+  for (const char* f :
+       {"figures/body_schema_estimation.png", "figures/body_schema_reaching.png",
+        "figures/body_schema_closed_loop.png", "reach_frames.csv", "body_schema_filter.csv"})
+    EXPECT_TRUE(std::filesystem::exists(run.dir / f)) << f;
+}
+
+TEST(BodySchemaReaching, SameSeedSameOutputsWhateverTheRenderThreads) {
+  const auto a = run_config("body_schema_reaching",
+                            short_run({{"nodes.reach.params.starts_per_target", "1"},
+                                       {"nodes.filter.params.render_threads", "1"}}),
+                            "threads1");
+  const auto b = run_config("body_schema_reaching",
+                            short_run({{"nodes.reach.params.starts_per_target", "1"},
+                                       {"nodes.filter.params.render_threads", "3"}}),
+                            "threads3");
+  ASSERT_EQ(a.metrics["status"], "completed") << a.metrics["error"];
+  ASSERT_EQ(b.metrics["status"], "completed") << b.metrics["error"];
+  for (const char* f : {"body_schema_filter.csv", "reach_frames.csv"}) {
+    const std::string text = read_file(a.dir / f);
+    EXPECT_GT(text.size(), 1000u) << f;
+    EXPECT_EQ(text, read_file(b.dir / f)) << f;
+  }
+}
+
+// A configuration error ends the run before it starts: status bad_input, the located message.
+TEST(BodySchemaReaching, AJointOutsideTheArmChainIsALocatedError) {
+  const auto run = run_config(
+      "body_schema_reaching",
+      short_run({{"nodes.filter.params.joints", "[r_shoulder_pitch, l_elbow]"}}), "joint");
+  EXPECT_EQ(run.metrics["status"], "bad_input");
+  EXPECT_EQ(run.metrics["error"],
+            "--set nodes.filter.params.joints=[r_shoulder_pitch, l_elbow]: node 'filter', key "
+            "'params.joints': joint 'l_elbow' is not in the arm chain 'right_arm' (joints: "
+            "torso_pitch, torso_roll, torso_yaw, r_shoulder_pitch, r_shoulder_roll, "
+            "r_shoulder_yaw, r_elbow, r_wrist_prosup, r_wrist_pitch, r_wrist_yaw)");
+}
+
+TEST(BodySchemaReaching, FewerThanOneParticleIsALocatedError) {
+  try {
+    run_config("body_schema_reaching", short_run({{"nodes.filter.params.particles", "0"}}));
+    FAIL();
+  } catch (const somasim::InputError& e) {
+    EXPECT_STREQ(e.what(),
+                 "--set nodes.filter.params.particles=0: node 'filter', key 'params.particles': "
+                 "value 0 is out of range; expected an integer >= 1");
+  }
+}
+
+TEST(BodySchemaReaching, HypothesisLinksOutOfViewFailTheRunWithTheReason) {
+  const auto run =
+      run_config("body_schema_reaching",
+                 short_run({{"nodes.filter.params.links", "[l_upper_arm]"}}), "unseen");
+  EXPECT_EQ(run.metrics["status"], "failed");
+  EXPECT_EQ(run.metrics["error"],
+            "node 'filter' at t = 1.9 s: body_schema_filter: movement 0: the hypothesis links "
+            "(l_upper_arm) are not visible: camera 'left_eye': hypothesis batch: the region of "
+            "interest is empty (no mesh of any of the 100 hypotheses projects into the image)");
+}
+
+TEST(BodySchemaReaching, ATargetOutOfReachIsReportedWithTheClosestPose) {
+  const auto run =
+      run_config("body_schema_reaching",
+                 short_run({{"nodes.reach.params.targets", "[0.0, 0.0, 0.9, 0, 0, 0]"}}), "far");
+  EXPECT_EQ(run.metrics["status"], "bad_input");
+  EXPECT_EQ(run.metrics["error"],
+            "reach_controller: target 0 (0.000, 0.000, 0.900) m in the left_eye frame is outside "
+            "the arm's reach: the closest palm pose found is 596.3 mm and 29.1 deg away");
+}
+
+TEST(BodySchemaReaching, NoMatchingParticleStopsCleanlyOrReinflates) {
+  // A hand colour no pixel has: every likelihood is 0.
+  const std::vector<Override> blind = {{"nodes.filter.params.hand_hsv_low", "[100, 250, 250]"},
+                                       {"nodes.filter.params.hand_hsv_high", "[101, 255, 255]"}};
+  auto stop = blind;
+  stop.push_back({"nodes.filter.params.on_no_match", "stop"});
+  const auto stopped = run_config("body_schema_reaching", short_run(stop), "stop");
+  EXPECT_EQ(stopped.metrics["status"], "completed");
+  EXPECT_EQ(stopped.metrics["stop_reason"],
+            "node 'filter': body_schema_filter: no particle explains the images at t = 1.900 s "
+            "(movement 0): every likelihood is 0 (is the hand in view and segmented? "
+            "hand_hsv_low/high)");
+  EXPECT_EQ(stopped.metrics["filter_frames_without_match"], 1);
+  const auto kept = run_config("body_schema_reaching", short_run(blind), "reinflate");
+  EXPECT_EQ(kept.metrics["status"], "completed");
+  EXPECT_EQ(kept.metrics["filter_frames_without_match"], 2 * 55);
+}
