@@ -7,10 +7,6 @@
 // Counters (means over iterations): rtf_without, rtf_with, slowdown = rtf_without / rtf_with,
 // camera_frames (stereo frames rendered per run), sim_s (simulated seconds per run).
 // The benchmark's time is the wall time of the run with the camera.
-//
-// Both runs are cut to the first kThrows balls (--set): at t = 20.59 s of the full 40-ball run,
-// ball 17 leaving the left eye's view trips the renderer's "projects into the image but drew no
-// pixel" check and stops the run with the camera. Drop the override once that is fixed.
 #include <benchmark/benchmark.h>
 
 #include <chrono>
@@ -27,15 +23,12 @@ namespace fs = std::filesystem;
 
 const std::string kConfigs = std::string(SOMASIM_SOURCE_DIR) + "/configs/";
 const fs::path kOut = fs::temp_directory_path() / "somasim-bench-camera-rtf";
-constexpr int kThrows = 16;
 
 // Runs `config` into a fresh run folder and returns its metrics (null on failure).
 nlohmann::json run(const std::string& config, const std::string& folder) {
   const fs::path out = kOut / folder;
-  const std::string command =
-      std::string(SOMASIM_BIN) + " run " + kConfigs + config +
-      " --quiet --overwrite --set nodes.thrower.params.throws=" + std::to_string(kThrows) +
-      " --out " + out.string() + " > /dev/null";
+  const std::string command = std::string(SOMASIM_BIN) + " run " + kConfigs + config +
+                              " --quiet --overwrite --out " + out.string() + " > /dev/null";
   if (std::system(command.c_str()) != 0) return nullptr;
   std::ifstream in(out / "metrics.json");
   return nlohmann::json::parse(in, nullptr, false);

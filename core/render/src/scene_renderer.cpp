@@ -194,17 +194,24 @@ void SceneRenderer::check_drawn(const std::vector<DrawItem>& items, const Camera
   for (std::size_t i = 0; i < items.size(); ++i) {
     const DrawItem& item = items[i];
     if (std::binary_search(present.begin(), present.end(), item.id)) continue;
-    // Does one of its vertices lie between the clipping planes and project into the image?
-    // (Its bounding box would be too coarse: a thin, turned part at the image edge can have its
-    // box overlap the image while the part itself is outside.)
+    // Does one of its vertices lie between the clipping planes and project into the image, at
+    // least 1 px inside its border? (Its bounding box would be too coarse: a thin, turned part
+    // at the image edge can have its box overlap the image while the part itself is outside;
+    // and a vertex within a pixel of the border may belong to a sliver that covers no pixel
+    // centre.) Items smaller than 2 px across may legitimately cover no pixel centre either.
     const MeshBuffer& mesh = meshes_[item.mesh.index];
     const Eigen::Isometry3d camera_item = camera_root * item.pose_root;
+    const std::vector<Eigen::Vector3f>& vertices = vertices_[item.mesh.index];
+    Eigen::AlignedBox3f box;
+    for (const Eigen::Vector3f& vertex : vertices) box.extend(vertex);
+    const double size_m = vertices.empty() ? 0.0 : static_cast<double>(box.diagonal().norm());
     bool vertex_in_view = false;
-    for (const Eigen::Vector3f& vertex : vertices_[item.mesh.index]) {
+    for (const Eigen::Vector3f& vertex : vertices) {
       const Eigen::Vector3d p = camera_item * vertex.cast<double>();
       if (!(p.z() > k.near && p.z() < k.far)) continue;
       const double u = k.fx * p.x() / p.z() + k.cx, v = k.fy * p.y() / p.z() + k.cy;
-      if (u >= -0.5 && u <= k.width - 0.5 && v >= -0.5 && v <= k.height - 0.5) {
+      const bool inside = u >= 0.5 && u <= k.width - 1.5 && v >= 0.5 && v <= k.height - 1.5;
+      if (inside && std::min(k.fx, k.fy) * size_m / p.z() >= 2.0) {
         vertex_in_view = true;
         break;
       }

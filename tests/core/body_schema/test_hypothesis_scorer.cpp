@@ -9,70 +9,18 @@
 #include "somasim/body_schema/hypothesis_scorer.hpp"
 #include "somasim/body_schema/observation.hpp"
 #include "somasim/error.hpp"
-#include "somasim/render/context.hpp"
-#include "somasim/render/robot_scene.hpp"
-#include "somasim/robot/robot_loader.hpp"
+#include "real_arm_views.hpp"
 
 namespace somasim::body_schema {
 namespace {
 
-std::shared_ptr<const robot::RobotModel> icub() {
-  static const auto m =
-      robot::load_robot_model_shared(SOMASIM_SOURCE_DIR "/assets/robots/icub_v1.yaml");
-  return m;
-}
+using testing::arm_dofs;
+using testing::icub;
+using testing::look;
+using testing::RealEyes;
+const Eigen::Matrix<double, 7, 1>& kBeta = testing::true_offsets_deg();
 
-const std::vector<std::string> kArmJoints = {
-    "r_shoulder_pitch", "r_shoulder_roll", "r_shoulder_yaw", "r_elbow",
-    "r_wrist_prosup",   "r_wrist_pitch",   "r_wrist_yaw"};
-const Eigen::Matrix<double, 7, 1> kBeta =
-    (Eigen::Matrix<double, 7, 1>() << 5, 4, 3, -2, 3, -7, 3).finished();
-
-std::vector<int> arm_dofs() {
-  std::vector<int> dofs;
-  for (const auto& j : kArmJoints) dofs.push_back(icub()->dof_index(j));
-  return dofs;
-}
-
-// Encoder readings with the right hand in front of the eyes.
-Eigen::VectorXd encoders() {
-  Eigen::VectorXd q = Eigen::VectorXd::Zero(icub()->num_dofs());
-  const std::map<std::string, double> deg = {{"r_shoulder_pitch", -85}, {"r_shoulder_roll", 10},
-                                             {"r_shoulder_yaw", 20},    {"r_elbow", 50},
-                                             {"r_wrist_prosup", 10},    {"r_wrist_pitch", -10}};
-  for (const auto& [j, d] : deg) q[icub()->dof_index(j)] = d * std::numbers::pi / 180.0;
-  return q;
-}
-
-struct RealEyes {
-  std::vector<render::Camera> cameras;
-  std::vector<cv::Mat> rgb;
-};
-
-// The real arm (encoders + kBeta) rendered on white by the SceneRenderer on this thread.
-RealEyes look(const Eigen::VectorXd& q) {
-  render::OsmesaContext context;
-  render::SceneRenderer renderer(context.gl());
-  render::RobotScene scene(renderer, icub());
-  robot::RobotData data(*icub());
-  Eigen::VectorXd beta = Eigen::VectorXd::Zero(icub()->num_dofs());
-  const std::vector<int> dofs = arm_dofs();
-  for (std::size_t j = 0; j < dofs.size(); ++j)
-    beta[dofs[j]] = kBeta[static_cast<Eigen::Index>(j)] * std::numbers::pi / 180.0;
-  robot::forward_kinematics(*icub(), data, q, beta);
-  RealEyes eyes;
-  render::RenderOptions options;
-  options.background = Eigen::Vector3f::Ones();
-  for (const char* eye : {"left_eye", "right_eye"}) {
-    const render::Camera cam = render::camera_for(*icub(), eye, data.link_poses);
-    std::vector<render::DrawItem> items;
-    const Eigen::Vector3d viewpoint = cam.pose_root.translation();
-    scene.add_robot(data.link_poses, items, &viewpoint);
-    eyes.cameras.push_back(cam);
-    eyes.rgb.push_back(renderer.render(items, cam, options).rgb);
-  }
-  return eyes;
-}
+Eigen::VectorXd encoders() { return testing::hand_before_eyes(); }
 
 // Columns: the truth, the nominal model, and the truth with one joint 2 deg off (each joint,
 // both signs).

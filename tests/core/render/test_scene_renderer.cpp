@@ -237,9 +237,31 @@ TEST_F(SceneRendererTest, NearerItemsHideFartherOnesAndHiddenItemsAreNoError) {
   EXPECT_EQ(cv::countNonZero(img.ids == 3), 0);
 }
 
+TEST_F(SceneRendererTest, ASliverAtTheImageBorderThatCoversNoPixelCentreIsNoError) {
+  // A ball below the image whose highest vertex in the image projects 0.05 px inside the last
+  // row's outer edge (v = 239.45): it may cover no pixel centre (a ball entering the view, as in
+  // ball_on_forearm_camera.yaml at t = 20.6 s).
+  const TriangleMesh mesh = tessellate_sphere(0.05, 24);
+  const MeshHandle sphere = renderer.upload(mesh);
+  const Camera cam = forward_camera();
+  // The ball's centre height z [m] at x = 1 m that puts its highest vertex at v = 239.45.
+  const auto pole_v = [&](double z) {
+    double v = 1e9;
+    for (const Eigen::Vector3f& p : mesh.positions)
+      v = std::min(v, cam.project(Eigen::Vector3d(1.0, 0, z) + p.cast<double>())->y());
+    return v;
+  };
+  double lo = -1.0, hi = 0.0;  // pole_v(lo) > 239.45 > pole_v(hi)
+  for (int i = 0; i < 60; ++i) (pole_v(0.5 * (lo + hi)) > 239.45 ? lo : hi) = 0.5 * (lo + hi);
+  ASSERT_NEAR(pole_v(lo), 239.45, 1e-6);
+  const RenderedImages img = renderer.render({{sphere, at(1.0, 0, lo), {1, 1, 1}, 5}}, cam);
+  EXPECT_EQ(cv::countNonZero(img.ids == 5), 0);
+}
+
 TEST_F(SceneRendererTest, AnItemInViewThatDrawsNothingIsAnError) {
   const MeshHandle good = renderer.upload(tessellate_sphere(0.05, 32));
-  const MeshHandle degenerate = renderer.upload(tessellate_box({0.0, 0.0, 0.0}));
+  // A 20 cm segment: large in the image (the check applies) but every triangle has zero area.
+  const MeshHandle degenerate = renderer.upload(tessellate_box({0.2, 0.0, 0.0}));
   const Camera cam = forward_camera();
   const std::vector<DrawItem> items = {{good, at(1.0, 0.2, 0), {1, 1, 1}, 4},
                                        {degenerate, at(1.0, 0, 0), {1, 1, 1}, 9}};

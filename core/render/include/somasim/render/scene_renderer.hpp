@@ -25,13 +25,14 @@
 /// Each requested output is one glReadPixels of the framebuffer.
 ///
 /// "Never a silent black frame": with `check_drawn` on, after reading back, every item with a
-/// vertex between the near and far planes that projects into the image but whose id has no
-/// pixel in the id mask is drawn again alone; if it still covers no pixel (so it was not merely
-/// hidden behind other items) render() throws RunError "camera 'X': item N (id I) projects into
-/// the image but drew no pixel". The extra cost is one scan of the id mask, plus a vertex scan
-/// and a redraw only for items that show no pixel. Items thinner than a pixel that fall between
-/// pixel centres also trigger it; items sharing an id are checked together; an item seen only
-/// through a triangle whose vertices all lie outside the image is not checked.
+/// vertex between the near and far planes that projects into the image at least 1 px inside its
+/// border, and whose vertex bounds span at least 2 px there, but whose id has no pixel in the id
+/// mask is drawn again alone; if it still covers no pixel (so it was not merely hidden behind
+/// other items) render() throws RunError "camera 'X': item N (id I) projects into the image but
+/// drew no pixel". The extra cost is one scan of the id mask, plus a vertex scan and a redraw
+/// only for items that show no pixel. Not checked: items smaller than 2 px, slivers within a
+/// pixel of the image border (they may cover no pixel centre), items seen only through a
+/// triangle whose vertices all lie outside the image; items sharing an id are checked together.
 ///
 /// Threads: as every GL object, a SceneRenderer lives on its context's thread (context.hpp).
 #include <cstdint>

@@ -1,0 +1,71 @@
+// The body-schema filter step (issue targets: M = 200 in both eyes <= 100 ms and <= 1.3x the
+// bare render + read-back of the same hypotheses; M = 2000 <= 1 s): observation (colour
+// segmentation of both eye images), prediction, hypothesis rendering and scoring, update.
+// The bare floor is the same hypotheses drawn and read back by a HypothesisRenderer with no
+// extraction, measured in the same loop so that both see the same machine load.
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+
+#include "../core/body_schema/real_arm_views.hpp"
+#include "somasim/body_schema/hypothesis_scorer.hpp"
+#include "somasim/body_schema/observation.hpp"
+#include "somasim/body_schema/particle_filter.hpp"
+
+namespace {
+
+using namespace somasim;
+using namespace somasim::body_schema;
+namespace support = somasim::body_schema::testing;
+
+void BM_FilterStepOverBareRender(benchmark::State& state) {
+  const int particles = static_cast<int>(state.range(0));
+  const int workers = static_cast<int>(state.range(1));
+  const Eigen::VectorXd q = support::hand_before_eyes();
+  const support::RealEyes eyes = support::look(q);
+  const ArmHypothesisModel arm = arm_hypothesis_model(*support::icub(), {"r_hand"}, 8);
+  HypothesisScorer scorer(support::icub(), arm, support::arm_dofs(), workers, ScorerOptions{});
+  render::HypothesisRenderer bare(arm.meshes, workers);
+  OffsetParticleFilter filter(7, particles, noise_schedule_preset("paper"), 1);
+  render::HypothesisBatchOptions floor_options;
+  floor_options.extract = false;
+  floor_options.margin_px = ScorerOptions{}.margin_px;
+  using Clock = std::chrono::steady_clock;
+  double step_s = 0.0, floor_s = 0.0;
+  for (auto _ : state) {
+    const Clock::time_point t0 = Clock::now();
+    std::vector<cv::Mat> masks;
+    for (const cv::Mat& rgb : eyes.rgb) masks.push_back(segment_colour(rgb, HsvRange{}));
+    filter.predict();
+    benchmark::DoNotOptimize(filter.update(scorer.score(q, filter.particles(), eyes.cameras, masks)));
+    const Clock::time_point t1 = Clock::now();
+    render::HypothesisBatch batch;
+    batch.meshes = {0};
+    batch.cameras = eyes.cameras;
+    for (Eigen::Index m = 0; m < filter.particles().cols(); ++m)
+      batch.hypotheses.push_back(scorer.link_poses(q, filter.particles().col(m)));
+    const Clock::time_point t2 = Clock::now();
+    benchmark::DoNotOptimize(bare.render(batch, floor_options));
+    const Clock::time_point t3 = Clock::now();
+    const double s = std::chrono::duration<double>(t1 - t0).count();
+    step_s += s;
+    floor_s += std::chrono::duration<double>(t3 - t2).count();
+    state.SetIterationTime(s);
+    if (filter.sigma_deg() < 1.0) filter.reset();  // keep the particles spread as in a movement
+  }
+  const double n = static_cast<double>(state.iterations());
+  state.counters["step_ms"] = 1e3 * step_s / n;
+  state.counters["bare_render_ms"] = 1e3 * floor_s / n;
+  state.counters["ratio"] = floor_s > 0.0 ? step_s / floor_s : 0.0;
+  state.counters["kinematics_ms"] = scorer.timing().kinematics_ms;
+  state.counters["compare_ms"] = scorer.timing().compare_ms;
+}
+BENCHMARK(BM_FilterStepOverBareRender)
+    ->ArgNames({"M", "workers"})
+    ->Args({200, 1})
+    ->Args({200, 2})
+    ->Args({2000, 2})
+    ->Unit(benchmark::kMillisecond)
+    ->UseManualTime();
+
+}  // namespace
