@@ -232,6 +232,11 @@ void ReachController::step(NodeContext& ctx) {
   if (targets_.front().posture.size() == 0) {  // first step: the encoders are known now
     plan_targets(ctx, joint_state_->position);
     begin_movement(0);
+  } else if (movement_done_) {  // the last frame of a movement was observed at the last tick
+    movement_done_ = false;
+    begin_movement(movement_ + 1);
+  } else if (phase_->stage == ReachStage::kOpenLoop && frame_ == open_frames_) {
+    phase_->stage = ReachStage::kClosedLoop;
   }
   if (movement_ >= movements_) return;
   ++frame_;
@@ -258,20 +263,17 @@ void ReachController::step(NodeContext& ctx) {
     case ReachStage::kIdle:
       break;
   }
-  if (phase_->stage == ReachStage::kOpenLoop || phase_->stage == ReachStage::kClosedLoop) {
-    phase_->frame = frame_;
-    if (frame_ > 0) evaluate(frame_);
-    if (frame_ == open_frames_ && closed_frames_ > 0) phase_->stage = ReachStage::kClosedLoop;
-    if (frame_ == open_frames_ + closed_frames_) {
-      report_->movement_done();
-      if (movement_ + 1 < movements_) {
-        begin_movement(movement_ + 1);
-      } else {
-        movement_ = movements_;
-        phase_->stage = ReachStage::kIdle;
-        ctx.request_stop(fmt::format("{} movements done", movements_));
-      }
-    }
+  if (phase_->stage != ReachStage::kOpenLoop && phase_->stage != ReachStage::kClosedLoop) return;
+  // The phase keeps this frame's number and stage for this tick, so that the filter and the
+  // reports running after this node observe frame 1 ... open + closed of every movement.
+  phase_->frame = frame_;
+  if (frame_ > 0) evaluate(frame_);
+  if (frame_ == open_frames_ + closed_frames_) {
+    report_->movement_done();
+    if (movement_ + 1 < movements_)
+      movement_done_ = true;
+    else
+      ctx.request_stop(fmt::format("{} movements done", movements_));
   }
 }
 

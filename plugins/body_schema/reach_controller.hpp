@@ -54,6 +54,7 @@ class ReachController : public Plugin {
   ReachPhase* phase_ = nullptr;
 
   int movement_ = -1, movements_ = 0;
+  bool movement_done_ = false;  // begin the next movement at the next tick
   int frame_ = 0;  // within the stage kToStart, then 1..open+closed
   Eigen::VectorXd from_, goal_;
   std::unique_ptr<ReachReport> report_;

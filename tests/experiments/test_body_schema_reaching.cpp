@@ -53,7 +53,7 @@ TEST(BodySchemaReaching, AdaptationBeatsTheNominalModelAndTheClosedLoopTheOpenLo
   EXPECT_LT(num(m, "estimation_error_deg"), num(m, "estimation_error_nominal_deg"));
   EXPECT_LT(num(m, "reaching_error_closed_loop_mm"), 0.5 * num(m, "reaching_error_open_loop_mm"));
   EXPECT_GT(num(m, "filter_step_ms"), 0.0);
-  EXPECT_EQ(m["filter_frames"], 2 * 55);
+  EXPECT_EQ(m["filter_frames"], 2 * 56);  // frames 0 ... 55 of each movement
   for (const char* f :
        {"figures/body_schema_estimation.png", "figures/body_schema_reaching.png",
         "figures/body_schema_closed_loop.png", "reach_frames.csv", "body_schema_filter.csv"})
@@ -138,5 +138,50 @@ TEST(BodySchemaReaching, NoMatchingParticleStopsCleanlyOrReinflates) {
   EXPECT_EQ(stopped.metrics["filter_frames_without_match"], 1);
   const auto kept = run_config("body_schema_reaching", short_run(blind), "reinflate");
   EXPECT_EQ(kept.metrics["status"], "completed");
-  EXPECT_EQ(kept.metrics["filter_frames_without_match"], 2 * 55);
+  EXPECT_EQ(kept.metrics["filter_frames_without_match"], 2 * 56);
+}
+
+TEST(BodySchemaParticles, FiltersOfOtherSizesRunOnTheSameImages) {
+  const auto run =
+      run_config("body_schema_particles",
+                 {{"nodes.reach.params.targets", "[-0.006, 0.007, 0.258, 44.2, -78.7, -66.4]"},
+                  {"nodes.reach.params.starts_per_target", "1"},
+                  {"nodes.reach.params.open_loop_frames", "30"},
+                  {"nodes.filter.params.particles", "60"},
+                  {"nodes.filter.params.compare_particles", "[20, 120]"},
+                  {"nodes.filter.params.evaluate_frame", "30"}},
+                 "particles");
+  const auto& m = run.metrics;
+  ASSERT_EQ(m["status"], "completed") << m["error"];
+  for (const char* key : {"particles_20_estimation_error_mm", "particles_60_estimation_error_mm",
+                          "particles_120_estimation_error_deg", "particles_120_step_ms"})
+    EXPECT_TRUE(m["nodes"]["filter"][key].is_number()) << key;
+  // More particles cost more time per step.
+  EXPECT_GT(m["nodes"]["filter"]["particles_120_step_ms"].get<double>(),
+            m["nodes"]["filter"]["particles_20_step_ms"].get<double>());
+  EXPECT_TRUE(std::filesystem::exists(run.dir / "figures/body_schema_particles.png"));
+}
+
+TEST(BodySchemaEdges, BothArmsAdaptFromEdgesAndTheBimanualErrorIsReported) {
+  const auto run = run_config("body_schema_edges",
+                              {{"nodes.reach_right.params.starts_per_target", "1"},
+                               {"nodes.reach_left.params.starts_per_target", "1"},
+                               {"nodes.filter_right.params.particles", "100"},
+                               {"nodes.filter_left.params.particles", "100"}},
+                              "edges");
+  const auto& m = run.metrics;
+  ASSERT_EQ(m["status"], "completed") << m["error"];
+  for (const char* arm : {"reach_right", "reach_left"}) {
+    const auto& r = m["nodes"][arm];
+    EXPECT_LT(r["estimation_error_mm"].get<double>(),
+              r["estimation_error_nominal_mm"].get<double>())
+        << arm;
+  }
+  const auto& b = m["nodes"]["bimanual"];
+  for (const char* key :
+       {"bimanual_tip_gap_open_loop_mm", "bimanual_tip_gap_closed_loop_mm",
+        "bimanual_palm_distance_error_open_loop_mm", "bimanual_palm_distance_error_closed_loop_mm"})
+    EXPECT_TRUE(b[key].is_number()) << key;
+  EXPECT_LT(b["bimanual_tip_gap_closed_loop_mm"].get<double>(),
+            b["bimanual_tip_gap_open_loop_mm"].get<double>());
 }

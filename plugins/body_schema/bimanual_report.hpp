@@ -1,0 +1,34 @@
+#pragma once
+// bimanual_report: the positioning error of the body-schema study's bimanual task (Vicente et
+// al. 2016, Fig 13): both hands reach (two reach_controller nodes in step), their index
+// fingertips should touch with the palms a given distance apart. From the world's true link
+// poses: the fingertip gap and the palm-distance error at the end of the open loop and of the
+// closed loop of every movement.
+#include <string>
+#include <vector>
+
+#include "somasim/body_schema/ports.hpp"
+#include "somasim/plugin.hpp"
+#include "somasim/robot/ports.hpp"
+#include "somasim/robot/robot_model.hpp"
+
+namespace somasim::plugins {
+
+class BimanualReport : public Plugin {
+ public:
+  static PluginSpec spec();
+  void configure(NodeContext& ctx) override;
+  void step(NodeContext& ctx) override;
+  void finish(NodeContext& ctx) override;
+
+ private:
+  std::shared_ptr<const robot::RobotModel> model_;
+  robot::FrameRef tips_[2], palms_[2];
+  double palm_distance_ = 0.12;
+  int open_frames_ = 120, closed_frames_ = 50;
+  const LinkPoses* poses_ = nullptr;
+  const ReachPhase* phase_ = nullptr;
+  std::vector<double> gap_open_, gap_closed_, palm_open_, palm_closed_;  // [mm]
+};
+
+}  // namespace somasim::plugins
