@@ -60,6 +60,17 @@ TEST(BodySchemaReaching, AdaptationBeatsTheNominalModelAndTheClosedLoopTheOpenLo
     EXPECT_TRUE(std::filesystem::exists(run.dir / f)) << f;
 }
 
+TEST(BodySchemaReaching, StillAdaptsWithImageNoise) {
+  const auto run = run_config("body_schema_reaching",
+                              short_run({{"nodes.reach.params.starts_per_target", "1"},
+                                         {"nodes.filter.params.image_noise", "12"}}),
+                              "noise");
+  const auto& m = run.metrics;
+  ASSERT_EQ(m["status"], "completed") << m["error"];
+  EXPECT_EQ(m["filter_frames_without_match"], 0);
+  EXPECT_LT(num(m, "estimation_error_mm"), 0.5 * num(m, "estimation_error_nominal_mm"));
+}
+
 TEST(BodySchemaReaching, SameSeedSameOutputsWhateverTheRenderThreads) {
   const auto a = run_config("body_schema_reaching",
                             short_run({{"nodes.reach.params.starts_per_target", "1"},
