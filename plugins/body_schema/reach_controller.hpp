@@ -55,7 +55,7 @@ class ReachController : public Plugin {
 
   int movement_ = -1, movements_ = 0;
   bool movement_done_ = false;  // begin the next movement at the next tick
-  int frame_ = 0;  // within the stage kToStart, then 1..open+closed
+  int frame_ = 0;               // within the stage kToStart, then 1..open+closed
   Eigen::VectorXd from_, goal_;
   std::unique_ptr<ReachReport> report_;
   std::string csv_name_;

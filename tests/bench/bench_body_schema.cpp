@@ -37,7 +37,8 @@ void BM_FilterStepOverBareRender(benchmark::State& state) {
     std::vector<cv::Mat> masks;
     for (const cv::Mat& rgb : eyes.rgb) masks.push_back(segment_colour(rgb, HsvRange{}));
     filter.predict();
-    benchmark::DoNotOptimize(filter.update(scorer.score(q, filter.particles(), eyes.cameras, masks)));
+    benchmark::DoNotOptimize(
+        filter.update(scorer.score(q, filter.particles(), eyes.cameras, masks)));
     const Clock::time_point t1 = Clock::now();
     render::HypothesisBatch batch;
     batch.meshes = {0};

@@ -105,13 +105,15 @@ RobotScene::RobotScene(SceneRenderer& renderer, std::shared_ptr<const robot::Rob
     throw InputError(fmt::format("segments: expected >= 3, got {}", options_.segments));
   for (int i = 0; i < model_->num_links(); ++i) {
     const robot::Link& link = model_->link(i);
-    colours_.push_back(link_colour(link.name));
+    const Eigen::Vector3f colour = link_colour(link.name);
     const char* kind = nullptr;
     const std::vector<robot::Geometry>& shapes = shapes_of(link, LinkShapes::kVisual, kind);
     for (std::size_t s = 0; s < shapes.size(); ++s) {
       const TriangleMesh mesh = shape_mesh(*model_, link, kind, s, shapes[s], options_.segments);
       triangles_ += mesh.triangle_count();
-      parts_.push_back({i, renderer_->upload(mesh), shapes[s].origin, bounds(mesh)});
+      const Eigen::Vector3f albedo =
+          shapes[s].colour ? Eigen::Vector3f(shapes[s].colour->cast<float>()) : colour;
+      parts_.push_back({i, renderer_->upload(mesh), shapes[s].origin, bounds(mesh), albedo});
     }
   }
 }
@@ -129,7 +131,7 @@ void RobotScene::add_robot(const std::vector<Eigen::Isometry3d>& link_poses,
       if ((v.array() >= p.bounds.min.array()).all() && (v.array() <= p.bounds.max.array()).all())
         continue;
     }
-    item.colour = colours_[static_cast<std::size_t>(p.link)];
+    item.colour = p.colour;
     item.id = link_id(p.link);
     items.push_back(item);
   }

@@ -82,13 +82,13 @@ std::vector<Geometry> RobotLoader::read_geometries(const YAML::Node& link, const
   }
   for (std::size_t i = 0; i < list.size(); ++i) {
     const std::string path = fmt::format("{}[{}]", key, i);
-    if (auto g = read_geometry(list[i], item, path)) out.push_back(std::move(*g));
+    if (auto g = read_geometry(list[i], item, path, key == "visual")) out.push_back(std::move(*g));
   }
   return out;
 }
 
 std::optional<Geometry> RobotLoader::read_geometry(const YAML::Node& n, const std::string& item,
-                                                   const std::string& path) {
+                                                   const std::string& path, bool visual) {
   if (!reader_.expect_map(n, item, path, "a shape {type: sphere|box|cylinder|capsule|mesh, ...}"))
     return std::nullopt;
   const std::string prefix = path + ".";
@@ -193,6 +193,25 @@ std::optional<Geometry> RobotLoader::read_geometry(const YAML::Node& n, const st
       }
       break;
     }
+  }
+  if (visual) {
+    keys.push_back("colour");
+    if (n["colour"]) {
+      const auto c = reader_.numbers(n, "colour", item, prefix, false, 3);
+      if (!c) {
+        ok = false;
+      } else if (c->minCoeff() < 0 || c->maxCoeff() > 1) {
+        reader_.error(n["colour"], item, prefix + "colour",
+                      "expected [r, g, b] with each value in [0, 1]");
+        ok = false;
+      } else {
+        g.colour = Eigen::Vector3d(*c);
+      }
+    }
+  } else if (n["colour"]) {
+    reader_.error(n["colour"], item, prefix + "colour",
+                  "only visual shapes are drawn with a colour; expected it under 'visual'");
+    return std::nullopt;
   }
   reader_.check_keys(n, keys, item, prefix);
   if (!n["from"]) {

@@ -106,8 +106,10 @@ class RobotLoader {
   void read_link_properties();
   std::vector<Geometry> read_geometries(const YAML::Node& link, const std::string& key,
                                         const std::string& item);
+  /// `visual`: the shape may carry `colour: [r, g, b]` (in [0, 1]); elsewhere that key is an
+  /// unknown key.
   std::optional<Geometry> read_geometry(const YAML::Node& n, const std::string& item,
-                                        const std::string& path);
+                                        const std::string& path, bool visual);
 
   // --- frames, cameras, skin (robot_extras.cpp) --------------------------------------------------
   std::optional<int> find_link(const YAML::Node& map, const std::string& key,

@@ -25,10 +25,9 @@ inline std::shared_ptr<const robot::RobotModel> icub() {
 }
 
 inline const std::vector<std::string>& arm_joints() {
-  static const std::vector<std::string> j = {"r_shoulder_pitch", "r_shoulder_roll",
-                                             "r_shoulder_yaw",   "r_elbow",
-                                             "r_wrist_prosup",   "r_wrist_pitch",
-                                             "r_wrist_yaw"};
+  static const std::vector<std::string> j = {
+      "r_shoulder_pitch", "r_shoulder_roll", "r_shoulder_yaw", "r_elbow",
+      "r_wrist_prosup",   "r_wrist_pitch",   "r_wrist_yaw"};
   return j;
 }
 

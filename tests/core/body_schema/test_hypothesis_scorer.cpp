@@ -6,10 +6,10 @@
 #include <cstdio>
 #include <numbers>
 
+#include "real_arm_views.hpp"
 #include "somasim/body_schema/hypothesis_scorer.hpp"
 #include "somasim/body_schema/observation.hpp"
 #include "somasim/error.hpp"
-#include "real_arm_views.hpp"
 
 namespace somasim::body_schema {
 namespace {
@@ -20,7 +20,9 @@ using testing::look;
 using testing::RealEyes;
 const Eigen::Matrix<double, 7, 1>& kBeta = testing::true_offsets_deg();
 
-Eigen::VectorXd encoders() { return testing::hand_before_eyes(); }
+Eigen::VectorXd encoders() {
+  return testing::hand_before_eyes();
+}
 
 // Columns: the truth, the nominal model, and the truth with one joint 2 deg off (each joint,
 // both signs).

@@ -137,9 +137,9 @@ TEST(RobotScene, RightHandBeforeTheEyesIsSeenByBothWithinItsProjectedBounds) {
     const auto images = r.renderer.render(items, cam);
     const Blob b = blob(images.ids, render::link_id(hand));
     EXPECT_GT(b.count, 1000) << eye;
-    // Bounds of the hand's projected shapes (corners of each shape's bounding box).
+    // Bounds of the hand's projected shapes (corners of each drawn shape's bounding box).
     double u0 = 1e9, u1 = -1e9, v0 = 1e9, v1 = -1e9;
-    for (const robot::Geometry& g : icub()->link(hand).collision) {
+    for (const robot::Geometry& g : icub()->link(hand).visual) {
       const render::Bounds box = render::bounds(render::geometry_mesh(g, 32));
       for (int k = 0; k < 8; ++k) {
         const Eigen::Vector3d corner((k & 1) ? box.max.x() : box.min.x(),
@@ -155,5 +155,42 @@ TEST(RobotScene, RightHandBeforeTheEyesIsSeenByBothWithinItsProjectedBounds) {
     EXPECT_LE(b.u_max, std::ceil(u1)) << eye;
     EXPECT_GE(b.v_min, std::floor(v0)) << eye;
     EXPECT_LE(b.v_max, std::ceil(v1)) << eye;
+  }
+}
+
+// The green marker on the right index fingertip (a visual with its own colour) is drawn green,
+// inside the disc where the camera projects it (centred on the frame r_index_tip; partly hidden
+// by the fingers in this posture); the rest of the hand stays skin-coloured.
+TEST(RobotScene, FingertipMarkerIsDrawnInItsOwnColour) {
+  Renderer r;
+  const auto p = poses(kHandBeforeEyes);
+  const robot::Frame& tip =
+      icub()->frames()[static_cast<std::size_t>(icub()->find_frame("r_index_tip"))];
+  const Eigen::Vector3d tip_root = p[static_cast<std::size_t>(tip.link)] * tip.pose.translation();
+  const double marker_radius = icub()->link(tip.link).visual.back().radius;
+  for (const char* eye : {"left_eye", "right_eye"}) {
+    const render::Camera cam = render::camera_for(*icub(), eye, p);
+    std::vector<render::DrawItem> items;
+    const Eigen::Vector3d viewpoint = cam.pose_root.translation();
+    r.scene.add_robot(p, items, &viewpoint);
+    const auto images = r.renderer.render(items, cam);
+    const Eigen::Vector2d centre = *cam.project(tip_root);
+    // Projected radius of the sphere (f r / z) and a pixel for the rasterisation.
+    const double radius_px =
+        cam.intrinsics.fx * marker_radius / (cam.to_camera(tip_root).z() - marker_radius) + 1.0;
+    int green = 0, skin = 0, outside = 0;
+    for (int row = 0; row < images.rgb.rows; ++row)
+      for (int col = 0; col < images.rgb.cols; ++col) {
+        const cv::Vec3b c = images.rgb.at<cv::Vec3b>(row, col);  // R, G, B
+        if (c[1] > 2 * c[0] && c[1] > 2 * c[2]) {
+          ++green;
+          if ((Eigen::Vector2d(col, row) - centre).norm() > radius_px) ++outside;
+        } else if (c[0] > c[1] && c[1] > c[2] && c[0] > 120) {
+          ++skin;
+        }
+      }
+    EXPECT_GT(green, 25) << eye;
+    EXPECT_EQ(outside, 0) << eye;
+    EXPECT_GT(skin, 10 * green) << eye;
   }
 }

@@ -113,6 +113,59 @@ TEST_F(RobotLoader, MeshFileMissingOrUnreadable) {
             "expected 'mass' [kg]");
 }
 
+TEST_F(RobotLoader, VisualColour) {
+  const RobotModel m = parse_robot_model(
+      "robot: r\nlinks:\n  root:\n    collision: [{type: sphere, radius: 0.1}]\n"
+      "    visual: [{type: sphere, radius: 0.1}, {type: sphere, radius: 0.01, colour: [0, 1, "
+      "0.25]}]\n",
+      "robot.yaml", dir_);
+  ASSERT_EQ(m.link(0).visual.size(), 2u);
+  EXPECT_FALSE(m.link(0).visual[0].colour.has_value());
+  ASSERT_TRUE(m.link(0).visual[1].colour.has_value());
+  EXPECT_EQ(*m.link(0).visual[1].colour, Eigen::Vector3d(0, 1, 0.25));
+  EXPECT_EQ(error("robot: r\nlinks:\n  root:\n    visual: [{type: sphere, radius: 0.1, "
+                  "colour: [0, 1.5, 0]}]\n"),
+            "robot.yaml:4:50: link 'root', key 'visual[0].colour': expected [r, g, b] with each "
+            "value in [0, 1]");
+  EXPECT_EQ(error("robot: r\nlinks:\n  root:\n    visual: [{type: sphere, radius: 0.1, "
+                  "colour: [0, 1]}]\n"),
+            "robot.yaml:4:50: link 'root', key 'visual[0].colour': expected a list of 3 "
+            "numbers, got 2 items");
+  // A colour is drawn: collision shapes have none.
+  EXPECT_EQ(error("robot: r\nlinks:\n  root:\n    collision: [{type: sphere, radius: 0.1, "
+                  "colour: [0, 1, 0]}]\n"),
+            "robot.yaml:4:53: link 'root', key 'collision[0].colour': only visual shapes are "
+            "drawn with a colour; expected it under 'visual'");
+}
+
+// The iCub's right index fingertip carries the green marker the eyes track; the hand's other
+// visuals are its collision shapes.
+TEST_F(RobotLoader, IcubFingertipMarker) {
+  for (const char* v : {"icub_v1", "icub_v1_7", "icub_v2"}) {
+    const RobotModel m = test::load_icub(v);
+    const Link& hand = m.link(m.link_index("r_hand"));
+    ASSERT_EQ(hand.visual.size(), hand.collision.size() + 1) << v;
+    for (std::size_t i = 0; i < hand.collision.size(); ++i) {
+      EXPECT_EQ(hand.visual[i].type, hand.collision[i].type) << v << " shape " << i;
+      EXPECT_TRUE(hand.visual[i].origin.isApprox(hand.collision[i].origin)) << v << " " << i;
+      EXPECT_EQ(hand.visual[i].radius, hand.collision[i].radius) << v << " shape " << i;
+      EXPECT_EQ(hand.visual[i].length, hand.collision[i].length) << v << " shape " << i;
+      EXPECT_EQ(hand.visual[i].size, hand.collision[i].size) << v << " shape " << i;
+      EXPECT_FALSE(hand.visual[i].colour.has_value());
+    }
+    const Geometry& marker = hand.visual.back();
+    EXPECT_EQ(marker.type, GeometryType::Sphere);
+    EXPECT_NEAR(marker.radius, 0.007, 1e-12);
+    ASSERT_TRUE(marker.colour.has_value());
+    EXPECT_GT((*marker.colour)[1], 0.8);
+    EXPECT_LT((*marker.colour)[0], 0.2);
+    EXPECT_LT((*marker.colour)[2], 0.2);
+    const Frame& tip = m.frames()[static_cast<std::size_t>(m.find_frame("r_index_tip"))];
+    EXPECT_EQ(tip.link, m.link_index("r_hand"));
+    EXPECT_LT((marker.origin.translation() - tip.pose.translation()).norm(), 1e-12) << v;
+  }
+}
+
 TEST_F(RobotLoader, LimitsMinAboveMax) {
   EXPECT_EQ(error(R"(robot: r
 links:

@@ -37,7 +37,8 @@ inline std::int32_t object_id(std::size_t object) {
 inline constexpr std::int32_t kFirstSceneExtraId = 60000;
 
 /// Albedo (R, G, B in [0, 1]) of a link, from its name: hands and fingers skin-coloured, eyes
-/// dark, head white, arms light grey, torso darker grey.
+/// dark, head white, arms light grey, torso darker grey. A visual shape with a `colour`
+/// (robot::Geometry::colour, e.g. the iCub's green fingertip marker) is drawn with that instead.
 Eigen::Vector3f link_colour(const std::string& link_name);
 
 /// Mesh of a robot::Geometry in its own frame: primitives through tessellate() with
@@ -92,12 +93,12 @@ class RobotScene {
     MeshHandle mesh;
     Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();  ///< link <- geometry
     Bounds bounds;                                             ///< in the geometry frame
+    Eigen::Vector3f colour;  ///< the shape's colour, else its link's (link_colour)
   };
   SceneRenderer* renderer_;
   std::shared_ptr<const robot::RobotModel> model_;
   RobotSceneOptions options_;
   std::vector<LinkPart> parts_;
-  std::vector<Eigen::Vector3f> colours_;             // per link
   std::map<std::string, MeshHandle> object_meshes_;  // by shape and size
   std::size_t triangles_ = 0;
 };

@@ -3,6 +3,7 @@
 /// Collision/visual shapes of a link and the link's mass properties.
 ///
 /// Units: [m], [kg], [kg·m²]. Every pose is expressed in the frame of the link that owns it.
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -27,6 +28,9 @@ struct Geometry {
   Eigen::Vector3d size = Eigen::Vector3d::Zero();  ///< box: full extents along x, y, z [m]
   std::string mesh_file;  ///< mesh: absolute path (checked to exist and be readable at load)
   Eigen::Vector3d mesh_scale = Eigen::Vector3d::Ones();  ///< mesh: per-axis scale
+  /// Visual shapes only (`colour: [r, g, b]`, each in [0, 1]): the albedo the renderer draws
+  /// this shape with, e.g. a coloured marker; nullopt = the link's colour (from its name).
+  std::optional<Eigen::Vector3d> colour;
 };
 
 /// Volume of a primitive [m³]; 0 for meshes (their volume is unknown until loaded).

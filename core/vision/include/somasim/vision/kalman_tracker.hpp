@@ -1,0 +1,63 @@
+#pragma once
+/// @file
+/// A 3-D Kalman filter (cv::KalmanFilter, double precision) of a point's position and velocity
+/// from measured positions, with a constant-velocity or constant-acceleration motion model
+/// (continuous white-noise acceleration or jerk). Positions [m], velocities [m/s], times [s];
+/// any frame, as long as the measurements share it.
+#include <memory>
+
+#include <Eigen/Core>
+
+namespace cv {
+class KalmanFilter;
+}
+
+namespace somasim::vision {
+
+enum class MotionModel {
+  kConstantVelocity,      ///< state: position, velocity; white-noise acceleration
+  kConstantAcceleration,  ///< state: position, velocity, acceleration; white-noise jerk
+};
+
+struct KalmanOptions {
+  MotionModel model = MotionModel::kConstantVelocity;
+  /// Spectral density of the white noise that drives the model: acceleration [m²/s³] for
+  /// constant velocity, jerk [m²/s⁵] for constant acceleration.
+  double process_noise = 1.0;
+  double measurement_sigma_m = 0.002;       ///< σ of a measured position, per axis [m]
+  double initial_velocity_sigma = 0.5;      ///< σ of the unknown velocity at the first fix [m/s]
+  double initial_acceleration_sigma = 2.0;  ///< same for the acceleration [m/s²]
+};
+
+class KalmanTracker {
+ public:
+  /// Throws somasim::InputError naming the option for a noise or σ that is not > 0.
+  explicit KalmanTracker(const KalmanOptions& options = {});
+  ~KalmanTracker();
+  KalmanTracker(KalmanTracker&&) noexcept;
+  KalmanTracker& operator=(KalmanTracker&&) noexcept;
+
+  /// The first measurement initialises the state (velocity 0); later ones predict by `dt_s`
+  /// (> 0, else InputError) and correct.
+  void update(const Eigen::Vector3d& measured_position, double dt_s);
+  /// Predicts by `dt_s` without a measurement (a frame without the point); no-op before the
+  /// first fix.
+  void predict(double dt_s);
+  /// Forgets the state (the next update() starts afresh).
+  void reset();
+
+  bool initialised() const { return initialised_; }
+  Eigen::Vector3d position() const;  ///< [m]; zero before the first fix
+  Eigen::Vector3d velocity() const;  ///< [m/s]; zero before the first fix
+  /// Standard deviation of the position estimate along each axis [m].
+  Eigen::Vector3d position_sigma() const;
+
+ private:
+  void set_transition(double dt_s);
+  KalmanOptions options_;
+  int order_ = 2;  // 2: position, velocity; 3: + acceleration
+  std::unique_ptr<cv::KalmanFilter> filter_;
+  bool initialised_ = false;
+};
+
+}  // namespace somasim::vision

@@ -1,0 +1,151 @@
+#include "gaze_controller.hpp"
+
+#include <algorithm>
+
+#include <fmt/format.h>
+
+#include "somasim/error.hpp"
+#include "somasim/robot/experiment_robot.hpp"
+#include "somasim/robot/joint_text.hpp"
+#include "somasim/units.hpp"
+
+namespace somasim::plugins {
+namespace {
+
+std::string join(const std::vector<std::string>& names) {
+  std::string out;
+  for (const std::string& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
+
+}  // namespace
+
+PluginSpec GazeController::spec() {
+  PluginSpec s("gaze_controller",
+               "Neck and eyes follow a stimulus: the gaze joints that put it on both optical "
+               "axes (believed kinematics: encoders + joint_offsets_deg), reached at a bounded "
+               "joint speed with position commands within the joint limits. A target out of "
+               "reach leaves joints at their limits, logged once per episode and counted "
+               "(metrics out_of_reach_steps, max_gaze_offset_deg).");
+  robot::add_robot_param(s);
+  s.add_string_list("cameras")
+      .size(2)
+      .defaults(std::vector<std::string>{"left_eye", "right_eye"})
+      .describe("the two cameras whose optical axes meet at the target");
+  s.add_string_list("neck_joints")
+      .defaults(std::vector<std::string>{"neck_pitch", "neck_yaw"})
+      .describe("joints that point the head (the coarse part of the gaze)");
+  s.add_string_list("eye_joints")
+      .defaults(std::vector<std::string>{"eyes_tilt", "l_eye_pan", "r_eye_pan"})
+      .describe("joints that point the eyes (pulled weakly toward 0)");
+  s.add_string("joint_offsets_deg")
+      .accepts_map_as_text()
+      .defaults(std::string(""))
+      .describe("believed-kinematics error, 'joint: value, ...' [deg] added to the encoders");
+  s.add_double("max_speed_deg_s")
+      .unit_is("deg/s")
+      .defaults(60.0)
+      .range(1.0, 1000.0)
+      .describe("largest commanded speed of a gaze joint");
+  s.add_double("eye_centring")
+      .defaults(0.05)
+      .range(0.0, 10.0)
+      .describe("weight of the eyes' pull toward 0 in the gaze solve");
+  s.add_double("reach_tolerance_deg")
+      .unit_is("deg")
+      .defaults(0.5)
+      .range(0.0, 90.0)
+      .describe("a target further than this from an optical axis at the solution is out of reach");
+  s.input<pps::Stimulus>("target", "what to look at (root frame), e.g. marker_tracker.stimulus");
+  s.input<JointState>("joint_state", "encoder values (e.g. world.joint_state)");
+  s.output<JointCommand>("command",
+                         "position commands of the gaze joints (encoder values); the other "
+                         "joints kNone (merge with a joint_command_mux)");
+  return s;
+}
+
+void GazeController::configure(NodeContext& ctx) {
+  model_ = robot::experiment_robot(ctx);
+  vision::GazeOptions options;
+  options.cameras = ctx.param<std::vector<std::string>>("cameras");
+  options.neck_joints = ctx.param<std::vector<std::string>>("neck_joints");
+  options.eye_joints = ctx.param<std::vector<std::string>>("eye_joints");
+  options.eye_centring = ctx.param<double>("eye_centring");
+  for (const char* key : {"neck_joints", "eye_joints"})
+    for (const std::string& joint : ctx.param<std::vector<std::string>>(key)) {
+      try {
+        model_->dof_index(joint);
+      } catch (const InputError& e) {
+        ctx.param_error(key, fmt::format("gaze: {}", e.what()));
+      }
+    }
+  try {
+    solver_ = std::make_unique<vision::GazeSolver>(model_, options);
+  } catch (const InputError& e) {
+    ctx.param_error("cameras", e.what());  // the joints are checked above
+  }
+  try {
+    offsets_ = robot::parse_joint_offsets(*model_, ctx.param<std::string>("joint_offsets_deg"));
+  } catch (const InputError& e) {
+    ctx.param_error("joint_offsets_deg", e.what());
+  }
+  max_speed_ = deg_to_rad(ctx.param<double>("max_speed_deg_s"));
+  reach_tolerance_ = deg_to_rad(ctx.param<double>("reach_tolerance_deg"));
+  target_ = &ctx.input<pps::Stimulus>("target");
+  joints_ = &ctx.input<JointState>("joint_state");
+  command_ = &ctx.output<JointCommand>("command");
+  const int n = model_->num_dofs();
+  command_->mode.assign(static_cast<std::size_t>(n), JointCommandMode::kNone);
+  command_->position.setZero(n);
+  command_->velocity.setZero(n);
+}
+
+void GazeController::step(NodeContext& ctx) {
+  const Eigen::VectorXd& q = joints_->position;
+  if (q.size() == 0) return;  // nothing measured yet
+  if (q.size() != model_->num_dofs())
+    throw RunError(fmt::format("input 'joint_state': expected {} joint values (robot '{}'), got {}",
+                               model_->num_dofs(), model_->name(), q.size()));
+  ++steps_;
+  if (!started_) {  // hold the current gaze until there is something to look at
+    goal_ = q;
+    command_->position = q;
+    for (const int d : solver_->dofs())
+      command_->mode[static_cast<std::size_t>(d)] = JointCommandMode::kPosition;
+    started_ = true;
+  }
+  if (target_->present) {
+    ++steps_with_target_;
+    const vision::GazeSolution s = solver_->solve(q + offsets_, target_->position);
+    goal_ = s.q - offsets_;
+    const bool unreachable = s.behind || s.residual_rad > reach_tolerance_;
+    if (unreachable) {
+      ++clamped_steps_;
+      max_offset_rad_ = std::max(max_offset_rad_, s.residual_rad);
+      if (!out_of_reach_)
+        ctx.log().warn(
+            "gaze_controller: target ({:.3f}, {:.3f}, {:.3f}) m is out of reach at t = {:.3f} s: "
+            "{} at their limits, {:.1f} deg off the optical axes{}",
+            target_->position.x(), target_->position.y(), target_->position.z(), ctx.time_s(),
+            s.at_limit.empty() ? std::string("no joint") : join(s.at_limit),
+            rad_to_deg(s.residual_rad), s.behind ? " (behind a camera)" : "");
+    }
+    out_of_reach_ = unreachable;
+  }
+  // Toward the goal at a bounded speed, within the limits.
+  const double max_step = max_speed_ * ctx.period_s();
+  for (const int d : solver_->dofs()) {
+    double& c = command_->position[d];
+    c += std::clamp(goal_[d] - c, -max_step, max_step);
+    c = std::clamp(c, model_->lower_limits()[d], model_->upper_limits()[d]);
+  }
+}
+
+void GazeController::finish(NodeContext& ctx) {
+  ctx.report_metric("steps", steps_);
+  ctx.report_metric("steps_with_target", steps_with_target_);
+  ctx.report_metric("out_of_reach_steps", clamped_steps_);
+  ctx.report_metric("max_gaze_offset_deg", rad_to_deg(max_offset_rad_));
+}
+
+}  // namespace somasim::plugins

@@ -1,0 +1,369 @@
+#include "marker_tracker.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "somasim/error.hpp"
+#include "somasim/render/robot_scene.hpp"
+#include "somasim/robot/experiment_robot.hpp"
+#include "somasim/robot/joint_text.hpp"
+#include "somasim/vision/stereo.hpp"
+
+namespace somasim::plugins {
+namespace {
+
+std::string hsv_text(const cv::Vec3b& v) {
+  return fmt::format("[{}, {}, {}]", v[0], v[1], v[2]);
+}
+
+}  // namespace
+
+PluginSpec MarkerTracker::spec() {
+  PluginSpec s(
+      "marker_tracker",
+      "A coloured marker (default: the iCub's green right index fingertip) seen by two eyes: the "
+      "largest blob in an HSV range in each image, stereo triangulation through the believed "
+      "head/eye kinematics (encoders + joint_offsets_deg) into the root frame, and a Kalman "
+      "filter for position and velocity. A colour range that matches no pixel of either image "
+      "while the believed kinematics put the marker in view of both eyes for "
+      "no_colour_frames_error frames is a run error; a marker that is hidden or too small is "
+      "reported as present = false (metric tracked_share).");
+  robot::add_robot_param(s);
+  s.add_string_list("cameras")
+      .size(2)
+      .defaults(std::vector<std::string>{"left_eye", "right_eye"})
+      .describe(
+          "the robot model's cameras whose images arrive on left_eye_rgb and right_eye_rgb (their "
+          "intrinsics are the calibration the images must match)");
+  s.add_string("joint_offsets_deg")
+      .accepts_map_as_text()
+      .defaults(std::string(""))
+      .describe(
+          "believed-kinematics error, 'joint: value, ...' [deg] added to the encoder values "
+          "before the cameras are posed (as proprioception's joint_offsets_deg)");
+  s.add_list("hsv_low")
+      .size(3)
+      .range(0, 255)
+      .defaults(std::vector<double>{45, 80, 40})
+      .describe(
+          "lower HSV bound of the marker's colour (OpenCV: H 0-179, S and V 0-255; default "
+          "green); H above hsv_high's H wraps around 180 (red)");
+  s.add_list("hsv_high")
+      .size(3)
+      .range(0, 255)
+      .defaults(std::vector<double>{75, 255, 255})
+      .describe("upper HSV bound");
+  s.add_int("min_area_px")
+      .defaults(std::int64_t{6})
+      .at_least(1)
+      .describe("smallest blob [px] taken for the marker in an image");
+  s.add_double("marker_radius")
+      .unit_is("m")
+      .defaults(0.007)
+      .range(1e-4, 1.0)
+      .describe("radius of the output stimulus [m] (the marker sphere of the robot description)");
+  s.add_string("marker_frame")
+      .defaults(std::string("r_index_tip"))
+      .describe(
+          "frame (or link) of the robot model at the marker: where the believed kinematics "
+          "expect it, to tell a wrong colour range from a hidden marker");
+  s.add_string("blob_centre")
+      .defaults(std::string("circle"))
+      .one_of({"circle", "centroid"})
+      .describe(
+          "the marker's pixel position in an image: the centre of the blob's enclosing circle "
+          "(right for a round marker up to half hidden, e.g. behind its finger) or the blob's "
+          "centroid");
+  s.add_double("max_reprojection_px")
+      .unit_is("px")
+      .defaults(3.0)
+      .at_least(0.01)
+      .describe(
+          "a triangulation whose RMS reprojection error exceeds this is rejected (the eyes saw "
+          "different blobs)");
+  s.add_int("no_colour_frames_error")
+      .defaults(std::int64_t{10})
+      .at_least(0)
+      .describe(
+          "run error after this many consecutive frames with no pixel in the colour range in "
+          "either image while the marker is believed in view of both eyes; 0 = never");
+  s.add_int("reset_after_lost")
+      .defaults(std::int64_t{5})
+      .at_least(1)
+      .describe("frames without a fix after which the Kalman filter starts afresh");
+  s.add_string("motion_model")
+      .defaults(std::string("constant_velocity"))
+      .one_of({"constant_velocity", "constant_acceleration"})
+      .describe("the Kalman filter's motion model");
+  s.add_double("process_noise")
+      .defaults(1.0)
+      .at_least(1e-9)
+      .describe(
+          "spectral density of the white acceleration [m²/s³] (constant_velocity) or jerk "
+          "[m²/s⁵] (constant_acceleration) that drives the model");
+  s.add_double("measurement_sigma")
+      .unit_is("m")
+      .defaults(0.003)
+      .at_least(1e-6)
+      .describe("σ of a triangulated position per axis [m]");
+  s.input<Image>("left_eye_rgb", "rgb8 image of the first camera (e.g. cam.left_eye_rgb)");
+  s.input<Image>("right_eye_rgb", "rgb8 image of the second camera (e.g. cam.right_eye_rgb)");
+  s.input<JointState>("joint_state",
+                      "encoder values: the head and eye joints pose the cameras (e.g. "
+                      "world.joint_state)");
+  s.input<LinkPoses>("true_link_poses",
+                     "optional ground truth (e.g. world.link_poses): the true marker_frame gives "
+                     "the metrics position_rms_m and velocity_rms_m_s",
+                     /*optional=*/true);
+  s.output<pps::Stimulus>(
+      "stimulus",
+      "the marker in the root frame: Kalman position [m] and velocity [m/s], radius "
+      "marker_radius; present only in frames with a triangulated fix");
+  s.output<StereoPixels>("marker_pixels",
+                         "the marker's blob in each image: found, centroid (u, v) [px], area "
+                         "[px] (somasim/vision/ports.hpp)");
+  return s;
+}
+
+void MarkerTracker::configure(NodeContext& ctx) {
+  model_ = robot::experiment_robot(ctx);
+  data_ = std::make_unique<robot::RobotData>(*model_);
+  try {
+    offsets_ = robot::parse_joint_offsets(*model_, ctx.param<std::string>("joint_offsets_deg"));
+  } catch (const InputError& e) {
+    ctx.param_error("joint_offsets_deg", e.what());
+  }
+  cameras_ = ctx.param<std::vector<std::string>>("cameras");
+  robot::forward_kinematics(*model_, *data_, Eigen::VectorXd::Zero(model_->num_dofs()));
+  for (const std::string& c : cameras_) {
+    try {
+      render::camera_for(*model_, c, data_->link_poses);
+    } catch (const InputError& e) {
+      ctx.param_error("cameras", e.what());
+    }
+  }
+  const auto low = ctx.param<std::vector<double>>("hsv_low");
+  const auto high = ctx.param<std::vector<double>>("hsv_high");
+  if (low[0] > 179)
+    ctx.param_error("hsv_low",
+                    fmt::format("hue {} is above 179 (OpenCV's hue is degrees / 2)", low[0]));
+  if (high[0] > 179)
+    ctx.param_error("hsv_high",
+                    fmt::format("hue {} is above 179 (OpenCV's hue is degrees / 2)", high[0]));
+  for (int i = 0; i < 3; ++i) {
+    range_.low[i] = static_cast<unsigned char>(std::lround(low[static_cast<std::size_t>(i)]));
+    range_.high[i] = static_cast<unsigned char>(std::lround(high[static_cast<std::size_t>(i)]));
+  }
+  for (int i = 1; i < 3; ++i)
+    if (range_.low[i] > range_.high[i])
+      ctx.param_error("hsv_low",
+                      fmt::format("{} {} is above hsv_high's {}", i == 1 ? "saturation" : "value",
+                                  range_.low[i], range_.high[i]));
+  range_text_ =
+      fmt::format("hsv_low {} .. hsv_high {}", hsv_text(range_.low), hsv_text(range_.high));
+  min_area_px_ = ctx.param<int>("min_area_px");
+  use_circle_ = ctx.param<std::string>("blob_centre") == "circle";
+  marker_radius_ = ctx.param<double>("marker_radius");
+  max_reprojection_px_ = ctx.param<double>("max_reprojection_px");
+  no_colour_frames_error_ = ctx.param<int>("no_colour_frames_error");
+  reset_after_lost_ = ctx.param<int>("reset_after_lost");
+  const std::string marker_frame = ctx.param<std::string>("marker_frame");
+  if (model_->find_frame(marker_frame) < 0 && model_->find_link(marker_frame) < 0)
+    ctx.param_error("marker_frame", fmt::format("'{}' is neither a frame nor a link of robot '{}'",
+                                                marker_frame, model_->name()));
+  marker_ref_ = model_->frame_ref(marker_frame);
+  kalman_options_.model = ctx.param<std::string>("motion_model") == "constant_acceleration"
+                              ? vision::MotionModel::kConstantAcceleration
+                              : vision::MotionModel::kConstantVelocity;
+  kalman_options_.process_noise = ctx.param<double>("process_noise");
+  kalman_options_.measurement_sigma_m = ctx.param<double>("measurement_sigma");
+  kalman_ = vision::KalmanTracker(kalman_options_);
+
+  left_ = &ctx.input<Image>("left_eye_rgb");
+  right_ = &ctx.input<Image>("right_eye_rgb");
+  joints_ = &ctx.input<JointState>("joint_state");
+  truth_ = ctx.is_wired("true_link_poses") ? &ctx.input<LinkPoses>("true_link_poses") : nullptr;
+  stimulus_ = &ctx.output<pps::Stimulus>("stimulus");
+  pixels_ = &ctx.output<StereoPixels>("marker_pixels");
+  stimulus_->radius = marker_radius_;
+}
+
+void MarkerTracker::check_image(const Image& image, const std::string& port,
+                                const std::string& camera) const {
+  const robot::Camera& c = model_->cameras()[static_cast<std::size_t>(model_->find_camera(camera))];
+  if (image.encoding != ImageEncoding::kRgb8)
+    throw RunError(fmt::format("input '{}': expected an rgb8 image, got {}", port,
+                               image_encoding_name(image.encoding)));
+  if (image.data.cols != c.width || image.data.rows != c.height)
+    throw RunError(fmt::format(
+        "input '{}': the image is {} × {} px, but camera '{}' of robot '{}' is calibrated for "
+        "{} × {} px (wire images of that camera at its resolution)",
+        port, image.data.cols, image.data.rows, camera, model_->name(), c.width, c.height));
+  if (!image.camera.empty() && image.camera != camera)
+    throw RunError(
+        fmt::format("input '{}': the image comes from camera '{}', expected '{}' "
+                    "(param cameras)",
+                    port, image.camera, camera));
+}
+
+bool MarkerTracker::looks_like_marker(const render::Camera& camera, const vision::MarkerBlob& blob,
+                                      const Eigen::Vector3d& point_root) const {
+  // The enclosing circle of a sphere's image: f R / z [px], less when partly hidden; one pixel
+  // of rasterisation either way.
+  const double z = camera.to_camera(point_root).z();
+  const double expected_px = camera.intrinsics.fx * marker_radius_ / z;
+  return blob.circle_radius_px <= 1.3 * expected_px + 1.0 &&
+         blob.circle_radius_px >= 0.3 * expected_px - 1.0;
+}
+
+bool MarkerTracker::marker_expected_in_view(const std::vector<render::Camera>& cameras) const {
+  const Eigen::Vector3d p = data_->link_poses[static_cast<std::size_t>(marker_ref_.link)] *
+                            marker_ref_.pose.translation();
+  for (const render::Camera& c : cameras) {
+    const auto uv = c.project(p);
+    if (!uv || uv->x() < 0 || uv->y() < 0 || uv->x() > c.intrinsics.width - 1 ||
+        uv->y() > c.intrinsics.height - 1)
+      return false;
+  }
+  return true;
+}
+
+void MarkerTracker::lose(double dt_s) {
+  stimulus_->present = false;
+  ++lost_;
+  if (lost_ >= reset_after_lost_)
+    kalman_.reset();
+  else if (dt_s > 0)
+    kalman_.predict(dt_s);
+  stimulus_->position = kalman_.position();
+  stimulus_->velocity = kalman_.velocity();
+}
+
+void MarkerTracker::step(NodeContext& ctx) {
+  if (left_->data.empty() || right_->data.empty() || joints_->position.size() == 0) {
+    stimulus_->present = false;
+    return;
+  }
+  if (left_->frame == last_frame_) return;  // no new image: the outputs hold
+  check_image(*left_, "left_eye_rgb", cameras_[0]);
+  check_image(*right_, "right_eye_rgb", cameras_[1]);
+  if (joints_->position.size() != model_->num_dofs())
+    throw RunError(fmt::format("input 'joint_state': expected {} joint values (robot '{}'), got {}",
+                               model_->num_dofs(), model_->name(), joints_->position.size()));
+  const double dt = last_frame_ == 0 ? 0.0 : left_->time_s - last_time_s_;
+  last_frame_ = left_->frame;
+  last_time_s_ = left_->time_s;
+  ++frames_;
+
+  // The cameras where the believed head and eye kinematics put them.
+  robot::forward_kinematics(*model_, *data_, joints_->position + offsets_);
+  const std::vector<render::Camera> cams = {
+      render::camera_for(*model_, cameras_[0], data_->link_poses),
+      render::camera_for(*model_, cameras_[1], data_->link_poses)};
+
+  // Candidate blobs of each image, and the in-range pixels (to tell a wrong range).
+  const auto blobs = [&](const Image& image, int& matched) {
+    std::vector<vision::MarkerBlob> b =
+        vision::segment_blobs(image.data, range_, min_area_px_, kMaxBlobs);
+    matched =
+        b.empty() ? vision::segment_marker(image.data, range_, 1).matched_px : b.front().matched_px;
+    return b;
+  };
+  int matched_l = 0, matched_r = 0;
+  const std::vector<vision::MarkerBlob> lb = blobs(*left_, matched_l);
+  const std::vector<vision::MarkerBlob> rb = blobs(*right_, matched_r);
+
+  const bool expected = marker_expected_in_view(cams);
+  if (expected) ++expected_;
+  if (expected && matched_l == 0 && matched_r == 0) {
+    if (no_colour_++ == 0) no_colour_since_s_ = left_->time_s;
+    if (no_colour_frames_error_ > 0 && no_colour_ >= no_colour_frames_error_)
+      throw RunError(fmt::format(
+          "no pixel of camera '{}' or '{}' has been in the colour range {} for {} frames "
+          "(since t = {:.3f} s), while the believed kinematics put the marker ('{}') in view "
+          "of both: is the range the marker's colour (OpenCV HSV: H 0-179, S and V 0-255)?",
+          cameras_[0], cameras_[1], range_text_, no_colour_, no_colour_since_s_,
+          ctx.param<std::string>("marker_frame")));
+  } else {
+    no_colour_ = 0;
+  }
+
+  // The pair of blobs that is the marker: rays that meet (lowest reprojection error within
+  // max_reprojection_px) at a depth where a sphere of marker_radius looks as large as the blobs.
+  const vision::MarkerBlob* best_l = nullptr;
+  const vision::MarkerBlob* best_r = nullptr;
+  vision::Triangulation best;
+  for (const vision::MarkerBlob& l : lb)
+    for (const vision::MarkerBlob& r : rb) {
+      const Eigen::Vector2d ul = use_circle_ ? l.circle_centre_px : l.centroid_px;
+      const Eigen::Vector2d ur = use_circle_ ? r.circle_centre_px : r.centroid_px;
+      const vision::Triangulation t = vision::triangulate(cams[0], ul, cams[1], ur);
+      if (!t.valid || t.reprojection_error_px > max_reprojection_px_) continue;
+      if (best_l && t.reprojection_error_px >= best.reprojection_error_px) continue;
+      if (!looks_like_marker(cams[0], l, t.point) || !looks_like_marker(cams[1], r, t.point))
+        continue;
+      best_l = &l, best_r = &r, best = t;
+    }
+  const auto eye = [](const std::vector<vision::MarkerBlob>& b, const vision::MarkerBlob* chosen) {
+    const vision::MarkerBlob* shown = chosen ? chosen : (b.empty() ? nullptr : &b.front());
+    if (!shown) return StereoPixels::Eye{};
+    return StereoPixels::Eye{chosen != nullptr, shown->centroid_px, shown->circle_centre_px,
+                             shown->area_px};
+  };
+  pixels_->left = eye(lb, best_l);
+  pixels_->right = eye(rb, best_r);
+  pixels_->frame = left_->frame;
+  if (!best_l) return lose(dt);
+  const vision::Triangulation& t = best;
+  if (dt <= 0.0) kalman_.reset();  // the first image, or no time between images: start afresh
+  kalman_.update(t.point, dt > 0.0 ? dt : ctx.period_s());
+  lost_ = 0;
+  ++tracked_;
+  if (expected) ++expected_tracked_;
+  reprojection_sum_ += t.reprojection_error_px;
+  reprojection_max_ = std::max(reprojection_max_, t.reprojection_error_px);
+  stimulus_->present = true;
+  stimulus_->position = kalman_.position();
+  stimulus_->velocity = kalman_.velocity();
+  stimulus_->radius = marker_radius_;
+  if (truth_) score_against_truth(dt);
+}
+
+void MarkerTracker::score_against_truth(double dt_s) {
+  if (truth_->poses.size() != static_cast<std::size_t>(model_->num_links()))
+    throw RunError(
+        fmt::format("input 'true_link_poses': expected {} link poses (robot '{}'), got {}",
+                    model_->num_links(), model_->name(), truth_->poses.size()));
+  const Eigen::Vector3d p =
+      truth_->poses[static_cast<std::size_t>(marker_ref_.link)] * marker_ref_.pose.translation();
+  position_sq_sum_ += (stimulus_->position - p).squaredNorm();
+  ++position_count_;
+  // The true velocity: finite difference over consecutive tracked frames.
+  if (has_last_truth_ && dt_s > 0.0 && last_truth_frame_ + 1 == frames_) {
+    velocity_sq_sum_ += (stimulus_->velocity - (p - last_truth_) / dt_s).squaredNorm();
+    ++velocity_count_;
+  }
+  last_truth_ = p;
+  last_truth_frame_ = frames_;
+  has_last_truth_ = true;
+}
+
+void MarkerTracker::finish(NodeContext& ctx) {
+  ctx.report_metric("frames", frames_);
+  ctx.report_metric("frames_tracked", tracked_);
+  ctx.report_metric("tracked_share", frames_ ? static_cast<double>(tracked_) / frames_ : 0.0);
+  ctx.report_metric("frames_in_view", expected_);
+  ctx.report_metric("in_view_tracked_share",
+                    expected_ ? static_cast<double>(expected_tracked_) / expected_ : 0.0);
+  ctx.report_metric("reprojection_mean_px", tracked_ ? reprojection_sum_ / tracked_ : 0.0);
+  ctx.report_metric("reprojection_max_px", reprojection_max_);
+  if (truth_) {
+    ctx.report_metric("position_rms_m",
+                      position_count_ ? std::sqrt(position_sq_sum_ / position_count_) : 0.0);
+    ctx.report_metric("velocity_rms_m_s",
+                      velocity_count_ ? std::sqrt(velocity_sq_sum_ / velocity_count_) : 0.0);
+  }
+}
+
+}  // namespace somasim::plugins

@@ -1,0 +1,79 @@
+#pragma once
+// marker_tracker: a coloured marker (the iCub's green right index fingertip) seen by both eyes:
+// HSV segmentation in each image, stereo triangulation through the believed head/eye
+// kinematics, a Kalman filter for position and velocity; a pps::Stimulus in the root frame.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "somasim/plugin.hpp"
+#include "somasim/pps/ports.hpp"
+#include "somasim/render/camera.hpp"
+#include "somasim/render/ports.hpp"
+#include "somasim/robot/kinematics.hpp"
+#include "somasim/robot/ports.hpp"
+#include "somasim/robot/robot_model.hpp"
+#include "somasim/vision/kalman_tracker.hpp"
+#include "somasim/vision/marker_segmentation.hpp"
+#include "somasim/vision/ports.hpp"
+
+namespace somasim::plugins {
+
+class MarkerTracker : public Plugin {
+ public:
+  static PluginSpec spec();
+  void configure(NodeContext& ctx) override;
+  void step(NodeContext& ctx) override;
+  void finish(NodeContext& ctx) override;
+
+ private:
+  void check_image(const Image& image, const std::string& port, const std::string& camera) const;
+  bool looks_like_marker(const render::Camera& camera, const vision::MarkerBlob& blob,
+                         const Eigen::Vector3d& point_root) const;
+  bool marker_expected_in_view(const std::vector<render::Camera>& cameras) const;
+  void lose(double dt_s);
+  void score_against_truth(
+      double dt_s);  // a tracked frame against true_link_poses  // a frame without a fix
+
+  static constexpr std::size_t kMaxBlobs = 8;  // candidate blobs per image, largest first
+
+  std::shared_ptr<const robot::RobotModel> model_;
+  std::unique_ptr<robot::RobotData> data_;
+  Eigen::VectorXd offsets_;
+  std::vector<std::string> cameras_;
+  vision::HsvRange range_;
+  std::string range_text_;
+  int min_area_px_ = 1;
+  bool use_circle_ = true;  // blob_centre: circle
+  double marker_radius_ = 0.0;
+  double max_reprojection_px_ = 0.0;
+  int no_colour_frames_error_ = 0;
+  int reset_after_lost_ = 0;
+  robot::FrameRef marker_ref_;  // where the marker is (marker_frame)
+  vision::KalmanOptions kalman_options_;
+  vision::KalmanTracker kalman_;
+
+  const Image* left_ = nullptr;
+  const Image* right_ = nullptr;
+  const JointState* joints_ = nullptr;
+  const LinkPoses* truth_ = nullptr;  // optional
+  pps::Stimulus* stimulus_ = nullptr;
+  StereoPixels* pixels_ = nullptr;
+
+  std::uint64_t last_frame_ = 0;
+  double last_time_s_ = 0.0;
+  int lost_ = 0;       // consecutive frames without a fix
+  int no_colour_ = 0;  // consecutive frames without any pixel in range while expected in view
+  double no_colour_since_s_ = 0.0;
+  std::int64_t frames_ = 0, tracked_ = 0, expected_ = 0, expected_tracked_ = 0;
+  double reprojection_sum_ = 0.0, reprojection_max_ = 0.0;
+  // Against the truth (true_link_poses), over tracked frames.
+  double position_sq_sum_ = 0.0, velocity_sq_sum_ = 0.0;
+  std::int64_t position_count_ = 0, velocity_count_ = 0, last_truth_frame_ = 0;
+  Eigen::Vector3d last_truth_ = Eigen::Vector3d::Zero();
+  bool has_last_truth_ = false;
+};
+
+}  // namespace somasim::plugins
