@@ -1,5 +1,7 @@
 #include "bimanual_report.hpp"
 
+#include "sample_stats.hpp"
+
 #include <fmt/format.h>
 
 #include <cmath>
@@ -10,18 +12,9 @@ namespace somasim::plugins {
 namespace {
 
 void put_mean_sd(NodeContext& ctx, const std::string& key, const std::vector<double>& v) {
-  if (v.empty()) {
-    ctx.report_metric(key, nullptr);
-    ctx.report_metric(key + "_sd", nullptr);
-    return;
-  }
-  double sum = 0, ss = 0;
-  for (double x : v) sum += x;
-  const double mean = sum / static_cast<double>(v.size());
-  for (double x : v) ss += (x - mean) * (x - mean);
-  ctx.report_metric(key, mean);
-  ctx.report_metric(key + "_sd",
-                    v.size() > 1 ? std::sqrt(ss / static_cast<double>(v.size() - 1)) : 0.0);
+  const MeanSd s = mean_sd(v);
+  ctx.report_metric(key, v.empty() ? nlohmann::json(nullptr) : nlohmann::json(s.mean));
+  ctx.report_metric(key + "_sd", v.empty() ? nlohmann::json(nullptr) : nlohmann::json(s.sd));
 }
 
 }  // namespace

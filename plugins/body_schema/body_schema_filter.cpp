@@ -8,6 +8,7 @@
 #include <fstream>
 #include <numbers>
 
+#include "sample_stats.hpp"
 #include "somasim/body_schema/pose_error.hpp"
 #include "somasim/error.hpp"
 #include "somasim/render/robot_scene.hpp"
@@ -22,13 +23,6 @@ constexpr double kRadToDeg = 180.0 / std::numbers::pi;
 const std::vector<std::string> kRightArm = {"r_shoulder_pitch", "r_shoulder_roll", "r_shoulder_yaw",
                                             "r_elbow",          "r_wrist_prosup",  "r_wrist_pitch",
                                             "r_wrist_yaw"};
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-  std::nth_element(v.begin(), mid, v.end());
-  return *mid;
-}
 
 }  // namespace
 
@@ -238,7 +232,8 @@ void BodySchemaFilter::configure(NodeContext& ctx) {
   if (!sizes.empty())
     comparison_ = std::make_unique<ParticleComparison>(
         sizes, static_cast<int>(offset_dofs_.size()),
-        body_schema::noise_schedule_preset(ctx.param<std::string>("schedule")), kde, ctx.rng()());
+        body_schema::noise_schedule_preset(ctx.param<std::string>("schedule")), kde, ctx.rng()(),
+        reinflate_factor_);
   main_record_.particles = filter_->size();
   evaluate_frame_ = ctx.param<int>("evaluate_frame");
 
@@ -429,8 +424,9 @@ void BodySchemaFilter::write_csv() const {
 void BodySchemaFilter::finish(NodeContext& ctx) {
   ctx.report_metric("filter_frames", static_cast<std::int64_t>(frames_));
   ctx.report_metric("filter_particles", filter_ ? filter_->size() : 0);
-  ctx.report_metric("filter_step_ms", median(main_record_.step_ms));
-  ctx.report_metric("filter_render_ms", median(render_ms_));
+  ctx.report_metric("filter_step_ms",
+                    main_record_.step_ms.empty() ? 0.0 : median(main_record_.step_ms));
+  ctx.report_metric("filter_render_ms", render_ms_.empty() ? 0.0 : median(render_ms_));
   ctx.report_metric("filter_frames_without_match", lost_frames_);
   std::vector<SizeRecord> records = {main_record_};
   if (comparison_)

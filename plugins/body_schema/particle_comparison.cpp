@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "sample_stats.hpp"
 #include "somasim/figures/compose.hpp"
 #include "somasim/figures/figure.hpp"
 #include "somasim/figures/line_plot.hpp"
@@ -13,29 +14,6 @@
 
 namespace somasim::plugins {
 namespace {
-
-struct MeanSd {
-  double mean = NAN, sd = NAN;
-};
-
-MeanSd mean_sd(const std::vector<double>& v) {
-  MeanSd s;
-  if (v.empty()) return s;
-  double sum = 0;
-  for (double x : v) sum += x;
-  s.mean = sum / static_cast<double>(v.size());
-  double ss = 0;
-  for (double x : v) ss += (x - s.mean) * (x - s.mean);
-  s.sd = v.size() > 1 ? std::sqrt(ss / static_cast<double>(v.size() - 1)) : 0.0;
-  return s;
-}
-
-double median(std::vector<double> v) {
-  if (v.empty()) return NAN;
-  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-  std::nth_element(v.begin(), mid, v.end());
-  return *mid;
-}
 
 nlohmann::json number_or_null(double x) {
   return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr);
@@ -45,7 +23,9 @@ nlohmann::json number_or_null(double x) {
 
 ParticleComparison::ParticleComparison(const std::vector<int>& sizes, int dims,
                                        const body_schema::NoiseSchedule& schedule,
-                                       const body_schema::KdeOptions& kde, std::uint64_t seed) {
+                                       const body_schema::KdeOptions& kde, std::uint64_t seed,
+                                       double reinflate_factor)
+    : reinflate_factor_(reinflate_factor) {
   for (std::size_t k = 0; k < sizes.size(); ++k) {
     filters_.push_back(std::make_unique<body_schema::OffsetParticleFilter>(
         dims, sizes[k], schedule, splitmix64(seed + 1 + k), kde));
@@ -66,7 +46,7 @@ void ParticleComparison::step(body_schema::HypothesisScorer& scorer, const Eigen
     f.predict();
     const body_schema::FilterUpdate u =
         f.update(scorer.score(q, f.particles(), cameras, observations));
-    if (!(u.best_likelihood > 0.0)) f.inflate_sigma(2.0);
+    if (!(u.best_likelihood > 0.0)) f.inflate_sigma(reinflate_factor_);
     records_[k].step_ms.push_back(
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
   }

@@ -24,10 +24,11 @@ struct SizeRecord {
 
 class ParticleComparison {
  public:
-  /// One filter per size (>= 1 each), seeded from `seed` and its index.
+  /// One filter per size (>= 1 each), seeded from `seed` and its index; a frame whose
+  /// likelihoods are all 0 multiplies a filter's σ_s by `reinflate_factor`.
   ParticleComparison(const std::vector<int>& sizes, int dims,
                      const body_schema::NoiseSchedule& schedule, const body_schema::KdeOptions& kde,
-                     std::uint64_t seed);
+                     std::uint64_t seed, double reinflate_factor);
 
   bool empty() const { return filters_.empty(); }
   void reset();  ///< a new movement
@@ -43,6 +44,7 @@ class ParticleComparison {
  private:
   std::vector<std::unique_ptr<body_schema::OffsetParticleFilter>> filters_;
   std::vector<SizeRecord> records_;
+  double reinflate_factor_;  // σ_s multiplier after a frame no particle explained
 };
 
 /// Metrics per size ("particles_<M>_estimation_error_mm", "_deg", their "_sd",

@@ -238,7 +238,6 @@ void ReachController::step(NodeContext& ctx) {
   } else if (phase_->stage == ReachStage::kOpenLoop && frame_ == open_frames_) {
     phase_->stage = ReachStage::kClosedLoop;
   }
-  if (movement_ >= movements_) return;
   ++frame_;
   const Eigen::VectorXd& q = joint_state_->position;
   switch (phase_->stage) {

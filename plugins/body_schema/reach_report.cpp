@@ -7,6 +7,7 @@
 #include <fstream>
 #include <map>
 
+#include "sample_stats.hpp"
 #include "somasim/error.hpp"
 #include "somasim/figures/compose.hpp"
 #include "somasim/figures/figure.hpp"
@@ -14,24 +15,6 @@
 
 namespace somasim::plugins {
 namespace {
-
-struct Stat {
-  double mean = NAN, sd = NAN;
-  int n = 0;
-};
-
-Stat stat(const std::vector<double>& v) {
-  Stat s;
-  s.n = static_cast<int>(v.size());
-  if (v.empty()) return s;
-  double sum = 0;
-  for (double x : v) sum += x;
-  s.mean = sum / s.n;
-  double ss = 0;
-  for (double x : v) ss += (x - s.mean) * (x - s.mean);
-  s.sd = s.n > 1 ? std::sqrt(ss / (s.n - 1)) : 0.0;
-  return s;
-}
 
 using Field = double FrameErrors::*;
 
@@ -54,7 +37,7 @@ nlohmann::json ReachReport::metrics() const {
     return v;
   };
   auto put = [&](const std::string& key, Field f, int frame) {
-    const Stat s = stat(values(f, frame));
+    const MeanSd s = mean_sd(values(f, frame));
     m[key] = s.n > 0 ? nlohmann::json(s.mean) : nlohmann::json(nullptr);
     m[key + "_sd"] = s.n > 0 ? nlohmann::json(s.sd) : nlohmann::json(nullptr);
   };
@@ -111,7 +94,7 @@ std::vector<figures::Series> band(const std::vector<std::pair<int, double>>& sam
     if (frame >= first && frame <= last) by_frame[frame].push_back(v);
   figures::Series mean, low, high;
   for (const auto& [frame, v] : by_frame) {
-    const Stat s = stat(v);
+    const MeanSd s = mean_sd(v);
     mean.x.push_back(frame), low.x.push_back(frame), high.x.push_back(frame);
     mean.y.push_back(s.mean), low.y.push_back(s.mean - s.sd), high.y.push_back(s.mean + s.sd);
   }
@@ -144,7 +127,10 @@ void ReachReport::write_figures(const std::filesystem::path& estimation,
     p.x_label = "frame";
     p.y_label = y_label;
     for (const auto& b : bands) p.series.insert(p.series.end(), b.begin(), b.end());
-    p.vlines.push_back({static_cast<double>(open_frames_), "end of open loop"});
+    figures::RefLine end_of_open_loop;
+    end_of_open_loop.value = static_cast<double>(open_frames_);
+    end_of_open_loop.label = "end of open loop";
+    p.vlines.push_back(end_of_open_loop);
     p.x_range = figures::Range{static_cast<double>(first), static_cast<double>(end)};
     p.width = 760;
     p.height = 440;
