@@ -1,4 +1,5 @@
 #include "commands.hpp"
+#include "mpi_session.hpp"
 
 #include <cstdio>
 #include <cstdlib>  // mkdtemp (POSIX)
@@ -88,7 +89,8 @@ int bad_input(const std::exception& e) {
 
 }  // namespace
 
-int cmd_run(const CommonOptions& common, const RunArgs& args) {
+// One rank's run (the only one without MPI: mpi_session.hpp).
+static int run_rank(const CommonOptions& common, const RunArgs& args, MpiSession& mpi) {
   PluginRegistry registry(PluginRegistry::default_search_path(common.plugin_path));
   Experiment exp;
   try {
@@ -105,8 +107,8 @@ int cmd_run(const CommonOptions& common, const RunArgs& args) {
     return bad_input(e);
   }
   RunOptions run;
-  run.out_dir = args.out.empty() ? fs::path("runs") / exp.name : fs::path(args.out);
-  run.quiet = args.quiet;
+  run.out_dir = mpi.run_folder(args.out.empty() ? fs::path("runs") / exp.name : fs::path(args.out));
+  run.quiet = args.quiet || !mpi.is_root();
   try {
     prepare_run_folder(run.out_dir, args.overwrite);
   } catch (const InputError& e) {
@@ -117,7 +119,7 @@ int cmd_run(const CommonOptions& common, const RunArgs& args) {
   const fs::path out = fs::absolute(run.out_dir).lexically_normal();
   switch (report.status) {
     case RunStatus::Completed:
-      fmt::print("results: {}\n", out.string());
+      if (mpi.is_root()) fmt::print("results: {}\n", out.string());
       return kExitOk;
     case RunStatus::BadInput:
       fmt::print(stderr, "error: {}\n(partial results: {})\n", escape_control_bytes(report.error),
@@ -132,6 +134,17 @@ int cmd_run(const CommonOptions& common, const RunArgs& args) {
       return kExitInterrupted;
   }
   return kExitRunFailed;
+}
+
+int cmd_run(const CommonOptions& common, const RunArgs& args) {
+  MpiSession mpi;  // MPI only under mpirun
+  try {
+    return mpi.end(run_rank(common, args, mpi));
+  } catch (const std::exception& e) {
+    if (!mpi.active()) throw;  // main's handler reports it
+    fmt::print(stderr, "error: {}\n", escape_control_bytes(e.what()));
+    return mpi.end(dynamic_cast<const InputError*>(&e) ? kExitBadInput : kExitRunFailed);
+  }
 }
 
 int cmd_validate(const CommonOptions& common, const std::string& file,

@@ -6,6 +6,7 @@
 #include "commands.hpp"
 #include "somasim/error.hpp"
 #include "somasim/yaml_text.hpp"
+#include "sweep_commands.hpp"
 
 using namespace somasim::app;
 
@@ -62,6 +63,8 @@ int main(int argc, char** argv) {
   auto* graph_cmd = app.add_subcommand("graph", "Print an experiment's graph in Graphviz DOT");
   graph_cmd->add_option("file", graph_file, "Experiment YAML")->required();
 
+  SweepCommands sweep(app);  // sweep expand | run | run-one | slurm | collect
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -82,6 +85,7 @@ int main(int argc, char** argv) {
     if (*plugins_cmd) return cmd_plugins(common);
     if (*graph_cmd) return cmd_graph(common, graph_file);
     if (*convert_cmd) return cmd_pps_convert(convert_in, convert_out);
+    if (sweep.selected()) return sweep.dispatch(common);
   } catch (const somasim::InputError& e) {
     std::fprintf(stderr, "error: %s\n", somasim::escape_control_bytes(e.what()).c_str());
     return kExitBadInput;

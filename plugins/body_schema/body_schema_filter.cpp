@@ -87,6 +87,14 @@ PluginSpec BodySchemaFilter::spec() {
       .describe("segments around the hypotheses' curved primitives (low-poly internal model)");
   s.add_int("margin_px").defaults(std::int64_t{8}).range(0, 1000).describe("ROI margin [px]");
   s.add_int("contour_width").defaults(std::int64_t{1}).range(1, 2).describe("edges: [px]");
+  s.add_string("distribute")
+      .defaults(std::string("none"))
+      .one_of({"none", "mpi"})
+      .describe(
+          "mpi: under `mpirun -n K somasim run`, every rank renders and scores its share of the "
+          "particles (of every compared filter too) and the likelihoods are gathered, outputs "
+          "byte-identical to one process (README 'MPI'); without an MPI launch one process scores "
+          "them all. none: every rank scores all particles");
   s.add_int("render_threads").defaults(std::int64_t{2}).range(1, 64).describe("render workers");
   s.add_string("backend")
       .defaults(std::string("osmesa"))
@@ -235,6 +243,7 @@ void BodySchemaFilter::configure(NodeContext& ctx) {
         body_schema::noise_schedule_preset(ctx.param<std::string>("schedule")), kde, ctx.rng()(),
         reinflate_factor_);
   main_record_.particles = filter_->size();
+  configure_ranks(ctx, sizes);
   evaluate_frame_ = ctx.param<int>("evaluate_frame");
 
   joint_state_ = &ctx.input<JointState>("joint_state");
@@ -257,6 +266,49 @@ void BodySchemaFilter::configure(NodeContext& ctx) {
   ctx.log().info("body_schema_filter: M = {}, {} joints, links {}, {} likelihood, schedule {}",
                  filter_->size(), joint_names_.size(), fmt::join(link_names_, " "),
                  ctx.param<std::string>("likelihood"), ctx.param<std::string>("schedule"));
+}
+
+void BodySchemaFilter::configure_ranks(NodeContext& ctx, const std::vector<int>& compared_sizes) {
+  distribute_ = ctx.param<std::string>("distribute") == "mpi";
+  if (!ParticleRanks::mpi_running()) return;
+  if (!distribute_) {
+    ctx.log().info(
+        "body_schema_filter: under MPI with distribute: none: every rank scores all {} "
+        "particles",
+        filter_->size());
+    return;
+  }
+  ranks_ = std::make_unique<ParticleRanks>();  // collective: every rank configures alike
+  auto check = [&](const char* key, int particles) {
+    if (ranks_->size() > particles)
+      ctx.param_error(key, fmt::format("distribute: mpi over {} ranks needs at least one particle "
+                                       "per rank, but this filter has {} particles (launch at "
+                                       "most {} ranks, or use more particles)",
+                                       ranks_->size(), particles, particles));
+  };
+  check("particles", filter_->size());
+  for (int m : compared_sizes) check("compare_particles", m);
+  const ParticleShare mine = ranks_->share(filter_->size());
+  ctx.log().info(
+      "body_schema_filter: distribute: mpi over {} ranks; rank {} scores particles {} "
+      "to {}",
+      ranks_->size(), ranks_->rank(), mine.begin, mine.begin + mine.count - 1);
+}
+
+std::vector<double> BodySchemaFilter::score(const Eigen::VectorXd& q,
+                                            const Eigen::MatrixXd& particles,
+                                            const std::vector<render::Camera>& cameras,
+                                            const std::vector<cv::Mat>& observations) {
+  if (!ranks_) return scorer_->score(q, particles, cameras, observations);
+  const auto m = static_cast<int>(particles.cols());
+  const ParticleShare mine = ranks_->share(m);
+  const std::vector<double> local =
+      scorer_->score(q, particles.middleCols(mine.begin, mine.count), cameras, observations);
+  const auto t0 = std::chrono::steady_clock::now();
+  std::vector<double> all = ranks_->gather(local, m);
+  gather_ms_.push_back(
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+  return all;
 }
 
 std::vector<cv::Mat> BodySchemaFilter::observe(NodeContext& ctx) {
@@ -314,8 +366,7 @@ void BodySchemaFilter::step(NodeContext& ctx) {
   filter_->predict();
   std::vector<double> likelihoods;
   try {
-    likelihoods =
-        scorer_->score(joint_state_->position, filter_->particles(), cameras, observations);
+    likelihoods = score(joint_state_->position, filter_->particles(), cameras, observations);
   } catch (const RunError& e) {
     throw RunError(
         fmt::format("body_schema_filter: movement {}: the hypothesis links ({}) are "
@@ -328,7 +379,10 @@ void BodySchemaFilter::step(NodeContext& ctx) {
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   main_record_.step_ms.push_back(step_ms);
   render_ms_.push_back(scorer_->timing().render_ms);
-  if (comparison_) comparison_->step(*scorer_, joint_state_->position, cameras, observations);
+  if (comparison_)
+    comparison_->step([&](const Eigen::MatrixXd& particles) {
+      return score(joint_state_->position, particles, cameras, observations);
+    });
   publish(ctx, update);
   if (phase_ != nullptr && phase_->frame == evaluate_frame_) evaluate(joint_state_->position);
 }
@@ -428,6 +482,8 @@ void BodySchemaFilter::finish(NodeContext& ctx) {
                     main_record_.step_ms.empty() ? 0.0 : median(main_record_.step_ms));
   ctx.report_metric("filter_render_ms", render_ms_.empty() ? 0.0 : median(render_ms_));
   ctx.report_metric("filter_frames_without_match", lost_frames_);
+  if (distribute_)  // 0 with one rank
+    ctx.report_metric("filter_gather_ms", gather_ms_.empty() ? 0.0 : median(gather_ms_));
   std::vector<SizeRecord> records = {main_record_};
   if (comparison_)
     records.insert(records.end(), comparison_->records().begin(), comparison_->records().end());

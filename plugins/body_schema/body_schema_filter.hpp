@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "particle_comparison.hpp"
+#include "particle_ranks.hpp"
 #include "somasim/body_schema/eye_hand.hpp"
 #include "somasim/body_schema/hypothesis_scorer.hpp"
 #include "somasim/body_schema/observation.hpp"
@@ -29,6 +30,11 @@ class BodySchemaFilter : public Plugin {
  private:
   void configure_joints(NodeContext& ctx);
   void configure_scorer(NodeContext& ctx);
+  void configure_ranks(NodeContext& ctx, const std::vector<int>& compared_sizes);
+  /// Likelihoods of all `particles`; with ranks_, this rank scores its share and gathers the rest.
+  std::vector<double> score(const Eigen::VectorXd& q, const Eigen::MatrixXd& particles,
+                            const std::vector<render::Camera>& cameras,
+                            const std::vector<cv::Mat>& observations);
   std::vector<cv::Mat> observe(NodeContext& ctx);
   void on_no_match(NodeContext& ctx, const body_schema::FilterUpdate& update);
   void publish(NodeContext& ctx, const body_schema::FilterUpdate& update);
@@ -44,6 +50,9 @@ class BodySchemaFilter : public Plugin {
   std::unique_ptr<body_schema::HypothesisScorer> scorer_;
   std::unique_ptr<body_schema::EyeHand> eye_hand_;
   std::unique_ptr<ParticleComparison> comparison_;
+  std::unique_ptr<ParticleRanks> ranks_;  // distribute: mpi under mpirun; null otherwise
+  bool distribute_ = false;               // distribute: mpi (one rank without MPI)
+  std::vector<double> gather_ms_;         // MPI_Allgatherv wall time of each step [ms]
   SizeRecord main_record_;  // the main filter's errors at evaluate_frame and step times
   int evaluate_frame_ = 120;
   body_schema::HsvRange hand_colour_;

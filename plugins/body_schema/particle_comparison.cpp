@@ -37,15 +37,12 @@ void ParticleComparison::reset() {
   for (auto& f : filters_) f->reset();
 }
 
-void ParticleComparison::step(body_schema::HypothesisScorer& scorer, const Eigen::VectorXd& q,
-                              const std::vector<render::Camera>& cameras,
-                              const std::vector<cv::Mat>& observations) {
+void ParticleComparison::step(const ScoreFn& score) {
   for (std::size_t k = 0; k < filters_.size(); ++k) {
     const auto t0 = std::chrono::steady_clock::now();
     body_schema::OffsetParticleFilter& f = *filters_[k];
     f.predict();
-    const body_schema::FilterUpdate u =
-        f.update(scorer.score(q, f.particles(), cameras, observations));
+    const body_schema::FilterUpdate u = f.update(score(f.particles()));
     if (!(u.best_likelihood > 0.0)) f.inflate_sigma(reinflate_factor_);
     records_[k].step_ms.push_back(
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());

@@ -5,6 +5,7 @@
 // the evaluated frame of every movement, and the wall time of a filter step.
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -32,9 +33,10 @@ class ParticleComparison {
 
   bool empty() const { return filters_.empty(); }
   void reset();  ///< a new movement
-  /// One frame of every compared filter: predict, score with `scorer`, update.
-  void step(body_schema::HypothesisScorer& scorer, const Eigen::VectorXd& q,
-            const std::vector<render::Camera>& cameras, const std::vector<cv::Mat>& observations);
+  /// Likelihoods of all particles (columns, [deg]) on this frame's images.
+  using ScoreFn = std::function<std::vector<double>(const Eigen::MatrixXd& particles_deg)>;
+  /// One frame of every compared filter: predict, `score`, update.
+  void step(const ScoreFn& score);
   /// The estimates β̂ [deg] of the compared filters, in the order of the sizes.
   std::vector<Eigen::VectorXd> estimates() const;
   /// Records the estimation error of compared filter `k` at the evaluated frame.

@@ -64,6 +64,8 @@ void DoubleTouch::configure(NodeContext& ctx) {
   finger_radius_ = ctx.param<double>("finger_radius");
   position_noise_ = ctx.param<double>("position_noise");
   velocity_noise_ = ctx.param<double>("velocity_noise");
+  seen_by_eyes_ = ctx.param<std::string>("perception") == "vision";
+  marker_radius_ = ctx.param<double>("marker_radius");
   try {
     home_ = robot::parse_posture_deg(*model_, ctx.param<std::string>("home_posture_deg"));
   } catch (const InputError& e) {
@@ -301,7 +303,13 @@ void DoubleTouch::perceive(NodeContext& ctx) {
     return Eigen::Vector3d(link * effector_.pose.translation() -
                            finger_radius_ * (link.linear() * effector_axis_link_));
   };
-  const Eigen::Vector3d pb = centre(*believed_data_), pt = centre(*true_data_);
+  // Proprioception: the fingertip ball of the believed arm. Vision: the marker on the true
+  // fingertip, as ideal eyes see it (the arm's offsets do not enter).
+  const Eigen::Vector3d pt = centre(*true_data_);
+  const Eigen::Vector3d pb =
+      seen_by_eyes_ ? Eigen::Vector3d(robot::frame_pose(*true_data_, effector_).translation())
+                    : centre(*believed_data_);
+  const double perceived_radius = seen_by_eyes_ ? marker_radius_ : finger_radius_;
   const double dt = ctx.period_s();
   const Eigen::Vector3d vb =
       have_last_ ? Eigen::Vector3d((pb - last_perceived_) / dt) : Eigen::Vector3d::Zero();
@@ -312,13 +320,13 @@ void DoubleTouch::perceive(NodeContext& ctx) {
   have_last_ = true;
 
   const bool present = phase_ == Phase::kApproach || phase_ == Phase::kHold;
-  perceived_clean_ = pps::Stimulus{pb, vb, finger_radius_, true};
+  perceived_clean_ = pps::Stimulus{pb, vb, perceived_radius, true};
   truth_clean_ = pps::Stimulus{pt, vt, finger_radius_, true};
   path_history_.push_back({ctx.time_s(), perceived_clean_, truth_clean_});
   while (path_history_.front().time_s < ctx.time_s() - pps::kOffsetMaxBackoff)
     path_history_.pop_front();
   *truth_ = pps::Stimulus{pt, vt, finger_radius_, present};
-  *stimulus_ = pps::Stimulus{pb, vb, finger_radius_, present};
+  *stimulus_ = pps::Stimulus{pb, vb, perceived_radius, present};
   auto& rng = ctx.rng();
   std::normal_distribution<double> gauss(0.0, 1.0);
   if (position_noise_ > 0)
@@ -327,7 +335,7 @@ void DoubleTouch::perceive(NodeContext& ctx) {
     for (int i = 0; i < 3; ++i) stimulus_->velocity[i] += velocity_noise_ * gauss(rng);
   if (!present) {
     const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
-    *stimulus_ = pps::Stimulus{zero, zero, finger_radius_, false};
+    *stimulus_ = pps::Stimulus{zero, zero, perceived_radius, false};
     *truth_ = pps::Stimulus{zero, zero, finger_radius_, false};
   }
 }

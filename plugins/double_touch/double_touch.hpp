@@ -113,6 +113,8 @@ class DoubleTouch : public Plugin {
   pps::Stimulus perceived_clean_;  // noise-free perceived stimulus of this tick
   pps::Stimulus truth_clean_;      // true stimulus of this tick (also when not presented)
   Eigen::Vector3d last_perceived_ = Eigen::Vector3d::Zero(), last_true_ = Eigen::Vector3d::Zero();
+  bool seen_by_eyes_ = false;   // perception: vision
+  double marker_radius_ = 0.0;  // [m]
   bool have_last_ = false;
   std::deque<pps::PathSample> path_history_;  // the last pps::kOffsetMaxBackoff s (true offsets)
   pps::TrueOffsets offsets_;

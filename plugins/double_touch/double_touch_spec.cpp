@@ -137,6 +137,20 @@ PluginSpec DoubleTouch::spec() {
       .defaults(0.0)
       .range(0.0, 10.0)
       .describe("perceived fingertip velocity noise (Gaussian σ per axis)");
+  s.add_string("perception")
+      .defaults(std::string("proprioception"))
+      .one_of({"proprioception", "vision"})
+      .describe(
+          "how the robot perceives its fingertip, for `stimulus` and `true_offsets`: "
+          "proprioception = the fingertip ball of the believed arm kinematics; vision = the "
+          "marker seen by ideal eyes: a ball of marker_radius centred on the TRUE effector "
+          "origin (the arm's joint offsets do not enter; wire a marker tracker's stimulus to "
+          "the learner and compare with these offsets)");
+  s.add_double("marker_radius")
+      .unit_is("m")
+      .defaults(0.007)
+      .range(0.0, 0.1)
+      .describe("radius of the fingertip marker (perception: vision)");
   s.input<JointState>("state", "true joint values (world.joint_state)");
   s.input<SkinTaxels>("taxels", "skin taxels posed by the true kinematics (skin.taxels)");
   s.input<ContactEvents>("contacts", "skin contact events (skin.contacts)", /*optional=*/true);

@@ -58,9 +58,11 @@ struct OffsetStats {
   EstimatorStats contact, floor, ridge, paper;
   Summary truth;              // true offsets of taxels with enough samples
   std::size_t evaluated = 0;  // taxels with enough samples and a finite true offset
+  std::size_t counted = 0;    // taxels with enough samples
 
   void add(const std::optional<double>& c, const std::optional<double>& f,
            const std::optional<double>& r, const std::optional<double>& p, double t) {
+    ++counted;
     contact.add(c, t);
     floor.add(f, t);
     ridge.add(r, t);
@@ -88,7 +90,8 @@ json sample_metrics(const pps::LearningStats& t) {
 }  // namespace
 
 void report_learning(NodeContext& ctx, std::vector<LearnerPart>& parts, int min_samples,
-                     const TaxelValues* true_offsets) {
+                     const TaxelValues* true_offsets, const std::vector<OffsetGroup>& groups) {
+  std::vector<OffsetStats> group_stats(groups.size());
   std::unordered_map<std::string, double> truth_by_label;
   if (true_offsets)
     for (std::size_t i = 0; i < true_offsets->labels.size() && i < true_offsets->values.size(); ++i)
@@ -136,6 +139,9 @@ void report_learning(NodeContext& ctx, std::vector<LearnerPart>& parts, int min_
       if (!counted) continue;
       stats.add(contact, floor, ridge, paper, truth);
       all.add(contact, floor, ridge, paper, truth);
+      for (std::size_t g = 0; g < groups.size(); ++g)
+        if (groups[g].contains(part.name, learner.taxels()[k].pose_link.normal))
+          group_stats[g].add(contact, floor, ridge, paper, truth);
     }
     const pps::LearningStats& t = learner.totals();
     json p = sample_metrics(t);
@@ -199,6 +205,23 @@ void report_learning(NodeContext& ctx, std::vector<LearnerPart>& parts, int min_
                                                              {"floor", all.floor.none},
                                                              {"ridge", all.ridge.none},
                                                              {"paper", all.paper.none}});
+  }
+  if (!groups.empty()) {
+    json by_group = json::object();
+    for (std::size_t g = 0; g < groups.size(); ++g) {
+      const OffsetStats& s = group_stats[g];
+      json j = {{"taxels", s.counted},
+                {"offset_mean_m", s.contact.estimate.mean_json()},
+                {"offset_mean_paper_m", s.paper.estimate.mean_json()}};
+      if (true_offsets) {
+        j["true_offset_mean_m"] = s.truth.mean_json();
+        j["offset_error_max_m"] = s.contact.error.max_json();
+        j["offset_error_mean_m"] = s.contact.error.mean_json();
+        j["offset_taxels_evaluated"] = s.evaluated;
+      }
+      by_group[groups[g].name] = std::move(j);
+    }
+    ctx.report_metric("offset_groups", by_group);
   }
   ctx.report_metric("per_part", per_part);
   ctx.report_metric("taxels", per_taxel);

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "learner_part.hpp"
+#include "offset_groups.hpp"
 #include "somasim/plugin.hpp"
 #include "somasim/skin/ports.hpp"
 
@@ -30,7 +31,10 @@ namespace somasim::plugins {
 ///   estimate; `offset_taxels_evaluated`: counted taxels with a known true offset;
 ///   `offset_taxels_without_estimate` = {floor, ridge, paper}: of those, how many had none;
 ///   per part: `offset_taxels_evaluated` and the six error keys.
+/// With `groups`: `offset_groups` = {group: {taxels (counted), offset_mean_m (contact),
+/// offset_mean_paper_m, and with true_offsets true_offset_mean_m, offset_error_max_m,
+/// offset_error_mean_m (contact), offset_taxels_evaluated}}.
 void report_learning(NodeContext& ctx, std::vector<LearnerPart>& parts, int min_samples,
-                     const TaxelValues* true_offsets);
+                     const TaxelValues* true_offsets, const std::vector<OffsetGroup>& groups = {});
 
 }  // namespace somasim::plugins

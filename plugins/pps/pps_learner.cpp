@@ -51,6 +51,12 @@ PluginSpec PpsLearner::spec() {
       .defaults(std::int64_t{50})
       .at_least(0)
       .describe("taxels with fewer learned samples are left out of offset statistics");
+  s.add_string("offset_groups")
+      .defaults(std::string(""))
+      .describe(
+          "taxel groups whose offsets are also reported together (metric offset_groups), e.g. "
+          "\"inner_forearm: left_forearm +z, palm: right_palm\": a body part, optionally only "
+          "the taxels whose outward normal points along +x/-x/+y/-y/+z/-z of its link frame");
   s.input<pps::Stimulus>("stimulus",
                          "perceived stimulus (root frame), sampled at this node's rate");
   s.input<SkinTaxels>("taxels", "taxel poses in the root frame");
@@ -78,6 +84,13 @@ void PpsLearner::configure(NodeContext& ctx) {
                                 std::string(pps::to_string(params_.model)) + " (save as .json)");
   min_samples_ = ctx.param<int>("min_samples");
   figure_taxels_ = ctx.param<std::vector<double>>("figure_taxels");
+  try {
+    std::vector<std::string> names;
+    for (const LearnerPart& p : parts_) names.push_back(p.name);
+    offset_groups_ = parse_offset_groups(ctx.param<std::string>("offset_groups"), names);
+  } catch (const InputError& e) {
+    ctx.param_error("offset_groups", e.what());
+  }
   for (double e : ctx.param<std::vector<double>>("snapshot_events"))
     snapshot_after_.push_back(static_cast<std::size_t>(e));
   stimulus_ = &ctx.input<pps::Stimulus>("stimulus");
@@ -330,7 +343,7 @@ void PpsLearner::update_activations() {
 
 void PpsLearner::finish(NodeContext& ctx) {
   if (!bound_) return;
-  report_learning(ctx, parts_, min_samples_, true_offsets_);
+  report_learning(ctx, parts_, min_samples_, true_offsets_, offset_groups_);
   if (!save_name_.empty()) {
     std::vector<pps::LearnedState> states;
     for (const LearnerPart& p : parts_) states.push_back(pps::learned_state(*p.learner));

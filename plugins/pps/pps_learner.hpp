@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "learner_part.hpp"
+#include "offset_groups.hpp"
 #include "somasim/plugin.hpp"
 #include "somasim/port_types.hpp"
 #include "somasim/pps/body_part_learner.hpp"
@@ -42,6 +43,7 @@ class PpsLearner : public Plugin {
   bool learn_ = true;
   int min_samples_ = 0;
   std::vector<double> figure_taxels_;
+  std::vector<OffsetGroup> offset_groups_;
   const pps::Stimulus* stimulus_ = nullptr;
   const SkinTaxels* skin_ = nullptr;
   const ContactEvents* contacts_ = nullptr;

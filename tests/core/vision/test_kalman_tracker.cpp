@@ -91,3 +91,29 @@ TEST(KalmanTracker, BadOptionsAreClearErrors) {
     EXPECT_STREQ(e.what(), "Kalman tracker: dt_s: expected > 0, got 0");
   }
 }
+
+// A point under constant acceleration (a = (0.5, -0.3, 0.2) m/s²), exactly measured at 30 Hz
+// for 3 s: the constant-acceleration model's velocity converges to the truth; the
+// constant-velocity model's lags behind (its velocity error stays near a × its lag).
+TEST(KalmanTracker, ConstantAccelerationModelFollowsAnAcceleratingPoint) {
+  const Eigen::Vector3d p0(0.3, 0.1, 0.2), v0(-0.1, 0.05, 0), a(0.5, -0.3, 0.2);
+  const double dt = 1.0 / 30;
+  const auto errors = [&](vision::MotionModel model, double process_noise) {
+    vision::KalmanOptions options;
+    options.model = model;
+    options.process_noise = process_noise;
+    options.measurement_sigma_m = 0.001;
+    vision::KalmanTracker kf(options);
+    Eigen::Vector3d v = v0;
+    for (int k = 0; k <= 90; ++k) {
+      const double t = k * dt;
+      kf.update(p0 + v0 * t + 0.5 * a * t * t, dt);
+      v = v0 + a * t;
+    }
+    return (kf.velocity() - v).norm();
+  };
+  const double ca = errors(vision::MotionModel::kConstantAcceleration, 0.5);
+  const double cv = errors(vision::MotionModel::kConstantVelocity, 0.05);
+  EXPECT_LT(ca, 0.002);  // of 0.4 m/s at the end
+  EXPECT_GT(cv, 5 * ca);
+}

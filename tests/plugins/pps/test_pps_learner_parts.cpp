@@ -433,3 +433,38 @@ TEST(PpsLearnerParts, FiguresPerPart) {
     EXPECT_TRUE(std::filesystem::exists(h.out_dir() / "figures" / f)) << f;
   EXPECT_FALSE(std::filesystem::exists(h.out_dir() / "figures" / "landscape_palm_10.png"));
 }
+
+// offset_groups: taxels of a part selected by the side their normal faces (all normals are +z).
+TEST(PpsLearnerParts, OffsetGroupsReportTheirTaxelsTogether) {
+  Harness h(
+      graph("palm patch", "offset_groups: \"up: patch +z, down: patch -z, whole_palm: palm\""));
+  set_skin(h);
+  set_truth(h, -0.02, 0.013);
+  learn_both(h);
+  h.finish();
+  const auto groups = h.metric("pps", "offset_groups");
+  const auto means = h.metric("pps", "offset_mean_contact_m");
+  EXPECT_EQ(groups["up"]["taxels"], h.metric("pps", "per_part")["patch"]["taxels"]);
+  EXPECT_EQ(groups["up"]["offset_mean_m"], means["patch"]);
+  EXPECT_EQ(groups["whole_palm"]["offset_mean_m"], means["palm"]);
+  EXPECT_EQ(groups["down"]["taxels"], 0);
+  EXPECT_TRUE(groups["down"]["offset_mean_m"].is_null());
+  EXPECT_NEAR(groups["up"]["offset_error_max_m"].get<double>(), 0.00125, 1e-12);
+  EXPECT_EQ(groups["whole_palm"]["offset_error_max_m"],
+            h.metric("pps", "per_part")["palm"]["offset_error_max_m"]);
+  EXPECT_EQ(groups["up"]["offset_taxels_evaluated"], 1);
+  EXPECT_NEAR(groups["up"]["true_offset_mean_m"].get<double>(), -0.02, 1e-12);
+}
+
+TEST(PpsLearnerParts, BadOffsetGroups) {
+  EXPECT_EQ(error_of([] { Harness h(graph("palm patch", "offset_groups: \"a: hand\"")); }),
+            "<inline>:7:65: node 'pps', key 'params.offset_groups': offset_groups entry 'a: "
+            "hand': 'hand' is not a body_part of this learner (its parts: palm, patch)");
+  EXPECT_EQ(error_of([] { Harness h(graph("palm patch", "offset_groups: \"a: palm up\"")); }),
+            "<inline>:7:65: node 'pps', key 'params.offset_groups': offset_groups entry 'a: palm "
+            "up': side 'up' is not one of +x -x +y -y +z -z (the taxel normal's direction in the "
+            "part's link frame)");
+  EXPECT_EQ(error_of([] { Harness h(graph("palm patch", "offset_groups: \"palm +z\"")); }),
+            "<inline>:7:65: node 'pps', key 'params.offset_groups': offset_groups entry 'palm "
+            "+z': expected 'name: part [side]', e.g. 'inner_forearm: left_forearm +z'");
+}

@@ -1,0 +1,26 @@
+#include "somasim/vision/stereo_object.hpp"
+
+namespace somasim::vision {
+namespace {
+
+double metric_radius(const render::Camera& camera, const Eigen::Vector3d& point_root,
+                     double radius_px) {
+  const double z = camera.to_camera(point_root).z();
+  const double f = 0.5 * (camera.intrinsics.fx + camera.intrinsics.fy);
+  return radius_px * z / f;
+}
+
+}  // namespace
+
+StereoObject triangulate_object(const render::Camera& a, const Eigen::Vector2d& uv_a,
+                                double radius_a_px, const render::Camera& b,
+                                const Eigen::Vector2d& uv_b, double radius_b_px) {
+  StereoObject out;
+  out.centre = triangulate(a, uv_a, b, uv_b);
+  if (!out.centre.valid) return out;
+  out.radius_m = 0.5 * (metric_radius(a, out.centre.point, radius_a_px) +
+                        metric_radius(b, out.centre.point, radius_b_px));
+  return out;
+}
+
+}  // namespace somasim::vision

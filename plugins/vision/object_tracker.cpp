@@ -1,0 +1,412 @@
+#include "object_tracker.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "image_check.hpp"
+#include "somasim/error.hpp"
+#include "somasim/render/robot_scene.hpp"
+#include "somasim/robot/experiment_robot.hpp"
+#include "somasim/robot/joint_text.hpp"
+#include "somasim/vision/stereo_object.hpp"
+
+namespace somasim::plugins {
+namespace {
+
+constexpr double kMovingSpeed = 0.01;  // [m/s]: slower truth does not enter the latency
+constexpr int kMaxAreaRatio = 3;       // of the two eyes' object areas for one object
+
+bool inside(const render::Camera& c, const Eigen::Vector3d& p) {
+  const auto uv = c.project(p);
+  return uv && uv->x() >= 0 && uv->y() >= 0 && uv->x() <= c.intrinsics.width - 1 &&
+         uv->y() <= c.intrinsics.height - 1;
+}
+
+}  // namespace
+
+PluginSpec ObjectTracker::spec() {
+  PluginSpec s(
+      "object_tracker",
+      "A moving object seen by two eyes (the PPS study's Fig 13 pipeline): motion detection by "
+      "dense optical flow acquires it in each image, a CamShift tracker of its hue-saturation "
+      "histogram follows it, the two image centres are triangulated through the believed "
+      "head/eye kinematics (encoders + joint_offsets_deg) into the root frame, its radius comes "
+      "from the tracked area and the depth, and a Kalman filter gives position and velocity. A "
+      "track whose colour collapses (the object left, was removed or hidden) is lost and the "
+      "object re-acquired by motion. With a wired truth: tracking errors, latency and the share "
+      "of frames tracked.");
+  robot::add_robot_param(s);
+  s.add_string_list("cameras")
+      .size(2)
+      .defaults(std::vector<std::string>{"left_eye", "right_eye"})
+      .describe(
+          "the robot model's cameras whose images arrive on left_eye_rgb and right_eye_rgb (their "
+          "intrinsics are the calibration the images must match)");
+  s.add_string("joint_offsets_deg")
+      .accepts_map_as_text()
+      .defaults(std::string(""))
+      .describe(
+          "believed-kinematics error, 'joint: value, ...' [deg] added to the encoder values "
+          "before the cameras are posed (as proprioception's joint_offsets_deg)");
+  s.add_double("min_flow_px")
+      .unit_is("px")
+      .defaults(0.5)
+      .range(0.01, 100)
+      .describe("optical-flow magnitude per frame that counts as motion");
+  s.add_int("min_motion_px")
+      .defaults(std::int64_t{20})
+      .at_least(1)
+      .describe("smallest moving blob [px] that acquires an object");
+  s.add_double("max_motion_fraction")
+      .defaults(0.3)
+      .range(0.001, 1.0)
+      .describe(
+          "a moving blob larger than this fraction of the image acquires nothing (the whole "
+          "scene jumped, e.g. the first posture or an uncompensated head turn)");
+  s.add_int("still_frames_lost")
+      .defaults(std::int64_t{20})
+      .at_least(1)
+      .describe(
+          "a track that has not moved by still_px (centre or radius, beyond the camera's own "
+          "rotation) for this many frames is dropped: the moving object was lost and the "
+          "colour tracker locked on to static clutter of its colour");
+  s.add_double("still_px")
+      .unit_is("px")
+      .defaults(1.5)
+      .at_least(0.01)
+      .describe("how far a track must move to count as moving (see still_frames_lost)");
+  s.add_double("max_background_ratio")
+      .defaults(1.0)
+      .at_least(0.01)
+      .describe(
+          "an acquisition is refused when the acquired colours cover more pixels elsewhere in "
+          "the image than on the moving blob, times this (colours of the backdrop or robot)");
+  s.add_bool("compensate_ego_motion")
+      .defaults(true)
+      .describe(
+          "warp the previous image by the rotation of the (believed) camera between the frames "
+          "before the flow, so that a turning head is not taken for a moving object");
+  s.add_int("min_saturation")
+      .defaults(std::int64_t{60})
+      .range(0, 255)
+      .describe("pixels less saturated carry no colour (OpenCV HSV, 0-255)");
+  s.add_int("min_value")
+      .defaults(std::int64_t{30})
+      .range(0, 255)
+      .describe("darker pixels carry no colour (OpenCV HSV, 0-255)");
+  s.add_int("min_object_px")
+      .defaults(std::int64_t{12})
+      .at_least(1)
+      .describe("fewest object pixels for an acquisition or a tracked image");
+  s.add_double("lost_fraction")
+      .defaults(0.3)
+      .range(0.01, 0.99)
+      .describe(
+          "a track is lost when its object pixels fall below this fraction of their running "
+          "mean (the back-projection mass collapsed)");
+  s.add_double("max_reprojection_px")
+      .unit_is("px")
+      .defaults(4.0)
+      .at_least(0.01)
+      .describe(
+          "a triangulation whose RMS reprojection error exceeds this is no fix (the eyes track "
+          "different things)");
+  s.add_int("inconsistent_frames_lost")
+      .defaults(std::int64_t{2})
+      .at_least(1)
+      .describe(
+          "after this many consecutive frames whose two tracks do not triangulate, both tracks "
+          "are dropped and the object re-acquired by motion");
+  s.add_int("reset_after_lost")
+      .defaults(std::int64_t{3})
+      .at_least(1)
+      .describe("frames without a fix after which the Kalman filter starts afresh");
+  s.add_double("radius_min")
+      .unit_is("m")
+      .defaults(0.005)
+      .range(1e-4, 1.0)
+      .describe("the output radius (from area and depth) is clamped to [radius_min, radius_max]");
+  s.add_double("radius_max")
+      .unit_is("m")
+      .defaults(0.2)
+      .range(1e-4, 10.0)
+      .describe("upper clamp of the output radius");
+  s.add_string("motion_model")
+      .defaults(std::string("constant_acceleration"))
+      .one_of({"constant_velocity", "constant_acceleration"})
+      .describe("the Kalman filter's motion model (the paper's: a higher-order one)");
+  s.add_double("process_noise")
+      .defaults(1.0)
+      .at_least(1e-9)
+      .describe(
+          "spectral density of the white acceleration [m²/s³] (constant_velocity) or jerk "
+          "[m²/s⁵] (constant_acceleration) that drives the model");
+  s.add_double("measurement_sigma")
+      .unit_is("m")
+      .defaults(0.005)
+      .at_least(1e-6)
+      .describe("σ of a triangulated position per axis [m]");
+  s.input<Image>("left_eye_rgb", "rgb8 image of the first camera (e.g. cam.left_eye_rgb)");
+  s.input<Image>("right_eye_rgb", "rgb8 image of the second camera (e.g. cam.right_eye_rgb)");
+  s.input<JointState>("joint_state",
+                      "encoder values: the head and eye joints pose the cameras (e.g. "
+                      "world.joint_state)");
+  s.input<pps::Stimulus>(
+      "truth",
+      "optional ground truth (e.g. object_thrower.truth): metrics position_rms_m, "
+      "velocity_rms_m_s, latency_s, tracked shares",
+      /*optional=*/true);
+  s.output<pps::Stimulus>(
+      "stimulus",
+      "the object in the root frame: Kalman position [m] and velocity [m/s], radius from the "
+      "tracked area and depth [m]; present only in frames with a triangulated fix");
+  s.output<StereoPixels>("object_pixels",
+                         "the tracked object in each image: found, centre (u, v) [px], area "
+                         "[px] (somasim/vision/ports.hpp)");
+  return s;
+}
+
+void ObjectTracker::configure(NodeContext& ctx) {
+  model_ = robot::experiment_robot(ctx);
+  data_ = std::make_unique<robot::RobotData>(*model_);
+  try {
+    offsets_ = robot::parse_joint_offsets(*model_, ctx.param<std::string>("joint_offsets_deg"));
+  } catch (const InputError& e) {
+    ctx.param_error("joint_offsets_deg", e.what());
+  }
+  cameras_ = ctx.param<std::vector<std::string>>("cameras");
+  robot::forward_kinematics(*model_, *data_, Eigen::VectorXd::Zero(model_->num_dofs()));
+  for (const std::string& c : cameras_) {
+    try {
+      render::camera_for(*model_, c, data_->link_poses);
+    } catch (const InputError& e) {
+      ctx.param_error("cameras", e.what());
+    }
+  }
+  motion_.min_flow_px = ctx.param<double>("min_flow_px");
+  motion_.min_area_px = ctx.param<int>("min_motion_px");
+  compensate_ego_motion_ = ctx.param<bool>("compensate_ego_motion");
+  max_motion_fraction_ = ctx.param<double>("max_motion_fraction");
+  still_frames_lost_ = ctx.param<int>("still_frames_lost");
+  still_px_ = ctx.param<double>("still_px");
+  vision::ColourTrackerOptions colour;
+  colour.min_saturation = ctx.param<int>("min_saturation");
+  colour.min_value = ctx.param<int>("min_value");
+  colour.min_object_px = ctx.param<int>("min_object_px");
+  colour.lost_fraction = ctx.param<double>("lost_fraction");
+  colour.max_background_ratio = ctx.param<double>("max_background_ratio");
+  for (Eye& eye : eyes_) eye.tracker = vision::ColourTracker(colour);
+  max_reprojection_px_ = ctx.param<double>("max_reprojection_px");
+  inconsistent_frames_lost_ = ctx.param<int>("inconsistent_frames_lost");
+  reset_after_lost_ = ctx.param<int>("reset_after_lost");
+  radius_min_ = ctx.param<double>("radius_min");
+  radius_max_ = ctx.param<double>("radius_max");
+  if (radius_max_ < radius_min_)
+    ctx.param_error("radius_max",
+                    fmt::format("{} is below radius_min {}", radius_max_, radius_min_));
+  vision::KalmanOptions kalman;
+  kalman.model = ctx.param<std::string>("motion_model") == "constant_acceleration"
+                     ? vision::MotionModel::kConstantAcceleration
+                     : vision::MotionModel::kConstantVelocity;
+  kalman.process_noise = ctx.param<double>("process_noise");
+  kalman.measurement_sigma_m = ctx.param<double>("measurement_sigma");
+  kalman_ = vision::KalmanTracker(kalman);
+
+  left_ = &ctx.input<Image>("left_eye_rgb");
+  right_ = &ctx.input<Image>("right_eye_rgb");
+  joints_ = &ctx.input<JointState>("joint_state");
+  truth_ = ctx.is_wired("truth") ? &ctx.input<pps::Stimulus>("truth") : nullptr;
+  stimulus_ = &ctx.output<pps::Stimulus>("stimulus");
+  pixels_ = &ctx.output<StereoPixels>("object_pixels");
+}
+
+void ObjectTracker::track_eye(Eye& eye, const Image& image, const render::Camera& camera) {
+  const auto& k = camera.intrinsics;
+  const cv::Matx33d ego =
+      compensate_ego_motion_ && !eye.previous.empty()
+          ? vision::rotation_homography(eye.previous_rotation, camera.pose_root.linear(), k.fx,
+                                        k.fy, k.cx, k.cy)
+          : cv::Matx33d::eye();
+  eye.track = eye.tracker.tracking() ? eye.tracker.track(image.data) : vision::ColourTrack{};
+  if (!eye.track.tracked && !eye.tracker.tracking() && eye.track.window.area() > 0) ++losses_;
+  if (eye.track.tracked) {
+    // Motion consistency: a static thing of the object's colour is not the object.
+    const cv::Vec3d a = ego * cv::Vec3d(eye.anchor_px.x(), eye.anchor_px.y(), 1.0);
+    const Eigen::Vector2d anchor(a[0] / a[2], a[1] / a[2]);
+    if ((eye.track.centre_px - anchor).norm() > still_px_ ||
+        std::abs(eye.track.radius_px - eye.anchor_radius_px) > still_px_) {
+      eye.anchor_px = eye.track.centre_px;
+      eye.anchor_radius_px = eye.track.radius_px;
+      eye.still_frames = 0;
+    } else if (++eye.still_frames >= still_frames_lost_) {
+      eye.tracker.lose();
+      eye.track.tracked = false;
+      ++still_drops_;
+    } else {
+      eye.anchor_px = anchor;
+    }
+  }
+  if (!eye.track.tracked && !eye.previous.empty()) {
+    const vision::MotionBlob m = vision::detect_motion(eye.previous, image.data, motion_, ego);
+    const double image_px = static_cast<double>(image.data.total());
+    if (m.found && m.area_px <= max_motion_fraction_ * image_px) {
+      if (eye.tracker.acquire(image.data, m.mask)) {
+        ++acquisitions_;
+        eye.track = eye.tracker.track(image.data);
+        eye.anchor_px = eye.track.centre_px;
+        eye.anchor_radius_px = eye.track.radius_px;
+        eye.still_frames = 0;
+      } else {
+        ++refused_;
+      }
+    } else if (m.found) {
+      ++refused_;
+    }
+  }
+  image.data.copyTo(eye.previous);
+  eye.previous_rotation = camera.pose_root.linear();
+}
+
+void ObjectTracker::lose(double dt_s) {
+  stimulus_->present = false;
+  ++lost_;
+  if (lost_ >= reset_after_lost_)
+    kalman_.reset();
+  else if (dt_s > 0)
+    kalman_.predict(dt_s);
+  stimulus_->position = kalman_.position();
+  stimulus_->velocity = kalman_.velocity();
+}
+
+void ObjectTracker::step(NodeContext& ctx) {
+  if (left_->data.empty() || right_->data.empty() || joints_->position.size() == 0) {
+    stimulus_->present = false;
+    return;
+  }
+  if (left_->frame == last_frame_) return;  // no new image: the outputs hold
+  check_camera_image(*model_, *left_, "left_eye_rgb", cameras_[0]);
+  check_camera_image(*model_, *right_, "right_eye_rgb", cameras_[1]);
+  if (joints_->position.size() != model_->num_dofs())
+    throw RunError(fmt::format("input 'joint_state': expected {} joint values (robot '{}'), got {}",
+                               model_->num_dofs(), model_->name(), joints_->position.size()));
+  const double dt = last_frame_ == 0 ? 0.0 : left_->time_s - last_time_s_;
+  last_frame_ = left_->frame;
+  last_time_s_ = left_->time_s;
+  ++frames_;
+
+  // The cameras where the believed head and eye kinematics put them.
+  robot::forward_kinematics(*model_, *data_, joints_->position + offsets_);
+  const std::vector<render::Camera> cams = {
+      render::camera_for(*model_, cameras_[0], data_->link_poses),
+      render::camera_for(*model_, cameras_[1], data_->link_poses)};
+  track_eye(eyes_[0], *left_, cams[0]);
+  track_eye(eyes_[1], *right_, cams[1]);
+
+  const auto pixels = [](const vision::ColourTrack& t) {
+    if (!t.tracked) return StereoPixels::Eye{};
+    return StereoPixels::Eye{true, t.centre_px, t.centre_px, t.object_px};
+  };
+  pixels_->left = pixels(eyes_[0].track);
+  pixels_->right = pixels(eyes_[1].track);
+  pixels_->frame = left_->frame;
+
+  const vision::ColourTrack& l = eyes_[0].track;
+  const vision::ColourTrack& r = eyes_[1].track;
+  vision::StereoObject object;
+  // A track cut by the image border has an unknown centre; two tracks of very different areas
+  // are not the same object (or one of them is mostly hidden): no fix, but no loss either.
+  const auto at_border = [](const vision::ColourTrack& t, const Image& image) {
+    const Eigen::Vector2d& c = t.centre_px;
+    return c.x() - t.radius_px < 1 || c.y() - t.radius_px < 1 ||
+           c.x() + t.radius_px > image.data.cols - 2 || c.y() + t.radius_px > image.data.rows - 2;
+  };
+  const bool comparable =
+      l.tracked && r.tracked &&
+      std::max(l.object_px, r.object_px) <= kMaxAreaRatio * std::min(l.object_px, r.object_px);
+  if (l.tracked && r.tracked && (at_border(l, *left_) || at_border(r, *right_) || !comparable)) {
+    ++partial_;
+  } else if (l.tracked && r.tracked) {
+    object = vision::triangulate_object(cams[0], l.centre_px, l.radius_px, cams[1], r.centre_px,
+                                        r.radius_px);
+    if (!object.centre.valid || object.centre.reprojection_error_px > max_reprojection_px_) {
+      object.centre.valid = false;
+      if (++inconsistent_ >= inconsistent_frames_lost_) {  // re-acquire both by motion
+        for (Eye& eye : eyes_) eye.tracker.lose();
+        ++inconsistent_drops_;
+        inconsistent_ = 0;
+      }
+    } else {
+      inconsistent_ = 0;
+    }
+  }
+  if (!object.centre.valid) {
+    pixels_->left.found = pixels_->right.found = false;
+    lose(dt);
+  } else {
+    if (dt <= 0.0 || lost_ >= reset_after_lost_) kalman_.reset();
+    kalman_.update(object.centre.point, dt > 0.0 ? dt : ctx.period_s());
+    lost_ = 0;
+    ++tracked_;
+    reprojection_sum_ += object.centre.reprojection_error_px;
+    stimulus_->present = true;
+    stimulus_->position = kalman_.position();
+    stimulus_->velocity = kalman_.velocity();
+    stimulus_->radius = std::clamp(object.radius_m, radius_min_, radius_max_);
+  }
+  if (truth_) score_against_truth(cams);
+}
+
+void ObjectTracker::score_against_truth(const std::vector<render::Camera>& cameras) {
+  if (!truth_->present) {
+    if (stimulus_->present) ++false_fixes_;
+    return;
+  }
+  ++truth_frames_;
+  const bool in_view = inside(cameras[0], truth_->position) && inside(cameras[1], truth_->position);
+  in_view_ += in_view ? 1 : 0;
+  if (!stimulus_->present) return;
+  ++truth_tracked_;
+  in_view_tracked_ += in_view ? 1 : 0;
+  const Eigen::Vector3d e = stimulus_->position - truth_->position;
+  position_sq_sum_ += e.squaredNorm();
+  velocity_sq_sum_ += (stimulus_->velocity - truth_->velocity).squaredNorm();
+  ++error_count_;
+  // The lag τ of the estimate behind the truth: p_est(t) ≈ p(t - τ) ≈ p(t) - τ v(t), so the
+  // least-squares τ over the tracked frames is -Σ e·v / Σ |v|².
+  if (truth_->velocity.norm() > kMovingSpeed) {
+    lag_numerator_ -= e.dot(truth_->velocity);
+    lag_denominator_ += truth_->velocity.squaredNorm();
+  }
+}
+
+void ObjectTracker::finish(NodeContext& ctx) {
+  const auto share = [](std::int64_t n, std::int64_t of) {
+    return of ? static_cast<double>(n) / static_cast<double>(of) : 0.0;
+  };
+  ctx.report_metric("frames", frames_);
+  ctx.report_metric("frames_tracked", tracked_);
+  ctx.report_metric("tracked_share", share(tracked_, frames_));
+  ctx.report_metric("acquisitions", acquisitions_);
+  ctx.report_metric("losses", losses_);
+  ctx.report_metric("inconsistent_drops", inconsistent_drops_);
+  ctx.report_metric("partial_frames", partial_);
+  ctx.report_metric("still_drops", still_drops_);
+  ctx.report_metric("refused_acquisitions", refused_);
+  ctx.report_metric("reprojection_mean_px", tracked_ ? reprojection_sum_ / tracked_ : 0.0);
+  if (!truth_) return;
+  ctx.report_metric("frames_with_object", truth_frames_);
+  ctx.report_metric("object_tracked_share", share(truth_tracked_, truth_frames_));
+  ctx.report_metric("frames_in_view", in_view_);
+  ctx.report_metric("in_view_tracked_share", share(in_view_tracked_, in_view_));
+  ctx.report_metric("false_fixes", false_fixes_);
+  const auto rms = [&](double sum) {
+    return error_count_ ? std::sqrt(sum / static_cast<double>(error_count_)) : 0.0;
+  };
+  ctx.report_metric("position_rms_m", rms(position_sq_sum_));
+  ctx.report_metric("velocity_rms_m_s", rms(velocity_sq_sum_));
+  ctx.report_metric("latency_s", lag_denominator_ > 0 ? lag_numerator_ / lag_denominator_ : 0.0);
+}
+
+}  // namespace somasim::plugins

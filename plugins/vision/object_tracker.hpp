@@ -1,0 +1,90 @@
+#pragma once
+// object_tracker: the generic object tracker of the PPS study (Roncone et al. 2016, Fig 13)
+// seen by both eyes: motion detection by optical flow acquires an object, a CamShift tracker of
+// its hue-saturation distribution follows it in each image, the two centres are triangulated
+// through the believed head/eye kinematics, and a Kalman filter (constant acceleration by
+// default) gives position and velocity; a pps::Stimulus in the root frame.
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "somasim/plugin.hpp"
+#include "somasim/pps/ports.hpp"
+#include "somasim/render/camera.hpp"
+#include "somasim/render/ports.hpp"
+#include "somasim/robot/kinematics.hpp"
+#include "somasim/robot/ports.hpp"
+#include "somasim/robot/robot_model.hpp"
+#include "somasim/vision/colour_tracker.hpp"
+#include "somasim/vision/kalman_tracker.hpp"
+#include "somasim/vision/motion_detection.hpp"
+#include "somasim/vision/ports.hpp"
+
+namespace somasim::plugins {
+
+class ObjectTracker : public Plugin {
+ public:
+  static PluginSpec spec();
+  void configure(NodeContext& ctx) override;
+  void step(NodeContext& ctx) override;
+  void finish(NodeContext& ctx) override;
+
+ private:
+  struct Eye {
+    vision::ColourTracker tracker;
+    cv::Mat previous;                   // the last image (for the flow)
+    Eigen::Matrix3d previous_rotation;  // its believed camera rotation (root <- camera)
+    vision::ColourTrack track;
+    // Motion consistency: where the track was when it last moved (carried along by the
+    // camera's own rotation), its radius then, and the frames since.
+    Eigen::Vector2d anchor_px = Eigen::Vector2d::Zero();
+    double anchor_radius_px = 0.0;
+    int still_frames = 0;
+  };
+  void track_eye(Eye& eye, const Image& image, const render::Camera& camera);
+  void lose(double dt_s);
+  void score_against_truth(const std::vector<render::Camera>& cameras);
+
+  std::shared_ptr<const robot::RobotModel> model_;
+  std::unique_ptr<robot::RobotData> data_;
+  Eigen::VectorXd offsets_;
+  std::vector<std::string> cameras_;
+  vision::MotionOptions motion_;
+  bool compensate_ego_motion_ = true;
+  double max_motion_fraction_ = 0.0;
+  int still_frames_lost_ = 0;
+  double still_px_ = 0.0;
+  double max_reprojection_px_ = 0.0;
+  int inconsistent_frames_lost_ = 0;
+  int reset_after_lost_ = 0;
+  double radius_min_ = 0.0, radius_max_ = 0.0;
+  vision::KalmanTracker kalman_;
+  std::array<Eye, 2> eyes_;
+
+  const Image* left_ = nullptr;
+  const Image* right_ = nullptr;
+  const JointState* joints_ = nullptr;
+  const pps::Stimulus* truth_ = nullptr;  // optional
+  pps::Stimulus* stimulus_ = nullptr;
+  StereoPixels* pixels_ = nullptr;
+
+  std::uint64_t last_frame_ = 0;
+  double last_time_s_ = 0.0;
+  int lost_ = 0;          // consecutive frames without a fix
+  int inconsistent_ = 0;  // consecutive frames both eyes tracked but the rays did not meet
+  std::int64_t frames_ = 0, tracked_ = 0, acquisitions_ = 0, losses_ = 0, inconsistent_drops_ = 0;
+  std::int64_t still_drops_ = 0, refused_ = 0;  // static tracks dropped, acquisitions refused
+  std::int64_t partial_ = 0;  // both tracked, but cut by the border or of unlike areas
+  double reprojection_sum_ = 0.0;
+  // Against the truth: frames it is present / in view of both eyes (believed cameras) and
+  // tracked among them; errors over tracked frames with the truth present.
+  std::int64_t truth_frames_ = 0, truth_tracked_ = 0, in_view_ = 0, in_view_tracked_ = 0;
+  std::int64_t false_fixes_ = 0, error_count_ = 0;
+  double position_sq_sum_ = 0.0, velocity_sq_sum_ = 0.0;
+  double lag_numerator_ = 0.0, lag_denominator_ = 0.0;  // latency: -Σ e·v / Σ |v|²
+};
+
+}  // namespace somasim::plugins

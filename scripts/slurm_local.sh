@@ -1,0 +1,296 @@
+#!/usr/bin/env bash
+# A one-node Slurm cluster on this machine, for trying `somasim sweep slurm` and for the tests
+# (tests/slurm). munged, slurmctld and slurmd from Debian's packages (munge, slurmctld, slurmd,
+# slurm-client), started without systemd; everything they write — slurm.conf, munge key, socket,
+# state, spool, pid and log files — lives under DIR. Needs root (slurmd launches the jobs;
+# munged is started as the munge user).
+#
+# Usage: scripts/slurm_local.sh up DIR       start (no-op when already up), wait until the node is idle
+#        scripts/slurm_local.sh status DIR   print the daemons and the node; exit 1 unless all run
+#        scripts/slurm_local.sh down DIR     cancel the jobs, stop the daemons `up` started (by PID)
+# Then point the Slurm clients at it:  export SLURM_CONF=DIR/slurm.conf
+# $SLURM_LOCAL_TIMEOUT: seconds to wait for each daemon and for the idle node (default 60).
+# On a failure `up` prints the failing daemon's own log lines, stops what it started, exits 1.
+set -euo pipefail
+
+timeout_s="${SLURM_LOCAL_TIMEOUT:-60}"
+daemons=(munged slurmctld slurmd) # start order; stopped in reverse
+
+usage() {
+  sed -n '8,10p' "$0" | sed 's/^# //' >&2
+  exit 2
+}
+die() {
+  echo "slurm_local: $*" >&2
+  exit 1
+}
+
+[ $# -eq 2 ] || usage
+cmd="$1"
+dir="$2"
+case "$cmd" in up | down | status) ;; *) usage ;; esac
+[ "$cmd" != up ] || mkdir -p "$dir"
+[ ! -d "$dir" ] || dir="$(cd "$dir" && pwd)"
+conf="$dir/slurm.conf"
+pids="$dir/pids" # one "NAME PID" line per daemon this script started
+export SLURM_CONF="$conf"
+
+# The recorded PID of daemon NAME, or nothing.
+pid_of() {
+  [ -f "$pids" ] || return 0
+  awk -v n="$1" '$1 == n { print $2 }' "$pids"
+}
+
+# True when PID is a live (not zombie) process whose command is NAME: exited daemons may linger
+# as zombies, and a PID may have been reused by an unrelated process.
+alive() {
+  local name="$1" pid="$2" stat comm state
+  [ -n "$pid" ] && [ -r "/proc/$pid/stat" ] || return 1
+  stat="$(cat "/proc/$pid/stat" 2>/dev/null)" || return 1
+  comm="${stat#*(}"
+  comm="${comm%%)*}"
+  state="${stat##*) }"
+  state="${state%% *}"
+  [ "$state" != Z ] && [ "$state" != X ] && [ "$comm" = "$name" ]
+}
+
+log_of() {
+  case "$1" in
+    munged) echo "$dir/munge/munged.log" ;;
+    *) echo "$dir/log/$1.log" ;;
+  esac
+}
+
+# Prints the daemon's own log lines (its log file and what it wrote to stdout/stderr).
+show_logs() {
+  local name="$1" f
+  for f in "$(log_of "$name")" "$dir/log/$name.out"; do
+    if [ -s "$f" ]; then
+      echo "---- $f (last 40 lines)" >&2
+      tail -n 40 "$f" >&2
+    fi
+  done
+}
+
+# Stops one recorded daemon: TERM, then KILL after 10 s.
+stop_daemon() {
+  local name="$1" pid i
+  pid="$(pid_of "$name")"
+  if alive "$name" "$pid"; then
+    kill -TERM "$pid" 2>/dev/null || true
+    for ((i = 0; i < 100; i++)); do
+      alive "$name" "$pid" || break
+      sleep 0.1
+    done
+    if alive "$name" "$pid"; then
+      echo "slurm_local: $name (PID $pid) ignored TERM; killing it" >&2
+      kill -KILL "$pid" 2>/dev/null || true
+    fi
+  fi
+  if [ -f "$pids" ]; then
+    awk -v n="$name" '$1 != n' "$pids" >"$pids.tmp" && mv "$pids.tmp" "$pids"
+  fi
+}
+
+do_down() {
+  local pid i d
+  pid="$(pid_of slurmctld)"
+  if alive slurmctld "$pid"; then
+    # Cancel what is still queued or running so that no job step outlives slurmd.
+    local jobs
+    jobs="$(squeue -h -o %A 2>/dev/null || true)"
+    if [ -n "$jobs" ]; then
+      # shellcheck disable=SC2086
+      scancel $jobs 2>/dev/null || true
+      for ((i = 0; i < 100; i++)); do
+        [ -z "$(squeue -h -o %A 2>/dev/null || true)" ] && break
+        sleep 0.1
+      done
+    fi
+  fi
+  for ((i = ${#daemons[@]} - 1; i >= 0; i--)); do
+    d="${daemons[i]}"
+    stop_daemon "$d"
+  done
+  rm -f "$pids"
+}
+
+do_status() {
+  local d pid ok=0
+  for d in "${daemons[@]}"; do
+    pid="$(pid_of "$d")"
+    if alive "$d" "$pid"; then
+      echo "$d: running (PID $pid)"
+    else
+      echo "$d: not running"
+      ok=1
+    fi
+  done
+  if [ "$ok" -eq 0 ]; then
+    echo "SLURM_CONF=$conf"
+    sinfo -N -o '%N %P %t %c' 2>&1 || ok=1
+  fi
+  return "$ok"
+}
+
+# Two free TCP ports (no listener) in 16817-17816, for slurmctld and slurmd; a cluster left over
+# by a killed test, or a system one, keeps its own. The scan starts at a place given by this
+# shell's PID so that two clusters started at once rarely pick the same.
+free_ports() {
+  local i p found=()
+  for ((i = 0; i < 1000 && ${#found[@]} < 2; i++)); do
+    p=$((16817 + ($$ * 2 + i) % 1000))
+    if ! ss -Htln "sport = :$p" 2>/dev/null | grep -q .; then found+=("$p"); fi
+  done
+  [ ${#found[@]} -eq 2 ] || die "no free TCP port in 16817-17816"
+  echo "${found[@]}"
+}
+
+write_conf() {
+  local host node ctld_port slurmd_port
+  host="$(hostname -s)"
+  node="$(slurmd -C | head -n 1)"
+  [[ "$node" == NodeName=* ]] || die "'slurmd -C' printed no node line: $node"
+  read -r ctld_port slurmd_port < <(free_ports)
+  cat >"$conf" <<EOF
+# Generated by scripts/slurm_local.sh: a one-node cluster, no systemd, no cgroups.
+ClusterName=somasim-local
+SlurmctldHost=$host
+SlurmctldPort=$ctld_port
+SlurmdPort=$slurmd_port
+SlurmUser=root
+SlurmdUser=root
+AuthType=auth/munge
+CredType=cred/munge
+AuthInfo=socket=$dir/munge/munged.socket
+StateSaveLocation=$dir/state
+SlurmdSpoolDir=$dir/spool/%n
+SlurmctldPidFile=$dir/run/slurmctld.pid
+SlurmdPidFile=$dir/run/slurmd.pid
+SlurmctldLogFile=$dir/log/slurmctld.log
+SlurmdLogFile=$dir/log/slurmd.log
+PlugStackConfig=$dir/plugstack.conf
+ProctrackType=proctrack/pgid
+TaskPlugin=task/none
+JobAcctGatherType=jobacct_gather/none
+AccountingStorageType=accounting_storage/none
+JobCompType=jobcomp/none
+SelectType=select/cons_tres
+SelectTypeParameters=CR_Core
+SchedulerType=sched/backfill
+SchedulerParameters=batch_sched_delay=0,sched_min_interval=0
+MailProg=/bin/true
+MpiDefault=none
+ReturnToService=2
+MinJobAge=600
+$node State=UNKNOWN
+PartitionName=debug Nodes=ALL Default=YES MaxTime=INFINITE State=UP
+EOF
+  : >"$dir/plugstack.conf"
+}
+
+# Starts NAME (already configured) detached in its own session, records its PID.
+start_daemon() {
+  local name="$1"
+  shift
+  local pid i comm
+  setsid "$@" </dev/null >"$dir/log/$name.out" 2>&1 &
+  pid=$!
+  echo "$name $pid" >>"$pids"
+  # The PID is the forked shell's until setsid (and setpriv) exec the daemon itself.
+  for ((i = 0; i < 50; i++)); do
+    comm="$(cat "/proc/$pid/comm" 2>/dev/null)" || break
+    [ "$comm" != "$name" ] || break
+    sleep 0.1
+  done
+}
+
+# Waits until COMMAND succeeds while daemon NAME lives; on death or timeout, shows its logs.
+wait_for() {
+  local name="$1" what="$2" i pid
+  shift 2
+  pid="$(pid_of "$name")"
+  for ((i = 0; i < timeout_s * 10; i++)); do
+    if "$@" >/dev/null 2>&1; then return 0; fi
+    if ! alive "$name" "$pid"; then
+      echo "slurm_local: $name exited before $what" >&2
+      show_logs "$name"
+      do_down
+      exit 1
+    fi
+    sleep 0.1
+  done
+  echo "slurm_local: $name: no $what after ${timeout_s} s" >&2
+  show_logs "$name"
+  do_down
+  exit 1
+}
+
+node_idle() {
+  [ "$(sinfo -h -o %t)" = idle ]
+}
+
+munge_works() {
+  munge -S "$dir/munge/munged.socket" -n | unmunge -S "$dir/munge/munged.socket"
+}
+
+do_up() {
+  local d pid all=1
+  [ "$(id -u)" -eq 0 ] || die "needs root (slurmd launches the jobs; munged runs as the munge user)"
+  for d in munged slurmctld slurmd setpriv mungekey scontrol sinfo squeue; do
+    command -v "$d" >/dev/null || die "'$d' not found: install the Debian packages munge slurmctld slurmd slurm-client (scripts/setup.sh)"
+  done
+  id munge >/dev/null 2>&1 || die "no 'munge' user: install the Debian package munge"
+  for d in "${daemons[@]}"; do
+    alive "$d" "$(pid_of "$d")" || all=0
+  done
+  if [ "$all" -eq 1 ] && node_idle_or_busy; then
+    echo "slurm_local: already up in $dir"
+    return 0
+  fi
+  do_down # whatever is left of an earlier, partial start
+
+  mkdir -p "$dir/munge" "$dir/state" "$dir/spool" "$dir/run" "$dir/log"
+  # munged (run as the munge user) must reach its folder and finds it insecure when others can
+  # write to it or to a parent.
+  chmod 0755 "$dir"
+  chown munge:munge "$dir/munge"
+  chmod 0711 "$dir/munge" # clients need to reach the socket
+  setpriv --reuid=munge --regid=munge --init-groups test -w "$dir/munge" ||
+    die "the munge user cannot write to $dir/munge: every parent folder of $dir must be searchable by others (chmod o+x)"
+  if [ ! -s "$dir/munge/munge.key" ]; then
+    setpriv --reuid=munge --regid=munge --init-groups \
+      mungekey --create --keyfile="$dir/munge/munge.key" >/dev/null 2>"$dir/log/mungekey.out" || {
+      cat "$dir/log/mungekey.out" >&2
+      die "mungekey could not create $dir/munge/munge.key"
+    }
+  fi
+  write_conf
+  : >"$pids"
+
+  start_daemon munged setpriv --reuid=munge --regid=munge --init-groups \
+    munged --foreground --socket="$dir/munge/munged.socket" --pid-file="$dir/munge/munged.pid" \
+    --log-file="$dir/munge/munged.log" --seed-file="$dir/munge/munged.seed" \
+    --key-file="$dir/munge/munge.key"
+  wait_for munged "working socket (munge -n | unmunge)" munge_works
+
+  start_daemon slurmctld slurmctld -D -i -f "$conf"
+  wait_for slurmctld "answer to 'scontrol ping'" scontrol ping
+
+  start_daemon slurmd slurmd -D -f "$conf"
+  wait_for slurmd "idle node in sinfo" node_idle
+  echo "slurm_local: up in $dir (export SLURM_CONF=$conf)"
+}
+
+# The node answers (idle, or running jobs).
+node_idle_or_busy() {
+  local s
+  s="$(sinfo -h -o %t 2>/dev/null)" || return 1
+  case "$s" in idle | mix | alloc | comp) return 0 ;; *) return 1 ;; esac
+}
+
+case "$cmd" in
+  up) do_up ;;
+  down) do_down && echo "slurm_local: down ($dir)" ;;
+  status) do_status ;;
+esac

@@ -1,0 +1,130 @@
+// Sweep files: keys, values, ranges and seeds, and every message a bad file gets.
+#include <gtest/gtest.h>
+
+#include "somasim/error.hpp"
+#include "somasim/sweep/jobs.hpp"
+#include "somasim/sweep/sweep_file.hpp"
+#include "test_support.hpp"
+
+namespace somasim::sweep {
+namespace {
+namespace fs = std::filesystem;
+
+class SweepFile : public ::testing::Test {
+ protected:
+  void SetUp() override { test::write_file(dir / "exp.yaml", "experiment: e\n"); }
+  SweepSpec load(const std::string& text) { return load_sweep_text(text, "s.yaml", dir.path()); }
+  std::string error_of(const std::string& text) {
+    try {
+      expand_jobs(load(text));
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "no error";
+  }
+  test::TempDir dir;
+};
+
+std::vector<std::string> texts(const Axis& a) {
+  std::vector<std::string> out;
+  for (const auto& v : a.values) out.push_back(v.text);
+  return out;
+}
+
+TEST_F(SweepFile, ReadsEveryKey) {
+  const SweepSpec s = load(R"(sweep: demo
+experiment: exp.yaml
+output: out/here
+seeds: {from: 3, to: 5}
+mode: grid
+set: {duration_s: 2}
+axes:
+  nodes.a.params.x: [0.5, "text", [1, 2], {l_elbow: -4}]
+  nodes.a.params.n: {from: 100, to: 500, step: 200}
+  nodes.a.params.y: {from: 0, to: 1, count: 3}
+  nodes.a.params.z: {from: 1, to: 0, step: 0.5}
+summary: {metric: m, against: nodes.a.params.n}
+)");
+  EXPECT_EQ(s.name, "demo");
+  EXPECT_EQ(s.experiment, (dir / "exp.yaml").lexically_normal());
+  EXPECT_EQ(output_root(s, ""), fs::path("out/here"));
+  EXPECT_EQ(output_root(s, "cli"), fs::path("cli"));
+  EXPECT_EQ(s.seeds, (std::vector<std::uint64_t>{3, 4, 5}));
+  ASSERT_EQ(s.fixed.size(), 1u);
+  EXPECT_EQ(s.fixed[0].values[0].text, "2");
+  ASSERT_EQ(s.axes.size(), 4u);
+  EXPECT_EQ(texts(s.axes[0]),
+            (std::vector<std::string>{"0.5", "\"text\"", "[1, 2]", "{l_elbow: -4}"}));
+  EXPECT_EQ(s.axes[0].values[1].where.str(), "s.yaml:8:27");
+  EXPECT_EQ(texts(s.axes[1]), (std::vector<std::string>{"100", "300", "500"}));
+  EXPECT_EQ(texts(s.axes[2]), (std::vector<std::string>{"0", "0.5", "1"}));
+  EXPECT_EQ(texts(s.axes[3]), (std::vector<std::string>{"1", "0.5", "0"}));
+  EXPECT_EQ(s.summary_against, "nodes.a.params.n");
+  const SweepSpec defaults = load("sweep: d\nexperiment: exp.yaml\naxes: {a.b: [1]}\n");
+  EXPECT_EQ(output_root(defaults, ""), fs::path("runs/sweeps/d"));
+  EXPECT_TRUE(defaults.seeds.empty());
+}
+
+TEST_F(SweepFile, GridRunsEveryCombinationWithSeedsInnermost) {
+  const auto jobs =
+      expand_jobs(load("sweep: g\nexperiment: exp.yaml\nseeds: [7, 8]\nset: {duration_s: 1}\n"
+                       "axes: {a.x: [1, 2], a.y: [u, v, w]}\n"));
+  ASSERT_EQ(jobs.size(), 12u);
+  EXPECT_EQ(jobs[0].axis_values, (std::vector<std::string>{"1", "u"}));
+  EXPECT_EQ(jobs[1].axis_values, (std::vector<std::string>{"1", "u"}));
+  EXPECT_EQ(*jobs[1].seed, 8u);
+  EXPECT_EQ(jobs[2].axis_values, (std::vector<std::string>{"1", "v"}));
+  EXPECT_EQ(jobs[11].axis_values, (std::vector<std::string>{"2", "w"}));
+  EXPECT_EQ(jobs[11].folder, "runs/0011");
+  ASSERT_EQ(jobs[11].overrides.size(), 3u);
+  EXPECT_EQ(jobs[11].overrides[0].path, "duration_s");
+  EXPECT_EQ(jobs[11].overrides[2].value, "w");
+}
+
+TEST_F(SweepFile, ZipPairsTheValues) {
+  const auto jobs = expand_jobs(
+      load("sweep: z\nexperiment: exp.yaml\nmode: zip\naxes: {a.x: [1, 2, 3], a.y: [u, v, w]}\n"));
+  ASSERT_EQ(jobs.size(), 3u);
+  EXPECT_FALSE(jobs[0].seed.has_value());
+  EXPECT_EQ(jobs[2].axis_values, (std::vector<std::string>{"3", "w"}));
+}
+
+TEST_F(SweepFile, BadInputsAreLocated) {
+  const std::string head = "sweep: b\nexperiment: exp.yaml\n";
+  EXPECT_EQ(error_of(head + "axes: {a.x: [1]}\nseed: [1]\n"),
+            "s.yaml:4:1: key 'seed': unknown key (did you mean 'seeds'?); expected one of: sweep, "
+            "description, experiment, output, seeds, mode, set, axes, summary");
+  EXPECT_EQ(error_of(head + "axes:\n  a.x: []\n"),
+            "s.yaml:4:8: key 'axes.a.x': expected at least one value, got an empty list");
+  EXPECT_EQ(error_of(head + "mode: zip\naxes:\n  a.x: [1, 2]\n  a.y: [1, 2, 3]\n"),
+            "s.yaml:6:3: key 'axes.a.y': zipped axes need the same number of values: 'a.x' has 2 "
+            "(at s.yaml:5:3), this one has 3");
+  EXPECT_EQ(error_of(head + "axes:\n  a.x: {from: 0, to: 1}\n"),
+            "s.yaml:4:8: key 'axes.a.x': a range needs finite numbers 'from' and 'to' and one of "
+            "'step' (> 0) or 'count' (an integer >= 1)");
+  EXPECT_EQ(error_of(head + "axes:\n  a.x: {from: 0, to: 1, step: 0}\n"),
+            "s.yaml:4:31: key 'axes.a.x': expected 'step' > 0, got '0'");
+  EXPECT_EQ(error_of(head + "axes:\n  a.x: {from: 0, to: 1, stp: 1}\n"),
+            "s.yaml:4:25: key 'axes.a.x.stp': unknown key (did you mean 'step'?); expected one "
+            "of: from, to, step, count");
+  EXPECT_EQ(error_of(head + "axes: {a.x: [1], a.y: [2]}\nsummary: {metric: m, against: a.z}\n"),
+            "s.yaml:4:31: key 'summary.against': 'a.z' is not an axis (did you mean 'a.x'?); "
+            "expected one of: a.x, a.y");
+  EXPECT_EQ(error_of(head + "seeds: [1, 1]\naxes: {a.x: [1]}\n"),
+            "s.yaml:3:12: key 'seeds': seed 1 is listed twice (first at s.yaml:3:9); two runs "
+            "would be identical");
+  EXPECT_EQ(error_of(head + "axes: {a..x: [1]}\n"),
+            "s.yaml:3:8: key 'axes.a..x': expected a dotted --set path such as "
+            "nodes.NODE.params.NAME");
+  EXPECT_EQ(error_of("sweep: b\nexperiment: none.yaml\naxes: {a.x: [1]}\n"),
+            "s.yaml:2:13: key 'experiment': expected an experiment file (relative to the sweep "
+            "file), but '" +
+                (dir / "none.yaml").string() + "' does not exist");
+  EXPECT_EQ(error_of("sweep: b c\nexperiment: exp.yaml\n"),
+            "2 errors:\n  s.yaml:1:1: key 'axes': missing required key (expected a map of PATH: "
+            "values)\n  s.yaml:1:8: key 'sweep': expected a name of letters, digits, '_' and '-', "
+            "got 'b c'");
+}
+
+}  // namespace
+}  // namespace somasim::sweep
