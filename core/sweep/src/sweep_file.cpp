@@ -346,10 +346,16 @@ class SweepReader {
                                      : *from + (*to - *from) * static_cast<double>(i) /
                                                    static_cast<double>(*count - 1));
     }
-    for (double x : values)
+    // Values as 12 significant digits, and 0 for what is zero but for rounding: from + i * step
+    // accumulates binary rounding (-0.15 + 0.05 * 1 = -0.09999999999999999), which would reach
+    // the run folders, the manifests and sweep.csv.
+    const double scale = std::max(std::abs(*from), std::abs(*to));
+    for (double x : values) {
+      if (std::abs(x) < 1e-12 * scale) x = 0.0;
       a.values.push_back({integers ? fmt::format("{}", static_cast<std::int64_t>(std::llround(x)))
-                                   : fmt::format("{}", x),
+                                   : fmt::format("{:.12g}", x),
                           loc(v)});
+    }
   }
 
   void read_summary(const YAML::Node& n) {

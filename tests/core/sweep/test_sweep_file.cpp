@@ -43,6 +43,7 @@ axes:
   nodes.a.params.n: {from: 100, to: 500, step: 200}
   nodes.a.params.y: {from: 0, to: 1, count: 3}
   nodes.a.params.z: {from: 1, to: 0, step: 0.5}
+  nodes.a.params.w: {from: -0.15, to: 0.05, step: 0.05}
 summary: {metric: m, against: nodes.a.params.n}
 )");
   EXPECT_EQ(s.name, "demo");
@@ -52,13 +53,15 @@ summary: {metric: m, against: nodes.a.params.n}
   EXPECT_EQ(s.seeds, (std::vector<std::uint64_t>{3, 4, 5}));
   ASSERT_EQ(s.fixed.size(), 1u);
   EXPECT_EQ(s.fixed[0].values[0].text, "2");
-  ASSERT_EQ(s.axes.size(), 4u);
+  ASSERT_EQ(s.axes.size(), 5u);
   EXPECT_EQ(texts(s.axes[0]),
             (std::vector<std::string>{"0.5", "\"text\"", "[1, 2]", "{l_elbow: -4}"}));
   EXPECT_EQ(s.axes[0].values[1].where.str(), "s.yaml:8:27");
   EXPECT_EQ(texts(s.axes[1]), (std::vector<std::string>{"100", "300", "500"}));
   EXPECT_EQ(texts(s.axes[2]), (std::vector<std::string>{"0", "0.5", "1"}));
   EXPECT_EQ(texts(s.axes[3]), (std::vector<std::string>{"1", "0.5", "0"}));
+  // Not -0.09999999999999999 and 2.7755575615628914e-17 (binary rounding of from + i step).
+  EXPECT_EQ(texts(s.axes[4]), (std::vector<std::string>{"-0.15", "-0.1", "-0.05", "0", "0.05"}));
   EXPECT_EQ(s.summary_against, "nodes.a.params.n");
   const SweepSpec defaults = load("sweep: d\nexperiment: exp.yaml\naxes: {a.b: [1]}\n");
   EXPECT_EQ(output_root(defaults, ""), fs::path("runs/sweeps/d"));
