@@ -341,8 +341,10 @@ void MarkerTracker::score_against_truth(double dt_s) {
   ++position_count_;
   // The true velocity: finite difference over consecutive tracked frames.
   if (has_last_truth_ && dt_s > 0.0 && last_truth_frame_ + 1 == frames_) {
-    velocity_sq_sum_ += (stimulus_->velocity - (p - last_truth_) / dt_s).squaredNorm();
+    const Eigen::Vector3d true_velocity = (p - last_truth_) / dt_s;
+    velocity_sq_sum_ += (stimulus_->velocity - true_velocity).squaredNorm();
     ++velocity_count_;
+    lag_.add(stimulus_->position - p, true_velocity);
   }
   last_truth_ = p;
   last_truth_frame_ = frames_;
@@ -363,6 +365,7 @@ void MarkerTracker::finish(NodeContext& ctx) {
                       position_count_ ? std::sqrt(position_sq_sum_ / position_count_) : 0.0);
     ctx.report_metric("velocity_rms_m_s",
                       velocity_count_ ? std::sqrt(velocity_sq_sum_ / velocity_count_) : 0.0);
+    ctx.report_metric("latency_s", lag_.seconds());
   }
 }
 

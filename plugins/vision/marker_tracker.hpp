@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 
+#include "lag_estimate.hpp"
 #include "somasim/plugin.hpp"
 #include "somasim/pps/ports.hpp"
 #include "somasim/render/camera.hpp"
@@ -74,6 +75,7 @@ class MarkerTracker : public Plugin {
   std::int64_t position_count_ = 0, velocity_count_ = 0, last_truth_frame_ = 0;
   Eigen::Vector3d last_truth_ = Eigen::Vector3d::Zero();
   bool has_last_truth_ = false;
+  LagEstimate lag_{0.01};  // latency; truth slower than 1 cm/s left out
 };
 
 }  // namespace somasim::plugins

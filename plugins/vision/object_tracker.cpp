@@ -15,8 +15,7 @@
 namespace somasim::plugins {
 namespace {
 
-constexpr double kMovingSpeed = 0.01;  // [m/s]: slower truth does not enter the latency
-constexpr int kMaxAreaRatio = 3;       // of the two eyes' object areas for one object
+constexpr int kMaxAreaRatio = 3;  // of the two eyes' object areas for one object
 
 bool inside(const render::Camera& c, const Eigen::Vector3d& p) {
   const auto uv = c.project(p);
@@ -373,12 +372,7 @@ void ObjectTracker::score_against_truth(const std::vector<render::Camera>& camer
   position_sq_sum_ += e.squaredNorm();
   velocity_sq_sum_ += (stimulus_->velocity - truth_->velocity).squaredNorm();
   ++error_count_;
-  // The lag τ of the estimate behind the truth: p_est(t) ≈ p(t - τ) ≈ p(t) - τ v(t), so the
-  // least-squares τ over the tracked frames is -Σ e·v / Σ |v|².
-  if (truth_->velocity.norm() > kMovingSpeed) {
-    lag_numerator_ -= e.dot(truth_->velocity);
-    lag_denominator_ += truth_->velocity.squaredNorm();
-  }
+  lag_.add(e, truth_->velocity);
 }
 
 void ObjectTracker::finish(NodeContext& ctx) {
@@ -406,7 +400,7 @@ void ObjectTracker::finish(NodeContext& ctx) {
   };
   ctx.report_metric("position_rms_m", rms(position_sq_sum_));
   ctx.report_metric("velocity_rms_m_s", rms(velocity_sq_sum_));
-  ctx.report_metric("latency_s", lag_denominator_ > 0 ? lag_numerator_ / lag_denominator_ : 0.0);
+  ctx.report_metric("latency_s", lag_.seconds());
 }
 
 }  // namespace somasim::plugins

@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 
+#include "lag_estimate.hpp"
 #include "somasim/plugin.hpp"
 #include "somasim/pps/ports.hpp"
 #include "somasim/render/camera.hpp"
@@ -84,7 +85,7 @@ class ObjectTracker : public Plugin {
   std::int64_t truth_frames_ = 0, truth_tracked_ = 0, in_view_ = 0, in_view_tracked_ = 0;
   std::int64_t false_fixes_ = 0, error_count_ = 0;
   double position_sq_sum_ = 0.0, velocity_sq_sum_ = 0.0;
-  double lag_numerator_ = 0.0, lag_denominator_ = 0.0;  // latency: -Σ e·v / Σ |v|²
+  LagEstimate lag_{0.01};  // latency; truth slower than 1 cm/s left out
 };
 
 }  // namespace somasim::plugins
