@@ -7,18 +7,22 @@
 
 using somasim::testing::run_config;
 
-// Measured with seed 1 (seven objects): MEASURED. The bounds leave a margin; a tracker that sees
-// nothing (no stimulus: no trigger) or a stimulus that never reaches the controllers fails them.
+// Measured with seed 1 (seven objects): 76 % of the frames with the object in view of both eyes
+// tracked, 0.6 cm RMS position error; 2 of 5 approaches triggered (both right-palm approaches; the
+// three left-forearm objects came from where the eyes do not see them), none of the static or
+// receding objects. The bounds leave a margin; a tracker that sees nothing (no stimulus, no
+// trigger) or a stimulus that never reaches the controllers fails them.
 TEST(PpsAvoidanceVisual, ObjectsSeenByTheEyesAreTrackedAndAvoided) {
   const auto run = run_config("pps_avoidance_visual", {{"nodes.thrower.params.approaches", "7"}});
   ASSERT_EQ(run.metrics["status"], "completed") << run.metrics["error"];
   const auto& track = run.metrics["nodes"]["track"];
-  EXPECT_GT(track["frames_in_view"].get<int>(), 50);
+  EXPECT_GT(track["frames_in_view"].get<int>(), 100);
   EXPECT_GT(track["in_view_tracked_share"].get<double>(), 0.5);
   EXPECT_LT(track["position_rms_m"].get<double>(), 0.03);
   const auto& eval = run.metrics["nodes"]["eval"];
   EXPECT_EQ(eval["approaches"], 5);
-  EXPECT_GE(eval["triggered_rate"].get<double>(), 0.4);
+  EXPECT_GE(eval["triggered_rate"].get<double>(), 0.2);
+  EXPECT_GE(eval["per_part"]["right_palm"]["triggered_rate"].get<double>(), 0.5);
   // (D, TTC) with the signed TTC: a static or receding object has no time to contact.
   EXPECT_EQ(eval["static_trigger_rate"], 0.0);
   EXPECT_EQ(eval["receding_trigger_rate"], 0.0);
