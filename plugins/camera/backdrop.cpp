@@ -44,8 +44,11 @@ std::vector<render::DrawItem> make_backdrop(render::SceneRenderer& renderer,
     local.translation() = Eigen::Vector3d(u, v, thickness * (k + 1));
     local.linear() = Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitZ()).toRotationMatrix();
     item.pose_root = plane * local;
-    item.colour = Eigen::Vector3f(static_cast<float>(unit(rng)), static_cast<float>(unit(rng)),
-                                  static_cast<float>(unit(rng)));
+    // One draw per statement (argument evaluation order is unspecified), in g++'s order.
+    const auto blue = static_cast<float>(unit(rng));
+    const auto green = static_cast<float>(unit(rng));
+    const auto red = static_cast<float>(unit(rng));
+    item.colour = Eigen::Vector3f(red, green, blue);
     item.id = spec.id;
     items.push_back(item);
   }

@@ -145,7 +145,11 @@ bool DoubleTouch::plan_touch(NodeContext& ctx) {
     target.normal = n;
     if (jitter) {
       const Eigen::Vector3d t1 = n.unitOrthogonal(), t2 = n.cross(t1);
-      target.point += position_jitter_ * (gauss(rng) * t1 + gauss(rng) * t2);
+      // One draw per statement (the order of the operands' evaluation is unspecified), in the
+      // order g++ drew them, which the published runs used.
+      const double a2 = gauss(rng);
+      const double a1 = gauss(rng);
+      target.point += position_jitter_ * (a1 * t1 + a2 * t2);
       target.normal = sample_direction_in_cone(n, normal_jitter_, rng);
     }
     target.tilt = finger_tilt_;

@@ -132,7 +132,11 @@ TaxelThrower::Throw TaxelThrower::draw_throw(std::mt19937_64& rng, double t0) {
   Throw th;
   const Eigen::Vector3d dir = sample_direction_in_cone(taxel_normal_, start_cone_rad_, rng);
   const double dist = start_distance_min_ + unit(rng) * (start_distance_max_ - start_distance_min_);
-  const Eigen::Vector2d land(landing_sigma_ * gauss(rng), landing_sigma_ * gauss(rng));
+  // One draw per statement (argument evaluation order is unspecified: results would differ
+  // between compilers); this is the order g++ drew them in, which the published runs used.
+  const double land_y = landing_sigma_ * gauss(rng);
+  const double land_x = landing_sigma_ * gauss(rng);
+  const Eigen::Vector2d land(land_x, land_y);
   const double speed = speed_min_ + unit(rng) * (speed_max_ - speed_min_);
   th.start = taxel_position_ + dist * dir;
   // The object's centre lands one radius above the plane: its surface touches the skin.

@@ -36,14 +36,18 @@ cv::Mat backdrop() {
   cv::Mat image(240, 320, CV_8UC3, cv::Scalar(110, 110, 110));
   cv::RNG rng(11);
   for (int i = 0; i < 50; ++i) {
-    cv::Mat hsv(1, 1, CV_8UC3,
-                cv::Scalar(rng.uniform(25, 155), rng.uniform(0, 255), rng.uniform(40, 255)));
+    // One draw per statement: the order of evaluation of function arguments is unspecified.
+    const int hue = rng.uniform(25, 155);
+    const int saturation = rng.uniform(0, 255);
+    const int value = rng.uniform(40, 255);
+    cv::Mat hsv(1, 1, CV_8UC3, cv::Scalar(hue, saturation, value));
     cv::Mat rgb;
     cv::cvtColor(hsv, rgb, cv::COLOR_HSV2RGB);
-    cv::rectangle(
-        image,
-        cv::Rect(rng.uniform(0, 320), rng.uniform(0, 240), rng.uniform(8, 50), rng.uniform(8, 50)),
-        cv::Scalar(rgb.at<cv::Vec3b>(0, 0)), cv::FILLED);
+    const int x = rng.uniform(0, 320);
+    const int y = rng.uniform(0, 240);
+    const int w = rng.uniform(8, 50);
+    const int h = rng.uniform(8, 50);
+    cv::rectangle(image, cv::Rect(x, y, w, h), cv::Scalar(rgb.at<cv::Vec3b>(0, 0)), cv::FILLED);
   }
   return image;
 }
