@@ -54,6 +54,14 @@ PluginSpec BodySchemaFilter::spec() {
       .defaults(std::string("paper"))
       .one_of(body_schema::noise_schedule_names())
       .describe("noise schedule preset (somasim/body_schema/noise_schedule.hpp)");
+  s.add_double("sigma_floor_deg")
+      .defaults(0.0)
+      .at_least(0.0)
+      .unit_is("deg")
+      .describe(
+          "floor of σ_s instead of the schedule's (0: the preset's, e.g. 0.08 for paper): a "
+          "higher floor keeps the filter exploring, so that it can leave a wrong mode it locked "
+          "onto early");
   s.add_double("kde_sigma_deg").defaults(1.0).unit_is("deg").describe("σ_KDE of the estimate");
   s.add_double("kde_alpha").defaults(500.0).at_least(0.0).describe("α of the estimate's KDE");
   s.add_string("likelihood")
@@ -208,9 +216,18 @@ void BodySchemaFilter::configure(NodeContext& ctx) {
 
   body_schema::KdeOptions kde{ctx.param<double>("kde_sigma_deg"), ctx.param<double>("kde_alpha")};
   if (!(kde.sigma_deg > 0.0)) ctx.param_error("kde_sigma_deg", "expected a value > 0");
+  body_schema::NoiseSchedule schedule =
+      body_schema::noise_schedule_preset(ctx.param<std::string>("schedule"));
+  if (const double floor = ctx.param<double>("sigma_floor_deg"); floor > 0.0) {
+    if (floor > schedule.max_sigma_deg)
+      ctx.param_error("sigma_floor_deg",
+                      fmt::format("{} deg is above the schedule's ceiling of {} deg", floor,
+                                  schedule.max_sigma_deg));
+    schedule.min_sigma_deg = floor;
+  }
   filter_ = std::make_unique<body_schema::OffsetParticleFilter>(
-      static_cast<int>(offset_dofs_.size()), ctx.param<int>("particles"),
-      body_schema::noise_schedule_preset(ctx.param<std::string>("schedule")), ctx.rng()(), kde);
+      static_cast<int>(offset_dofs_.size()), ctx.param<int>("particles"), schedule, ctx.rng()(),
+      kde);
 
   const auto low = ctx.param<std::vector<double>>("hand_hsv_low");
   const auto high = ctx.param<std::vector<double>>("hand_hsv_high");
@@ -238,10 +255,9 @@ void BodySchemaFilter::configure(NodeContext& ctx) {
     sizes.push_back(static_cast<int>(m));
   }
   if (!sizes.empty())
-    comparison_ = std::make_unique<ParticleComparison>(
-        sizes, static_cast<int>(offset_dofs_.size()),
-        body_schema::noise_schedule_preset(ctx.param<std::string>("schedule")), kde, ctx.rng()(),
-        reinflate_factor_);
+    comparison_ =
+        std::make_unique<ParticleComparison>(sizes, static_cast<int>(offset_dofs_.size()), schedule,
+                                             kde, ctx.rng()(), reinflate_factor_);
   main_record_.particles = filter_->size();
   configure_ranks(ctx, sizes);
   evaluate_frame_ = ctx.param<int>("evaluate_frame");
