@@ -124,17 +124,21 @@ class JobRunner {
     const auto metrics = read_json(run_dir / "metrics.json");
     const std::string metrics_status =
         metrics && metrics->is_object() ? metrics->value("status", "") : "";
-    std::string status;
     // Stopped by a signal that asks to stop (ours or the terminal's, possibly before the child
-    // installed its handler): interrupted, redone next time. Any other signal is a crash.
-    if (exit.signal == SIGINT || exit.signal == SIGTERM || exit.signal == SIGHUP)
+    // installed its handler), or by its own interrupt handling: interrupted, redone next time.
+    // Any other signal is a crash.
+    const bool stop_signal =
+        exit.signal == SIGINT || exit.signal == SIGTERM || exit.signal == SIGHUP;
+    const bool interrupted =
+        stop_signal || (exit.signal == 0 && exit.code != kExitOk &&
+                        (exit.code == kExitInterrupted || metrics_status == "interrupted"));
+    std::string status;
+    if (interrupted)
       status = "interrupted";
     else if (exit.signal != 0)
       status = "crashed";
     else if (exit.code == kExitOk)
       status = "completed";
-    else if (exit.code == kExitInterrupted || metrics_status == "interrupted")
-      status = "interrupted";
     else if (exit.code == kExitBadInput)
       status = "bad_input";
     else

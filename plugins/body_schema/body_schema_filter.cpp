@@ -59,9 +59,9 @@ PluginSpec BodySchemaFilter::spec() {
       .at_least(0.0)
       .unit_is("deg")
       .describe(
-          "floor of σ_s instead of the schedule's (0: the preset's, e.g. 0.08 for paper): a "
-          "higher floor keeps the filter exploring, so that it can leave a wrong mode it locked "
-          "onto early");
+          "floor of σ_s instead of the schedule's (0: the preset's, e.g. 0.08 for paper); a "
+          "higher floor keeps the particles moving (measured with 0.5: estimates noisier, and "
+          "filters locked onto a wrong mode did not leave it; see plugins/body_schema/README.md)");
   s.add_double("kde_sigma_deg").defaults(1.0).unit_is("deg").describe("σ_KDE of the estimate");
   s.add_double("kde_alpha").defaults(500.0).at_least(0.0).describe("α of the estimate's KDE");
   s.add_string("likelihood")
