@@ -1,5 +1,7 @@
 #include "marker_tracker.hpp"
 
+#include "image_check.hpp"
+
 #include <cmath>
 
 #include <fmt/format.h>
@@ -30,18 +32,7 @@ PluginSpec MarkerTracker::spec() {
       "no_colour_frames_error frames is a run error; a marker that is hidden or too small is "
       "reported as present = false (metric tracked_share).");
   robot::add_robot_param(s);
-  s.add_string_list("cameras")
-      .size(2)
-      .defaults(std::vector<std::string>{"left_eye", "right_eye"})
-      .describe(
-          "the robot model's cameras whose images arrive on left_eye_rgb and right_eye_rgb (their "
-          "intrinsics are the calibration the images must match)");
-  s.add_string("joint_offsets_deg")
-      .accepts_map_as_text()
-      .defaults(std::string(""))
-      .describe(
-          "believed-kinematics error, 'joint: value, ...' [deg] added to the encoder values "
-          "before the cameras are posed (as proprioception's joint_offsets_deg)");
+  BelievedEyes::declare_params(s);
   s.add_list("hsv_low")
       .size(3)
       .range(0, 255)
@@ -128,21 +119,7 @@ PluginSpec MarkerTracker::spec() {
 
 void MarkerTracker::configure(NodeContext& ctx) {
   model_ = robot::experiment_robot(ctx);
-  data_ = std::make_unique<robot::RobotData>(*model_);
-  try {
-    offsets_ = robot::parse_joint_offsets(*model_, ctx.param<std::string>("joint_offsets_deg"));
-  } catch (const InputError& e) {
-    ctx.param_error("joint_offsets_deg", e.what());
-  }
-  cameras_ = ctx.param<std::vector<std::string>>("cameras");
-  robot::forward_kinematics(*model_, *data_, Eigen::VectorXd::Zero(model_->num_dofs()));
-  for (const std::string& c : cameras_) {
-    try {
-      render::camera_for(*model_, c, data_->link_poses);
-    } catch (const InputError& e) {
-      ctx.param_error("cameras", e.what());
-    }
-  }
+  eyes_believed_.configure(ctx, model_);
   const auto low = ctx.param<std::vector<double>>("hsv_low");
   const auto high = ctx.param<std::vector<double>>("hsv_high");
   if (low[0] > 179)
@@ -189,24 +166,6 @@ void MarkerTracker::configure(NodeContext& ctx) {
   stimulus_->radius = marker_radius_;
 }
 
-void MarkerTracker::check_image(const Image& image, const std::string& port,
-                                const std::string& camera) const {
-  const robot::Camera& c = model_->cameras()[static_cast<std::size_t>(model_->find_camera(camera))];
-  if (image.encoding != ImageEncoding::kRgb8)
-    throw RunError(fmt::format("input '{}': expected an rgb8 image, got {}", port,
-                               image_encoding_name(image.encoding)));
-  if (image.data.cols != c.width || image.data.rows != c.height)
-    throw RunError(fmt::format(
-        "input '{}': the image is {} × {} px, but camera '{}' of robot '{}' is calibrated for "
-        "{} × {} px (wire images of that camera at its resolution)",
-        port, image.data.cols, image.data.rows, camera, model_->name(), c.width, c.height));
-  if (!image.camera.empty() && image.camera != camera)
-    throw RunError(
-        fmt::format("input '{}': the image comes from camera '{}', expected '{}' "
-                    "(param cameras)",
-                    port, image.camera, camera));
-}
-
 bool MarkerTracker::looks_like_marker(const render::Camera& camera, const vision::MarkerBlob& blob,
                                       const Eigen::Vector3d& point_root) const {
   // The enclosing circle of a sphere's image: f R / z [px], less when partly hidden; one pixel
@@ -218,8 +177,9 @@ bool MarkerTracker::looks_like_marker(const render::Camera& camera, const vision
 }
 
 bool MarkerTracker::marker_expected_in_view(const std::vector<render::Camera>& cameras) const {
-  const Eigen::Vector3d p = data_->link_poses[static_cast<std::size_t>(marker_ref_.link)] *
-                            marker_ref_.pose.translation();
+  const Eigen::Vector3d p =
+      eyes_believed_.link_poses()[static_cast<std::size_t>(marker_ref_.link)] *
+      marker_ref_.pose.translation();
   for (const render::Camera& c : cameras) {
     const auto uv = c.project(p);
     if (!uv || uv->x() < 0 || uv->y() < 0 || uv->x() > c.intrinsics.width - 1 ||
@@ -246,8 +206,8 @@ void MarkerTracker::step(NodeContext& ctx) {
     return;
   }
   if (left_->frame == last_frame_) return;  // no new image: the outputs hold
-  check_image(*left_, "left_eye_rgb", cameras_[0]);
-  check_image(*right_, "right_eye_rgb", cameras_[1]);
+  check_camera_image(*model_, *left_, "left_eye_rgb", eyes_believed_.names()[0]);
+  check_camera_image(*model_, *right_, "right_eye_rgb", eyes_believed_.names()[1]);
   if (joints_->position.size() != model_->num_dofs())
     throw RunError(fmt::format("input 'joint_state': expected {} joint values (robot '{}'), got {}",
                                model_->num_dofs(), model_->name(), joints_->position.size()));
@@ -257,10 +217,7 @@ void MarkerTracker::step(NodeContext& ctx) {
   ++frames_;
 
   // The cameras where the believed head and eye kinematics put them.
-  robot::forward_kinematics(*model_, *data_, joints_->position + offsets_);
-  const std::vector<render::Camera> cams = {
-      render::camera_for(*model_, cameras_[0], data_->link_poses),
-      render::camera_for(*model_, cameras_[1], data_->link_poses)};
+  const std::vector<render::Camera> cams = eyes_believed_.pose(joints_->position);
 
   // Candidate blobs of each image, and the in-range pixels (to tell a wrong range).
   const auto blobs = [&](const Image& image, int& matched) {
@@ -283,8 +240,8 @@ void MarkerTracker::step(NodeContext& ctx) {
           "no pixel of camera '{}' or '{}' has been in the colour range {} for {} frames "
           "(since t = {:.3f} s), while the believed kinematics put the marker ('{}') in view "
           "of both: is the range the marker's colour (OpenCV HSV: H 0-179, S and V 0-255)?",
-          cameras_[0], cameras_[1], range_text_, no_colour_, no_colour_since_s_,
-          ctx.param<std::string>("marker_frame")));
+          eyes_believed_.names()[0], eyes_believed_.names()[1], range_text_, no_colour_,
+          no_colour_since_s_, ctx.param<std::string>("marker_frame")));
   } else {
     no_colour_ = 0;
   }

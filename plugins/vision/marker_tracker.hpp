@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 
+#include "believed_eyes.hpp"
 #include "lag_estimate.hpp"
 #include "somasim/plugin.hpp"
 #include "somasim/pps/ports.hpp"
@@ -30,7 +31,6 @@ class MarkerTracker : public Plugin {
   void finish(NodeContext& ctx) override;
 
  private:
-  void check_image(const Image& image, const std::string& port, const std::string& camera) const;
   bool looks_like_marker(const render::Camera& camera, const vision::MarkerBlob& blob,
                          const Eigen::Vector3d& point_root) const;
   bool marker_expected_in_view(const std::vector<render::Camera>& cameras) const;
@@ -41,9 +41,7 @@ class MarkerTracker : public Plugin {
   static constexpr std::size_t kMaxBlobs = 8;  // candidate blobs per image, largest first
 
   std::shared_ptr<const robot::RobotModel> model_;
-  std::unique_ptr<robot::RobotData> data_;
-  Eigen::VectorXd offsets_;
-  std::vector<std::string> cameras_;
+  BelievedEyes eyes_believed_;  // cameras and the believed head/eye kinematics
   vision::HsvRange range_;
   std::string range_text_;
   int min_area_px_ = 1;

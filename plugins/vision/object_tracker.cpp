@@ -37,18 +37,7 @@ PluginSpec ObjectTracker::spec() {
       "object re-acquired by motion. With a wired truth: tracking errors, latency and the share "
       "of frames tracked.");
   robot::add_robot_param(s);
-  s.add_string_list("cameras")
-      .size(2)
-      .defaults(std::vector<std::string>{"left_eye", "right_eye"})
-      .describe(
-          "the robot model's cameras whose images arrive on left_eye_rgb and right_eye_rgb (their "
-          "intrinsics are the calibration the images must match)");
-  s.add_string("joint_offsets_deg")
-      .accepts_map_as_text()
-      .defaults(std::string(""))
-      .describe(
-          "believed-kinematics error, 'joint: value, ...' [deg] added to the encoder values "
-          "before the cameras are posed (as proprioception's joint_offsets_deg)");
+  BelievedEyes::declare_params(s);
   s.add_double("min_flow_px")
       .unit_is("px")
       .defaults(0.5)
@@ -169,21 +158,7 @@ PluginSpec ObjectTracker::spec() {
 
 void ObjectTracker::configure(NodeContext& ctx) {
   model_ = robot::experiment_robot(ctx);
-  data_ = std::make_unique<robot::RobotData>(*model_);
-  try {
-    offsets_ = robot::parse_joint_offsets(*model_, ctx.param<std::string>("joint_offsets_deg"));
-  } catch (const InputError& e) {
-    ctx.param_error("joint_offsets_deg", e.what());
-  }
-  cameras_ = ctx.param<std::vector<std::string>>("cameras");
-  robot::forward_kinematics(*model_, *data_, Eigen::VectorXd::Zero(model_->num_dofs()));
-  for (const std::string& c : cameras_) {
-    try {
-      render::camera_for(*model_, c, data_->link_poses);
-    } catch (const InputError& e) {
-      ctx.param_error("cameras", e.what());
-    }
-  }
+  eyes_believed_.configure(ctx, model_);
   motion_.min_flow_px = ctx.param<double>("min_flow_px");
   motion_.min_area_px = ctx.param<int>("min_motion_px");
   compensate_ego_motion_ = ctx.param<bool>("compensate_ego_motion");
@@ -285,8 +260,8 @@ void ObjectTracker::step(NodeContext& ctx) {
     return;
   }
   if (left_->frame == last_frame_) return;  // no new image: the outputs hold
-  check_camera_image(*model_, *left_, "left_eye_rgb", cameras_[0]);
-  check_camera_image(*model_, *right_, "right_eye_rgb", cameras_[1]);
+  check_camera_image(*model_, *left_, "left_eye_rgb", eyes_believed_.names()[0]);
+  check_camera_image(*model_, *right_, "right_eye_rgb", eyes_believed_.names()[1]);
   if (joints_->position.size() != model_->num_dofs())
     throw RunError(fmt::format("input 'joint_state': expected {} joint values (robot '{}'), got {}",
                                model_->num_dofs(), model_->name(), joints_->position.size()));
@@ -296,10 +271,7 @@ void ObjectTracker::step(NodeContext& ctx) {
   ++frames_;
 
   // The cameras where the believed head and eye kinematics put them.
-  robot::forward_kinematics(*model_, *data_, joints_->position + offsets_);
-  const std::vector<render::Camera> cams = {
-      render::camera_for(*model_, cameras_[0], data_->link_poses),
-      render::camera_for(*model_, cameras_[1], data_->link_poses)};
+  const std::vector<render::Camera> cams = eyes_believed_.pose(joints_->position);
   track_eye(eyes_[0], *left_, cams[0]);
   track_eye(eyes_[1], *right_, cams[1]);
 

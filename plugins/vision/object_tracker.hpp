@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 
+#include "believed_eyes.hpp"
 #include "lag_estimate.hpp"
 #include "somasim/plugin.hpp"
 #include "somasim/pps/ports.hpp"
@@ -50,9 +51,7 @@ class ObjectTracker : public Plugin {
   void score_against_truth(const std::vector<render::Camera>& cameras);
 
   std::shared_ptr<const robot::RobotModel> model_;
-  std::unique_ptr<robot::RobotData> data_;
-  Eigen::VectorXd offsets_;
-  std::vector<std::string> cameras_;
+  BelievedEyes eyes_believed_;  // cameras and the believed head/eye kinematics
   vision::MotionOptions motion_;
   bool compensate_ego_motion_ = true;
   double max_motion_fraction_ = 0.0;
