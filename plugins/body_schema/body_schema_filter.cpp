@@ -62,6 +62,18 @@ PluginSpec BodySchemaFilter::spec() {
           "floor of σ_s instead of the schedule's (0: the preset's, e.g. 0.08 for paper); a "
           "higher floor keeps the particles moving (measured with 0.5: estimates noisier, and "
           "filters locked onto a wrong mode did not leave it; see plugins/body_schema/README.md)");
+  s.add_double("jump_fraction")
+      .defaults(0.0)
+      .range(0.0, 1.0)
+      .describe(
+          "share of particles that take a wider step N(0, max(σ_s, jump_sigma_deg)²) at each "
+          "prediction (mixture proposal against early lock-in onto a wrong mode; not in the "
+          "paper, 0 = off; see plugins/body_schema/README.md)");
+  s.add_double("jump_sigma_deg")
+      .defaults(1.5)
+      .at_least(0.0)
+      .unit_is("deg")
+      .describe("σ of a jump (with jump_fraction > 0)");
   s.add_double("kde_sigma_deg").defaults(1.0).unit_is("deg").describe("σ_KDE of the estimate");
   s.add_double("kde_alpha").defaults(500.0).at_least(0.0).describe("α of the estimate's KDE");
   s.add_string("likelihood")
@@ -225,6 +237,8 @@ void BodySchemaFilter::configure(NodeContext& ctx) {
                                   schedule.max_sigma_deg));
     schedule.min_sigma_deg = floor;
   }
+  schedule.jump_fraction = ctx.param<double>("jump_fraction");
+  schedule.jump_sigma_deg = ctx.param<double>("jump_sigma_deg");
   filter_ = std::make_unique<body_schema::OffsetParticleFilter>(
       static_cast<int>(offset_dofs_.size()), ctx.param<int>("particles"), schedule, ctx.rng()(),
       kde);

@@ -35,11 +35,16 @@ void OffsetParticleFilter::reset() {
 
 void OffsetParticleFilter::predict() {
   std::normal_distribution<double> gauss(0.0, 1.0);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  const bool jumps = schedule_.jump_fraction > 0.0;  // no extra draws when off: same stream
+  const double jump_sigma = std::max(sigma_, schedule_.jump_sigma_deg);
   if (schedule_.reset_particle_zero) particles_.col(0).setZero();
   for (Eigen::Index m = 0; m < particles_.cols(); ++m) {
     const bool keep = schedule_.reset_particle_zero && m == 0;
+    const bool jump = jumps && uniform(rng_) < schedule_.jump_fraction;
+    const double sigma = jump ? jump_sigma : sigma_;
     for (Eigen::Index j = 0; j < particles_.rows(); ++j) {
-      const double w = sigma_ * gauss(rng_);  // drawn for particle 0 too: same stream either way
+      const double w = sigma * gauss(rng_);  // drawn for particle 0 too: same stream either way
       if (!keep) particles_(j, m) += w;
     }
   }

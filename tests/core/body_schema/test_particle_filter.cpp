@@ -131,6 +131,65 @@ TEST(OffsetParticleFilter, AllZeroLikelihoodsChangeNothing) {
   EXPECT_DOUBLE_EQ(f.sigma_deg(), 5.0);  // up to σ_i, not beyond
 }
 
+TEST(OffsetParticleFilter, JumpsMoveTheirShareOfParticlesWithTheirOwnSigma) {
+  NoiseSchedule s = noise_schedule_preset("paper");
+  s.step_sigma_deg = 0.01;
+  s.jump_fraction = 0.2;
+  s.jump_sigma_deg = 2.0;
+  constexpr int kParticles = 2000;
+  OffsetParticleFilter f(7, kParticles, s, 5);
+  f.set_particles(Eigen::MatrixXd::Zero(7, kParticles));
+  f.predict();
+  int jumped = 0;
+  double jump_sq = 0.0;
+  for (int m = 0; m < kParticles; ++m) {
+    const double n = f.particles().col(m).norm();
+    EXPECT_TRUE(n < 0.1 || n > 0.3) << n;  // 7-D norms: ~0.026 for σ_s, ~5.3 for a jump
+    if (n > 0.3) {
+      ++jumped;
+      jump_sq += n * n;
+    }
+  }
+  EXPECT_NEAR(jumped, 0.2 * kParticles, 4.0 * std::sqrt(kParticles * 0.2 * 0.8));
+  EXPECT_NEAR(std::sqrt(jump_sq / (7.0 * jumped)), 2.0, 0.1);  // per-joint σ of the jumps
+}
+
+// Two modes 6 deg apart: a broad one (peak 0.5) around the nominal model and a narrow, better
+// one. The paper's decay freezes most populations in the broad mode; jumps find the better one.
+TEST(OffsetParticleFilter, JumpsLeaveAWrongModeThePaperScheduleLocksOnto) {
+  const Eigen::Vector2d wrong(0.0, 0.0);
+  const Eigen::Vector2d right(6.0, 0.0);
+  auto likelihoods = [&](const OffsetParticleFilter& f) {
+    std::vector<double> l(static_cast<std::size_t>(f.size()));
+    for (int m = 0; m < f.size(); ++m) {
+      const Eigen::Vector2d b = f.particles().col(m);
+      l[static_cast<std::size_t>(m)] = 0.5 * std::exp(-0.5 * (b - wrong).squaredNorm() / 9.0) +
+                                       std::exp(-0.5 * (b - right).squaredNorm() / 0.25);
+    }
+    return l;
+  };
+  auto found = [&](double jump_fraction, std::uint64_t seed) {
+    NoiseSchedule s = noise_schedule_preset("paper");
+    s.initial_sigma_deg = 2.0;
+    s.jump_fraction = jump_fraction;
+    s.jump_sigma_deg = 3.0;
+    OffsetParticleFilter f(2, 100, s, seed);
+    for (int t = 0; t < 120; ++t) {
+      f.predict();
+      f.update(likelihoods(f));
+    }
+    return (f.estimate() - right).norm() < 1.0;
+  };
+  int paper_found = 0;
+  int jumps_found = 0;
+  for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+    paper_found += found(0.0, seed) ? 1 : 0;
+    jumps_found += found(0.1, seed) ? 1 : 0;
+  }
+  EXPECT_LE(paper_found, 6);
+  EXPECT_GE(jumps_found, 18);
+}
+
 template <class F>
 std::string error_of(F&& f) {
   try {

@@ -26,6 +26,13 @@ struct NoiseSchedule {
   /// Resample only when the best likelihood of the frame exceeds this (0: always resample).
   double resample_threshold = 0.0;
   bool reset_particle_zero = false;  ///< particle 0 is set to β = 0 at every prediction
+  /// Mixture proposal against early lock-in (not in the paper; 0 = off, the presets' value):
+  /// at every prediction each particle, with this probability, takes a jump of
+  /// N(0, max(σ_s, jump_sigma_deg)²) instead of N(0, σ_s²). Once σ_s has decayed the population
+  /// cannot leave a wrong mode by itself; the jumpers probe around it at no extra rendering cost,
+  /// and resampling moves the population when one of them explains the images better.
+  double jump_fraction = 0.0;
+  double jump_sigma_deg = 0.0;  ///< σ of a jump [deg] (used when jump_fraction > 0)
 
   /// σ_s for the next frame, from this frame's σ_s and whether this frame resampled.
   double next_sigma(double sigma_deg, bool resampled) const;

@@ -44,7 +44,8 @@ class OffsetParticleFilter {
 
   /// New movement: particles drawn from N(0, σ_i² I), σ_s back to its first value, estimate 0.
   void reset();
-  /// Adds N(0, σ_s² I) to every particle (particle 0 set to 0 first under reset_particle_zero).
+  /// Adds N(0, σ_s² I) to every particle (particle 0 set to 0 first under reset_particle_zero);
+  /// a share `jump_fraction` of them, drawn at random, get N(0, max(σ_s, jump_sigma_deg)² I).
   void predict();
   /// Weights the particles by `likelihoods` (size M, finite, >= 0), picks the estimate, resamples
   /// (systematic) when the schedule says so and sets the next σ_s. A frame whose likelihoods are
