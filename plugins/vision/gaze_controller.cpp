@@ -1,6 +1,7 @@
 #include "gaze_controller.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include <fmt/format.h>
 
@@ -26,7 +27,9 @@ PluginSpec GazeController::spec() {
                "axes (believed kinematics: encoders + joint_offsets_deg), reached at a bounded "
                "joint speed with position commands within the joint limits. A target out of "
                "reach leaves joints at their limits, logged once per episode and counted "
-               "(metrics out_of_reach_steps, max_gaze_offset_deg).");
+               "(metrics out_of_reach_steps, max_gaze_offset_deg). Without a target for hold_s "
+               "the gaze goes idle: it holds, looks at the middle of the believed skin parts "
+               "(fixation) or at each of them in turn (scan), from the believed taxels only.");
   robot::add_robot_param(s);
   s.add_string_list("cameras")
       .size(2)
@@ -56,7 +59,31 @@ PluginSpec GazeController::spec() {
       .defaults(0.5)
       .range(0.0, 90.0)
       .describe("a target further than this from an optical axis at the solution is out of reach");
+  s.add_string("idle")
+      .defaults(std::string("hold"))
+      .one_of({"hold", "fixation", "scan"})
+      .describe(
+          "without a target: hold the gaze where it is; fixation: look at the mean of the "
+          "believed centroids of idle_parts (between them); scan: look at each part's believed "
+          "centroid in turn for dwell_s. Fixation and scan need the taxels input");
+  s.add_string_list("idle_parts")
+      .defaults(std::vector<std::string>{})
+      .describe("skin parts of the taxels input that the idle fixation / scan looks at");
+  s.add_double("hold_s")
+      .unit_is("s")
+      .defaults(0.5)
+      .range(0.0, 100.0)
+      .describe("the gaze stays on the last target for this long before it goes idle");
+  s.add_double("dwell_s")
+      .unit_is("s")
+      .defaults(2.0)
+      .range(0.05, 100.0)
+      .describe("idle scan: time on each part before the next");
   s.input<pps::Stimulus>("target", "what to look at (root frame), e.g. marker_tracker.stimulus");
+  s.input<SkinTaxels>("taxels",
+                      "the believed skin taxels (e.g. believed.taxels): where the idle fixation "
+                      "/ scan looks",
+                      /*optional=*/true);
   s.input<JointState>("joint_state", "encoder values (e.g. world.joint_state)");
   s.output<JointCommand>("command",
                          "position commands of the gaze joints (encoder values); the other "
@@ -89,6 +116,18 @@ void GazeController::configure(NodeContext& ctx) {
   } catch (const InputError& e) {
     ctx.param_error("joint_offsets_deg", e.what());
   }
+  const std::string idle = ctx.param<std::string>("idle");
+  idle_ = idle == "fixation" ? Idle::kFixation : idle == "scan" ? Idle::kScan : Idle::kHold;
+  idle_parts_ = ctx.param<std::vector<std::string>>("idle_parts");
+  hold_s_ = ctx.param<double>("hold_s");
+  dwell_s_ = ctx.param<double>("dwell_s");
+  if (idle_ != Idle::kHold && idle_parts_.empty())
+    ctx.param_error("idle_parts", fmt::format("idle '{}' needs at least one skin part", idle));
+  if (idle_ != Idle::kHold && !ctx.is_wired("taxels"))
+    ctx.param_error("idle", fmt::format("idle '{}' needs the input 'taxels' (the believed skin, "
+                                        "e.g. believed.taxels) wired",
+                                        idle));
+  taxels_ = ctx.is_wired("taxels") ? &ctx.input<SkinTaxels>("taxels") : nullptr;
   max_speed_ = deg_to_rad(ctx.param<double>("max_speed_deg_s"));
   reach_tolerance_ = deg_to_rad(ctx.param<double>("reach_tolerance_deg"));
   target_ = &ctx.input<pps::Stimulus>("target");
@@ -100,6 +139,48 @@ void GazeController::configure(NodeContext& ctx) {
   command_->velocity.setZero(n);
 }
 
+bool GazeController::part_centroids(std::vector<Eigen::Vector3d>& out) const {
+  out.clear();
+  if (taxels_ == nullptr || taxels_->parts.empty()) return false;  // nothing believed yet
+  for (const std::string& name : idle_parts_) {
+    const auto it = std::find_if(taxels_->parts.begin(), taxels_->parts.end(),
+                                 [&](const SkinPart& p) { return p.name == name; });
+    if (it == taxels_->parts.end()) {
+      std::vector<std::string> have;
+      for (const SkinPart& p : taxels_->parts) have.push_back(p.name);
+      throw RunError(
+          fmt::format("gaze_controller: idle_parts: no skin part '{}' in the input "
+                      "'taxels' (it has: {})",
+                      name, join(have)));
+    }
+    if (it->positions.empty()) return false;
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    for (const Eigen::Vector3d& p : it->positions) sum += p;
+    out.push_back(sum / static_cast<double>(it->positions.size()));
+  }
+  return true;
+}
+
+void GazeController::aim(NodeContext& ctx, const Eigen::VectorXd& q, const Eigen::Vector3d& point,
+                         bool tracking) {
+  const vision::GazeSolution s = solver_->solve(q + offsets_, point);
+  goal_ = s.q - offsets_;
+  if (!tracking) return;
+  const bool unreachable = s.behind || s.residual_rad > reach_tolerance_;
+  if (unreachable) {
+    ++clamped_steps_;
+    max_offset_rad_ = std::max(max_offset_rad_, s.residual_rad);
+    if (!out_of_reach_)
+      ctx.log().warn(
+          "gaze_controller: target ({:.3f}, {:.3f}, {:.3f}) m is out of reach at t = {:.3f} s: "
+          "{} at their limits, {:.1f} deg off the optical axes{}",
+          point.x(), point.y(), point.z(), ctx.time_s(),
+          s.at_limit.empty() ? std::string("no joint") : join(s.at_limit),
+          rad_to_deg(s.residual_rad), s.behind ? " (behind a camera)" : "");
+  }
+  out_of_reach_ = unreachable;
+}
+
 void GazeController::step(NodeContext& ctx) {
   const Eigen::VectorXd& q = joints_->position;
   if (q.size() == 0) return;  // nothing measured yet
@@ -107,30 +188,44 @@ void GazeController::step(NodeContext& ctx) {
     throw RunError(fmt::format("input 'joint_state': expected {} joint values (robot '{}'), got {}",
                                model_->num_dofs(), model_->name(), q.size()));
   ++steps_;
+  const double t = ctx.time_s();
   if (!started_) {  // hold the current gaze until there is something to look at
     goal_ = q;
     command_->position = q;
     for (const int d : solver_->dofs())
       command_->mode[static_cast<std::size_t>(d)] = JointCommandMode::kPosition;
     started_ = true;
+    idle_since_s_ = t;
   }
   if (target_->present) {
     ++steps_with_target_;
-    const vision::GazeSolution s = solver_->solve(q + offsets_, target_->position);
-    goal_ = s.q - offsets_;
-    const bool unreachable = s.behind || s.residual_rad > reach_tolerance_;
-    if (unreachable) {
-      ++clamped_steps_;
-      max_offset_rad_ = std::max(max_offset_rad_, s.residual_rad);
-      if (!out_of_reach_)
-        ctx.log().warn(
-            "gaze_controller: target ({:.3f}, {:.3f}, {:.3f}) m is out of reach at t = {:.3f} s: "
-            "{} at their limits, {:.1f} deg off the optical axes{}",
-            target_->position.x(), target_->position.y(), target_->position.z(), ctx.time_s(),
-            s.at_limit.empty() ? std::string("no joint") : join(s.at_limit),
-            rad_to_deg(s.residual_rad), s.behind ? " (behind a camera)" : "");
+    last_target_s_ = t;
+    idle_now_ = false;
+    aim(ctx, q, target_->position, /*tracking=*/true);
+  } else if (idle_ != Idle::kHold && t - last_target_s_ >= hold_s_) {
+    if (!idle_now_) {
+      idle_now_ = true;
+      idle_since_s_ = t;
+      ++idle_entries_;
     }
-    out_of_reach_ = unreachable;
+    ++idle_steps_;
+    std::vector<Eigen::Vector3d> centroids;
+    if (part_centroids(centroids)) {
+      Eigen::Vector3d point = Eigen::Vector3d::Zero();
+      if (idle_ == Idle::kFixation) {
+        for (const Eigen::Vector3d& c : centroids) point += c;
+        point /= static_cast<double>(centroids.size());
+      } else {
+        const auto k = static_cast<std::size_t>(std::floor((t - idle_since_s_) / dwell_s_));
+        point = centroids[k % centroids.size()];
+      }
+      aim(ctx, q, point, /*tracking=*/false);
+      if (idle_steps_ == 1)
+        ctx.log().info(
+            "gaze_controller: idle ({}) at t = {:.3f} s: looking at ({:.3f}, {:.3f}, "
+            "{:.3f}) m",
+            idle_ == Idle::kFixation ? "fixation" : "scan", t, point.x(), point.y(), point.z());
+    }
   }
   // Toward the goal at a bounded speed, within the limits.
   const double max_step = max_speed_ * ctx.period_s();
@@ -145,6 +240,8 @@ void GazeController::finish(NodeContext& ctx) {
   ctx.report_metric("steps", steps_);
   ctx.report_metric("steps_with_target", steps_with_target_);
   ctx.report_metric("out_of_reach_steps", clamped_steps_);
+  ctx.report_metric("idle_steps", idle_steps_);
+  ctx.report_metric("idle_entries", idle_entries_);
   ctx.report_metric("max_gaze_offset_deg", rad_to_deg(max_offset_rad_));
 }
 

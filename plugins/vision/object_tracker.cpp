@@ -71,6 +71,12 @@ PluginSpec ObjectTracker::spec() {
       .describe(
           "an acquisition is refused when the acquired colours cover more pixels elsewhere in "
           "the image than on the moving blob, times this (colours of the backdrop or robot)");
+  s.add_bool("refuse_own_colours")
+      .defaults(true)
+      .describe(
+          "refuse acquisitions whose colour mode is one of the robot's own rendered colours "
+          "(its links' and coloured visuals', from the robot model): the robot's own moving "
+          "hand is not an object (metric own_colour_refusals)");
   s.add_bool("compensate_ego_motion")
       .defaults(true)
       .describe(
@@ -101,6 +107,22 @@ PluginSpec ObjectTracker::spec() {
       .describe(
           "a triangulation whose RMS reprojection error exceeds this is no fix (the eyes track "
           "different things)");
+  s.add_double("max_distance_m")
+      .unit_is("m")
+      .defaults(0.8)
+      .range(0.05, 100.0)
+      .describe(
+          "a triangulated object farther than this from the middle of the two eyes is no fix and "
+          "both tracks are dropped (metric far_drops): the peripersonal space is near, and a "
+          "distant piece of the backdrop taken for an object while the head turned (parallax) "
+          "would otherwise hold the gaze");
+  s.add_double("max_colour_distance")
+      .defaults(0.6)
+      .range(0.0, 1.0)
+      .describe(
+          "the two eyes' colour models (Bhattacharyya distance of their hue-saturation "
+          "histograms, 0 = the same, 1 = disjoint) must be closer than this for a fix; farther "
+          "apart, the eyes follow different things and the frame counts as inconsistent");
   s.add_int("inconsistent_frames_lost")
       .defaults(std::int64_t{2})
       .at_least(1)
@@ -171,9 +193,25 @@ void ObjectTracker::configure(NodeContext& ctx) {
   colour.min_object_px = ctx.param<int>("min_object_px");
   colour.lost_fraction = ctx.param<double>("lost_fraction");
   colour.max_background_ratio = ctx.param<double>("max_background_ratio");
+  if (ctx.param<bool>("refuse_own_colours")) {
+    const auto rgb8 = [](const Eigen::Vector3f& c) {
+      const auto u8 = [](float v) {
+        return static_cast<unsigned char>(std::lround(255.0F * std::clamp(v, 0.0F, 1.0F)));
+      };
+      return cv::Vec3b(u8(c.x()), u8(c.y()), u8(c.z()));
+    };
+    for (int i = 0; i < model_->num_links(); ++i) {
+      const robot::Link& link = model_->link(i);
+      colour.own_colours.push_back(rgb8(render::link_colour(link.name)));
+      for (const robot::Geometry& g : link.visual)
+        if (g.colour) colour.own_colours.push_back(rgb8(g.colour->cast<float>()));
+    }
+  }
   for (Eye& eye : eyes_) eye.tracker = vision::ColourTracker(colour);
   max_reprojection_px_ = ctx.param<double>("max_reprojection_px");
   inconsistent_frames_lost_ = ctx.param<int>("inconsistent_frames_lost");
+  max_distance_ = ctx.param<double>("max_distance_m");
+  max_colour_distance_ = ctx.param<double>("max_colour_distance");
   reset_after_lost_ = ctx.param<int>("reset_after_lost");
   radius_min_ = ctx.param<double>("radius_min");
   radius_max_ = ctx.param<double>("radius_max");
@@ -203,6 +241,7 @@ void ObjectTracker::track_eye(Eye& eye, const Image& image, const render::Camera
           ? vision::rotation_homography(eye.previous_rotation, camera.pose_root.linear(), k.fx,
                                         k.fy, k.cx, k.cy)
           : cv::Matx33d::eye();
+  if (eye.tracker.tracking()) eye.tracker.shift_window(ego);  // the head's own turn
   eye.track = eye.tracker.tracking() ? eye.tracker.track(image.data) : vision::ColourTrack{};
   if (!eye.track.tracked && !eye.tracker.tracking() && eye.track.window.area() > 0) ++losses_;
   if (eye.track.tracked) {
@@ -234,6 +273,7 @@ void ObjectTracker::track_eye(Eye& eye, const Image& image, const render::Camera
         eye.still_frames = 0;
       } else {
         ++refused_;
+        if (eye.tracker.last_refusal() == vision::Refusal::kOwnColour) ++own_colour_refused_;
       }
     } else if (m.found) {
       ++refused_;
@@ -254,7 +294,22 @@ void ObjectTracker::lose(double dt_s) {
   stimulus_->velocity = kalman_.velocity();
 }
 
+const Eigen::VectorXd& ObjectTracker::joints_at(double time_s) {
+  const auto best = std::min_element(
+      joint_history_.begin(), joint_history_.end(), [&](const auto& a, const auto& b) {
+        return std::abs(a.first - time_s) < std::abs(b.first - time_s);
+      });
+  pose_time_offset_max_s_ = std::max(pose_time_offset_max_s_, std::abs(best->first - time_s));
+  return best->second;
+}
+
 void ObjectTracker::step(NodeContext& ctx) {
+  if (joints_->position.size() > 0 &&
+      (joint_history_.empty() || joint_history_.back().first < ctx.time_s())) {
+    joint_history_.emplace_back(ctx.time_s(), joints_->position);
+    while (joint_history_.size() > 2 && joint_history_.front().first < ctx.time_s() - 1.0)
+      joint_history_.pop_front();
+  }
   if (left_->data.empty() || right_->data.empty() || joints_->position.size() == 0) {
     stimulus_->present = false;
     return;
@@ -270,8 +325,9 @@ void ObjectTracker::step(NodeContext& ctx) {
   last_time_s_ = left_->time_s;
   ++frames_;
 
-  // The cameras where the believed head and eye kinematics put them.
-  const std::vector<render::Camera> cams = eyes_believed_.pose(joints_->position);
+  // The cameras where the believed head and eye kinematics put them when the images were
+  // rendered (the head may be moving).
+  const std::vector<render::Camera> cams = eyes_believed_.pose(joints_at(left_->time_s));
   track_eye(eyes_[0], *left_, cams[0]);
   track_eye(eyes_[1], *right_, cams[1]);
 
@@ -301,13 +357,24 @@ void ObjectTracker::step(NodeContext& ctx) {
   } else if (l.tracked && r.tracked) {
     object = vision::triangulate_object(cams[0], l.centre_px, l.radius_px, cams[1], r.centre_px,
                                         r.radius_px);
-    if (!object.centre.valid || object.centre.reprojection_error_px > max_reprojection_px_) {
+    const bool same_colours =
+        vision::colour_distance(eyes_[0].tracker, eyes_[1].tracker) <= max_colour_distance_;
+    if (!same_colours) ++colour_mismatches_;
+    if (!object.centre.valid || object.centre.reprojection_error_px > max_reprojection_px_ ||
+        !same_colours) {
       object.centre.valid = false;
       if (++inconsistent_ >= inconsistent_frames_lost_) {  // re-acquire both by motion
         for (Eye& eye : eyes_) eye.tracker.lose();
         ++inconsistent_drops_;
         inconsistent_ = 0;
       }
+    } else if ((object.centre.point -
+                0.5 * (cams[0].pose_root.translation() + cams[1].pose_root.translation()))
+                   .norm() > max_distance_) {
+      object.centre.valid = false;  // the backdrop, not an object near the body
+      for (Eye& eye : eyes_) eye.tracker.lose();
+      ++far_drops_;
+      inconsistent_ = 0;
     } else {
       inconsistent_ = 0;
     }
@@ -359,7 +426,11 @@ void ObjectTracker::finish(NodeContext& ctx) {
   ctx.report_metric("inconsistent_drops", inconsistent_drops_);
   ctx.report_metric("partial_frames", partial_);
   ctx.report_metric("still_drops", still_drops_);
+  ctx.report_metric("far_drops", far_drops_);
+  ctx.report_metric("colour_mismatches", colour_mismatches_);
   ctx.report_metric("refused_acquisitions", refused_);
+  ctx.report_metric("own_colour_refusals", own_colour_refused_);
+  ctx.report_metric("pose_time_offset_max_s", pose_time_offset_max_s_);
   ctx.report_metric("reprojection_mean_px", tracked_ ? reprojection_sum_ / tracked_ : 0.0);
   if (!truth_) return;
   ctx.report_metric("frames_with_object", truth_frames_);

@@ -3,10 +3,15 @@
 // seen by both eyes: motion detection by optical flow acquires an object, a CamShift tracker of
 // its hue-saturation distribution follows it in each image, the two centres are triangulated
 // through the believed head/eye kinematics, and a Kalman filter (constant acceleration by
-// default) gives position and velocity; a pps::Stimulus in the root frame.
+// default) gives position and velocity; a pps::Stimulus in the root frame. The head may move
+// (gaze_controller): the cameras are posed at the images' render time, the previous image and
+// search windows follow the camera's own rotation, and the robot's own colours, fixes beyond
+// max_distance_m and two eyes on unlike colours are refused.
 #include <array>
+#include <deque>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -49,6 +54,8 @@ class ObjectTracker : public Plugin {
   void track_eye(Eye& eye, const Image& image, const render::Camera& camera);
   void lose(double dt_s);
   void score_against_truth(const std::vector<render::Camera>& cameras);
+  /// The encoder values at the sim time closest to `time_s` among the recent steps [rad, m].
+  const Eigen::VectorXd& joints_at(double time_s);
 
   std::shared_ptr<const robot::RobotModel> model_;
   BelievedEyes eyes_believed_;  // cameras and the believed head/eye kinematics
@@ -59,6 +66,8 @@ class ObjectTracker : public Plugin {
   double still_px_ = 0.0;
   double max_reprojection_px_ = 0.0;
   int inconsistent_frames_lost_ = 0;
+  double max_distance_ = 0.0;  // [m] from the middle of the eyes
+  double max_colour_distance_ = 0.0;
   int reset_after_lost_ = 0;
   double radius_min_ = 0.0, radius_max_ = 0.0;
   vision::KalmanTracker kalman_;
@@ -77,7 +86,13 @@ class ObjectTracker : public Plugin {
   int inconsistent_ = 0;  // consecutive frames both eyes tracked but the rays did not meet
   std::int64_t frames_ = 0, tracked_ = 0, acquisitions_ = 0, losses_ = 0, inconsistent_drops_ = 0;
   std::int64_t still_drops_ = 0, refused_ = 0;  // static tracks dropped, acquisitions refused
-  std::int64_t partial_ = 0;  // both tracked, but cut by the border or of unlike areas
+  std::int64_t own_colour_refused_ = 0;         // of those: the robot's own colours
+  std::int64_t far_drops_ = 0;                  // fixes beyond max_distance_m
+  std::int64_t colour_mismatches_ = 0;          // both eyes tracked things of unlike colours
+  // Recent (sim time [s], encoder values): the head's pose when an image was rendered.
+  std::deque<std::pair<double, Eigen::VectorXd>> joint_history_;
+  double pose_time_offset_max_s_ = 0.0;  // largest |image time - pose time| used [s]
+  std::int64_t partial_ = 0;             // both tracked, but cut by the border or of unlike areas
   double reprojection_sum_ = 0.0;
   // Against the truth: frames it is present / in view of both eyes (believed cameras) and
   // tracked among them; errors over tracked frames with the truth present.

@@ -1,25 +1,26 @@
 // configs/pps_avoidance_visual.yaml, shortened to seven objects (five approaches, one static, one
 // receding): the objects are seen by both eyes, tracked (optical flow, CamShift, stereo, Kalman)
-// and the tracked stimulus drives the PPS activations and the avoidance controllers.
+// and the tracked stimulus drives the PPS activations and the avoidance controllers; the neck and
+// eyes follow the tracked object while the arms move.
 #include <gtest/gtest.h>
 
 #include "experiment_runner.hpp"
 
 using somasim::testing::run_config;
 
-// Measured with seed 1 (seven objects): 61 % of the frames with the object in view of both eyes
-// tracked, 2.1 cm RMS position error; 2 of 5 approaches triggered (both right-palm approaches; the
-// three left-forearm objects did not trigger: the forearm and its approaches are only partly in
-// view, see the config's posture), none of the static or receding objects. The bounds leave a
-// margin; a tracker that sees nothing (no stimulus, no trigger) or a stimulus that never reaches
-// the controllers fails them.
+// Measured with seed 1 (seven objects, the head following the objects): 69 % of the frames with
+// the object in view of both eyes tracked, 2.6 cm RMS position error, no false fix; 2 of 5
+// approaches triggered (both right-palm approaches; the three left-forearm objects did not
+// trigger: the forearm's approaches are seen late or not at all), none of the static or receding
+// objects. The bounds leave a margin; a tracker that sees nothing (no stimulus, no trigger) or a
+// stimulus that never reaches the controllers fails them.
 TEST(PpsAvoidanceVisual, ObjectsSeenByTheEyesAreTrackedAndAvoided) {
   const auto run = run_config("pps_avoidance_visual", {{"nodes.thrower.params.approaches", "7"}});
   ASSERT_EQ(run.metrics["status"], "completed") << run.metrics["error"];
   const auto& track = run.metrics["nodes"]["track"];
   EXPECT_GT(track["frames_in_view"].get<int>(), 100);
   EXPECT_GT(track["in_view_tracked_share"].get<double>(), 0.5);
-  EXPECT_LT(track["position_rms_m"].get<double>(), 0.03);
+  EXPECT_LT(track["position_rms_m"].get<double>(), 0.04);
   const auto& eval = run.metrics["nodes"]["eval"];
   EXPECT_EQ(eval["approaches"], 5);
   EXPECT_GE(eval["triggered_rate"].get<double>(), 0.2);
@@ -27,6 +28,8 @@ TEST(PpsAvoidanceVisual, ObjectsSeenByTheEyesAreTrackedAndAvoided) {
   // (D, TTC) with the signed TTC: a static or receding object has no time to contact.
   EXPECT_EQ(eval["static_trigger_rate"], 0.0);
   EXPECT_EQ(eval["receding_trigger_rate"], 0.0);
+  EXPECT_GT(run.metrics["nodes"]["gaze"]["steps_with_target"].get<int>(), 20);
+  EXPECT_LE(track["false_fixes"].get<int>(), 5);  // not the robot's own hand
   EXPECT_GT(run.metrics["nodes"]["avoid_left"]["triggers"].get<int>() +
                 run.metrics["nodes"]["avoid_right"]["triggers"].get<int>(),
             0);

@@ -47,6 +47,14 @@ ColourTracker::ColourTracker(const ColourTrackerOptions& options) : options_(opt
   check(o.max_background_ratio > 0, "max_background_ratio", "> 0", o.max_background_ratio);
   check(o.max_iterations >= 1, "max_iterations", ">= 1", o.max_iterations);
   check(o.epsilon_px > 0, "epsilon_px", "> 0", o.epsilon_px);
+  for (const cv::Vec3b& rgb : o.own_colours) {
+    cv::Mat hsv;
+    cv::cvtColor(cv::Mat(1, 1, CV_8UC3, cv::Scalar(rgb[0], rgb[1], rgb[2])), hsv,
+                 cv::COLOR_RGB2HSV);
+    const cv::Vec3b v = hsv.at<cv::Vec3b>(0, 0);
+    if (v[1] < o.min_saturation || v[2] < o.min_value) continue;  // no hue
+    own_bins_.emplace_back(v[1] * o.saturation_bins / 256, v[0] * o.hue_bins / 180);
+  }
 }
 
 cv::Mat ColourTracker::hsv_and_mask(const cv::Mat& rgb, cv::Mat& coloured) const {
@@ -65,6 +73,7 @@ bool ColourTracker::acquire(const cv::Mat& rgb, const cv::Mat& object_mask) {
         "and {}",
         describe(rgb), describe(object_mask)));
   tracking_ = false;
+  refusal_ = Refusal::kTooFew;
   cv::Mat coloured;
   const cv::Mat hsv = hsv_and_mask(rgb, coloured);
   const cv::Mat object = coloured & (object_mask != 0);
@@ -97,6 +106,13 @@ bool ColourTracker::acquire(const cv::Mat& rgb, const cv::Mat& object_mask) {
   double best = 0.0;
   cv::Point best_at;
   cv::minMaxLoc(score, nullptr, &best, nullptr, &best_at);
+  for (const cv::Point& own : own_bins_) {  // (x: saturation bin, y: hue bin); hue cyclic
+    const int dh = std::abs(own.y - best_at.y);
+    if (std::min(dh, options_.hue_bins - dh) <= 1 && std::abs(own.x - best_at.x) <= 1) {
+      refusal_ = Refusal::kOwnColour;
+      return false;
+    }
+  }
   histogram_ = cv::Mat::zeros(in_object.size(), CV_32F);
   std::vector<cv::Point> open = {best_at};  // (x: saturation bin, y: hue bin)
   histogram_.at<float>(best_at) = share.at<float>(best_at);
@@ -129,14 +145,27 @@ bool ColourTracker::acquire(const cv::Mat& rgb, const cv::Mat& object_mask) {
              cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * grow + 1, 2 * grow + 1)));
   const int inside = cv::countNonZero(strong & near_object);
   const int outside = cv::countNonZero(strong) - inside;
-  if (inside < options_.min_object_px || outside > options_.max_background_ratio * inside)
+  if (inside < options_.min_object_px || outside > options_.max_background_ratio * inside) {
+    refusal_ = Refusal::kNotDistinctive;
     return false;
+  }
+  refusal_ = Refusal::kNone;
   size_ = rgb.size();
   window_ = cv::boundingRect(object_kept);
   mean_object_px_ = 0.0;
   frames_ = 0;
   tracking_ = true;
   return true;
+}
+
+void ColourTracker::shift_window(const cv::Matx33d& h) {
+  if (!tracking_) return;
+  const double cx = window_.x + 0.5 * window_.width;
+  const double cy = window_.y + 0.5 * window_.height;
+  const cv::Vec3d c = h * cv::Vec3d(cx, cy, 1.0);
+  if (std::abs(c[2]) < 1e-12) return;
+  window_.x = static_cast<int>(std::lround(c[0] / c[2] - 0.5 * window_.width));
+  window_.y = static_cast<int>(std::lround(c[1] / c[2] - 0.5 * window_.height));
 }
 
 cv::Mat ColourTracker::back_projection(const cv::Mat& rgb) const {
@@ -190,6 +219,13 @@ ColourTrack ColourTracker::track(const cv::Mat& rgb) {
   out.centre_px = {counted.x + m.m10 / m.m00, counted.y + m.m01 / m.m00};
   out.radius_px = std::sqrt(m.m00 / CV_PI);
   return out;
+}
+
+double colour_distance(const ColourTracker& a, const ColourTracker& b) {
+  if (a.histogram().empty() || b.histogram().empty() ||
+      a.histogram().size() != b.histogram().size())
+    return 1.0;
+  return cv::compareHist(a.histogram(), b.histogram(), cv::HISTCMP_BHATTACHARYYA);
 }
 
 }  // namespace somasim::vision

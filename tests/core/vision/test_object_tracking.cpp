@@ -288,3 +288,51 @@ TEST(ColourTracker, BadInputsAreClearErrors) {
                  "acquisition), got CV_8UC3 640 × 480");
   }
 }
+
+// The robot's own colours (own_colours, e.g. its rendered skin) are not an object: a moving blob
+// of one of them is refused (last_refusal: kOwnColour); the same blob is acquired when the
+// robot's colours are others.
+TEST(ColourTracker, AcquisitionOfTheRobotsOwnColourIsRefused) {
+  const cv::Mat bg = backdrop();
+  cv::Mat mask = cv::Mat::zeros(kHeight, kWidth, CV_8U);
+  cv::circle(mask, cv::Point(120, 100), 11, cv::Scalar(255), cv::FILLED);
+  vision::ColourTrackerOptions own;
+  own.own_colours.emplace_back(237, 189, 153);  // skin
+  own.own_colours.emplace_back(200, 30, 26);    // a darker red
+  vision::ColourTracker tracker(own);
+  EXPECT_FALSE(tracker.acquire(scene(bg, {120, 100}, 12), mask));
+  EXPECT_EQ(tracker.last_refusal(), vision::Refusal::kOwnColour);
+  EXPECT_FALSE(tracker.tracking());
+  own.own_colours.back() = cv::Vec3b(25, 200, 40);  // green instead
+  vision::ColourTracker other(own);
+  EXPECT_TRUE(other.acquire(scene(bg, {120, 100}, 12), mask));
+  EXPECT_EQ(other.last_refusal(), vision::Refusal::kNone);
+}
+
+// The whole image jumps by 60 px (the head turned between two frames) while the disc stays on
+// the backdrop: the search window moved by the known turn (shift_window) still finds the disc;
+// left where it was, it finds nothing there and the track is lost.
+TEST(ColourTracker, TheSearchWindowFollowsTheCamerasOwnTurn) {
+  constexpr int kMargin = 80;
+  const cv::Mat bg = backdrop(kMargin);
+  const Eigen::Vector2d at(110, 120);
+  const cv::Point jump(60, 0);
+  const auto acquired = [&](vision::ColourTracker& tracker) {
+    const vision::MotionBlob m =
+        vision::detect_motion(scene(bg, at, 0, {}, kMargin), scene(bg, at, 10, {}, kMargin));
+    ASSERT_TRUE(m.found);
+    ASSERT_TRUE(tracker.acquire(scene(bg, at, 10, {}, kMargin), m.mask));
+    ASSERT_TRUE(tracker.track(scene(bg, at, 10, {}, kMargin)).tracked);
+  };
+  const Eigen::Vector2d moved = at + Eigen::Vector2d(jump.x, jump.y);
+  const cv::Mat after = scene(bg, moved, 10, jump, kMargin);
+  vision::ColourTracker shifted;
+  acquired(shifted);
+  shifted.shift_window(cv::Matx33d(1, 0, jump.x, 0, 1, jump.y, 0, 0, 1));
+  const vision::ColourTrack t = shifted.track(after);
+  ASSERT_TRUE(t.tracked);
+  EXPECT_LT((t.centre_px - moved).norm(), 1.0);
+  vision::ColourTracker unshifted;
+  acquired(unshifted);
+  EXPECT_FALSE(unshifted.track(after).tracked);
+}

@@ -11,6 +11,9 @@
 /// Bins that the background holds as much as the object are weakened at acquisition (the
 /// object's histogram is divided by the image's), so a textured backdrop of other colours does
 /// not pull the window away.
+#include <cstdint>
+#include <vector>
+
 #include <opencv2/core.hpp>
 
 #include <Eigen/Core>
@@ -34,6 +37,11 @@ struct ColourTrackerOptions {
   /// colours of the static backdrop or robot (e.g. the whole image after a jump of the scene,
   /// or the flow's fringe around a hand) would lock on to static clutter.
   double max_background_ratio = 1.0;
+  /// The robot's own colours (rgb8, e.g. its rendered skin): an acquisition whose colour mode
+  /// (the best hue-saturation bin) lies within one bin of one of them is refused — the robot's
+  /// own moving hand is not an object. Colours below min_saturation / min_value carry no hue
+  /// and are ignored.
+  std::vector<cv::Vec3b> own_colours;
   int max_iterations = 10;  ///< CamShift iterations
   double epsilon_px = 0.5;  ///< CamShift stops when the window moves less [px]
 };
@@ -49,6 +57,14 @@ struct ColourTrack {
   cv::Rect window;      ///< the search window for the next frame [px]
 };
 
+/// Why the last acquire() returned false.
+enum class Refusal : std::uint8_t {
+  kNone,            ///< acquired
+  kTooFew,          ///< fewer than min_object_px coloured pixels in the region
+  kNotDistinctive,  ///< the colours are as common elsewhere (max_background_ratio)
+  kOwnColour,       ///< the colour mode is one of own_colours
+};
+
 class ColourTracker {
  public:
   /// Throws somasim::InputError "ColourTracker: <option>: expected ..., got N" for bins outside
@@ -58,8 +74,9 @@ class ColourTracker {
 
   /// Takes the object's colour histogram from the pixels of `rgb` where `object_mask` (CV_8U,
   /// image size) is non-zero, and starts tracking in the mask's bounding box. Returns false
-  /// (and does not track) when the mask holds fewer than min_object_px coloured pixels or the
-  /// colours are not distinctive (max_background_ratio).
+  /// (and does not track) when the mask holds fewer than min_object_px coloured pixels, the
+  /// colours are not distinctive (max_background_ratio) or are the robot's own (own_colours);
+  /// last_refusal() says which.
   /// InputError "ColourTracker: expected an rgb8 image (CV_8UC3) and a CV_8U mask of its
   /// size, got ..." for other images.
   bool acquire(const cv::Mat& rgb, const cv::Mat& object_mask);
@@ -67,10 +84,19 @@ class ColourTracker {
   /// sizes). Not tracked (and no longer tracking) when the object collapsed; nothing to do
   /// when not tracking.
   ColourTrack track(const cv::Mat& rgb);
+  /// Moves the search window's centre by the homography `h` (previous image -> this one, e.g.
+  /// the camera's own rotation between the frames), keeping its size: where the object is
+  /// expected before the next track(). Nothing to do when not tracking.
+  void shift_window(const cv::Matx33d& h);
   /// Stops tracking (the next acquire() starts afresh).
   void lose() { tracking_ = false; }
 
   bool tracking() const { return tracking_; }
+  /// The acquired hue-saturation histogram (CV_32F, hue_bins × saturation_bins, maximum 255);
+  /// empty before the first acquisition.
+  const cv::Mat& histogram() const { return histogram_; }
+  /// Why the last acquire() failed (kNone after a success or before any).
+  Refusal last_refusal() const { return refusal_; }
   /// The back-projection (CV_8U, 0-255) of `rgb` through the acquired histogram; empty before.
   cv::Mat back_projection(const cv::Mat& rgb) const;
 
@@ -83,6 +109,12 @@ class ColourTracker {
   double mean_object_px_ = 0.0;
   int frames_ = 0;
   bool tracking_ = false;
+  Refusal refusal_ = Refusal::kNone;
+  std::vector<cv::Point> own_bins_;  // (saturation bin, hue bin) of own_colours
 };
+
+/// Bhattacharyya distance of two trackers' colour models (cv::HISTCMP_BHATTACHARYYA): 0 for
+/// the same histogram, 1 for disjoint ones; 1 when either has acquired nothing.
+double colour_distance(const ColourTracker& a, const ColourTracker& b);
 
 }  // namespace somasim::vision
