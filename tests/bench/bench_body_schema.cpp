@@ -26,7 +26,10 @@ void BM_FilterStepOverBareRender(benchmark::State& state) {
   const ArmHypothesisModel arm = arm_hypothesis_model(*support::icub(), {"r_hand"}, 8);
   HypothesisScorer scorer(support::icub(), arm, support::arm_dofs(), workers, ScorerOptions{});
   render::HypothesisRenderer bare(arm.meshes, workers);
-  OffsetParticleFilter filter(7, particles, noise_schedule_preset("paper"), 1);
+  NoiseSchedule schedule = noise_schedule_preset("paper");
+  schedule.jump_fraction = 0.1;  // as configs/body_schema_reaching.yaml
+  schedule.jump_sigma_deg = 1.5;
+  OffsetParticleFilter filter(7, particles, schedule, 1);
   render::HypothesisBatchOptions floor_options;
   floor_options.extract = false;
   floor_options.margin_px = ScorerOptions{}.margin_px;
