@@ -51,7 +51,8 @@ class ObjectTracker : public Plugin {
     double anchor_radius_px = 0.0;
     int still_frames = 0;
   };
-  void track_eye(Eye& eye, const Image& image, const render::Camera& camera);
+  /// One eye's CamShift step (or acquisition by motion); `dt_s` [s] since the previous image.
+  void track_eye(Eye& eye, const Image& image, const render::Camera& camera, double dt_s);
   void lose(double dt_s);
   void score_against_truth(const std::vector<render::Camera>& cameras);
   /// The encoder values at the sim time closest to `time_s` among the recent steps [rad, m].
@@ -70,6 +71,7 @@ class ObjectTracker : public Plugin {
   double max_colour_distance_ = 0.0;
   int reset_after_lost_ = 0;
   double radius_min_ = 0.0, radius_max_ = 0.0;
+  bool predict_windows_ = false;
   vision::KalmanTracker kalman_;
   std::array<Eye, 2> eyes_;
 
@@ -93,6 +95,7 @@ class ObjectTracker : public Plugin {
   std::deque<std::pair<double, Eigen::VectorXd>> joint_history_;
   double pose_time_offset_max_s_ = 0.0;  // largest |image time - pose time| used [s]
   std::int64_t partial_ = 0;             // both tracked, but cut by the border or of unlike areas
+  std::int64_t partial_border_ = 0;      // of those: cut by the border
   double reprojection_sum_ = 0.0;
   // Against the truth: frames it is present / in view of both eyes (believed cameras) and
   // tracked among them; errors over tracked frames with the truth present.

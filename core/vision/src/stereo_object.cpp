@@ -23,4 +23,13 @@ StereoObject triangulate_object(const render::Camera& a, const Eigen::Vector2d& 
   return out;
 }
 
+cv::Matx33d predicted_image_shift(const render::Camera& camera, const Eigen::Vector3d& position,
+                                  const Eigen::Vector3d& velocity, double dt_s) {
+  const auto now = camera.project(position);
+  const auto next = camera.project(position + velocity * dt_s);
+  if (!now || !next) return cv::Matx33d::eye();
+  const Eigen::Vector2d d = *next - *now;
+  return {1.0, 0.0, d.x(), 0.0, 1.0, d.y(), 0.0, 0.0, 1.0};
+}
+
 }  // namespace somasim::vision

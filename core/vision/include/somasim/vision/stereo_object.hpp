@@ -3,6 +3,8 @@
 /// A round object seen by two posed cameras: its centre triangulated from the two images'
 /// centres, its radius from their image radii and its depth (somasim/render/camera.hpp
 /// conventions; points in the root frame [m]).
+#include <opencv2/core.hpp>
+
 #include <Eigen/Core>
 
 #include "somasim/render/camera.hpp"
@@ -22,5 +24,13 @@ struct StereoObject {
 StereoObject triangulate_object(const render::Camera& a, const Eigen::Vector2d& uv_a,
                                 double radius_a_px, const render::Camera& b,
                                 const Eigen::Vector2d& uv_b, double radius_b_px);
+
+/// Where a tracked object's image moves by its own motion: the translation (homogeneous 3 × 3,
+/// u v 1, as ColourTracker::shift_window takes) of `camera`'s projection of
+/// `position + velocity · dt_s` from that of `position` (root frame [m], [m/s], [s]). A search
+/// window moved by it meets an object that moves farther in a frame than the window is wide
+/// (fast or near objects). Identity when either point does not project (behind the camera).
+cv::Matx33d predicted_image_shift(const render::Camera& camera, const Eigen::Vector3d& position,
+                                  const Eigen::Vector3d& velocity, double dt_s);
 
 }  // namespace somasim::vision
