@@ -23,6 +23,25 @@ bool inside(const render::Camera& c, const Eigen::Vector3d& p) {
          uv->y() <= c.intrinsics.height - 1;
 }
 
+cv::Vec3b rgb8(const Eigen::Vector3f& c) {
+  const auto u8 = [](float v) {
+    return static_cast<unsigned char>(std::lround(255.0F * std::clamp(v, 0.0F, 1.0F)));
+  };
+  return {u8(c.x()), u8(c.y()), u8(c.z())};
+}
+
+// Every colour the camera renders the robot in: each link's colour and its coloured visuals.
+std::vector<cv::Vec3b> rendered_colours(const robot::RobotModel& model) {
+  std::vector<cv::Vec3b> out;
+  for (int i = 0; i < model.num_links(); ++i) {
+    const robot::Link& link = model.link(i);
+    out.push_back(rgb8(render::link_colour(link.name)));
+    for (const robot::Geometry& g : link.visual)
+      if (g.colour) out.push_back(rgb8(g.colour->cast<float>()));
+  }
+  return out;
+}
+
 }  // namespace
 
 PluginSpec ObjectTracker::spec() {
@@ -201,20 +220,7 @@ void ObjectTracker::configure(NodeContext& ctx) {
   colour.min_object_px = ctx.param<int>("min_object_px");
   colour.lost_fraction = ctx.param<double>("lost_fraction");
   colour.max_background_ratio = ctx.param<double>("max_background_ratio");
-  if (ctx.param<bool>("refuse_own_colours")) {
-    const auto rgb8 = [](const Eigen::Vector3f& c) {
-      const auto u8 = [](float v) {
-        return static_cast<unsigned char>(std::lround(255.0F * std::clamp(v, 0.0F, 1.0F)));
-      };
-      return cv::Vec3b(u8(c.x()), u8(c.y()), u8(c.z()));
-    };
-    for (int i = 0; i < model_->num_links(); ++i) {
-      const robot::Link& link = model_->link(i);
-      colour.own_colours.push_back(rgb8(render::link_colour(link.name)));
-      for (const robot::Geometry& g : link.visual)
-        if (g.colour) colour.own_colours.push_back(rgb8(g.colour->cast<float>()));
-    }
-  }
+  if (ctx.param<bool>("refuse_own_colours")) colour.own_colours = rendered_colours(*model_);
   for (Eye& eye : eyes_) eye.tracker = vision::ColourTracker(colour);
   max_reprojection_px_ = ctx.param<double>("max_reprojection_px");
   inconsistent_frames_lost_ = ctx.param<int>("inconsistent_frames_lost");

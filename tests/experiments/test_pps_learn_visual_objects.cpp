@@ -3,6 +3,11 @@
 // the neck and eyes follow the tracked object and look between the skin parts when nothing is
 // tracked, from the tracker's stimulus and the believed taxels only (never the thrower's truth).
 #include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
+
+#include <filesystem>
+#include <map>
+#include <string>
 
 #include "experiment_runner.hpp"
 
@@ -12,17 +17,13 @@ namespace {
 
 const std::vector<somasim::Override> kShort = {{"nodes.thrower.params.approaches", "6"}};
 
-// The lines of the `inputs:` block of node `node` in a resolved experiment file ("" if absent):
-// from "    inputs:" to the last following line indented by six spaces.
-std::string node_inputs(const std::string& resolved, const std::string& node) {
-  const auto at = resolved.find("\n  " + node + ":\n");
-  if (at == std::string::npos) return "";
-  const auto in = resolved.find("\n    inputs:\n", at);
-  if (in == std::string::npos) return "";
-  auto end = resolved.find('\n', in + 1);
-  while (end != std::string::npos && resolved.compare(end + 1, 6, "      ") == 0)
-    end = resolved.find('\n', end + 1);
-  return resolved.substr(in + 1, end == std::string::npos ? std::string::npos : end - in - 1);
+// The inputs of node `node` in a resolved experiment file: input name -> source.
+std::map<std::string, std::string> node_inputs(const std::filesystem::path& resolved,
+                                               const std::string& node) {
+  std::map<std::string, std::string> out;
+  for (const auto& input : YAML::LoadFile(resolved.string())["nodes"][node]["inputs"])
+    out[input.first.as<std::string>()] = input.second.as<std::string>();
+  return out;
 }
 
 nlohmann::json without_wall_clock(nlohmann::json m) {
@@ -53,11 +54,10 @@ TEST(PpsLearnVisualObjects, ObjectsSeenByTheEyesAreTrackedAndTeachTheLearner) {
   EXPECT_GT(gaze["steps_with_target"].get<int>(), 50);
   EXPECT_GE(gaze["idle_entries"].get<int>(), 2);
   // ... from the tracker's stimulus and the believed body: the thrower's truth is not its input.
-  const std::string inputs =
-      node_inputs(somasim::testing::read_file(run.dir / "experiment.resolved.yaml"), "gaze");
-  EXPECT_EQ(inputs,
-            "    inputs:\n      target: track.stimulus\n      joint_state: world.joint_state\n"
-            "      taxels: believed.taxels");
+  EXPECT_EQ(node_inputs(run.dir / "experiment.resolved.yaml", "gaze"),
+            (std::map<std::string, std::string>{{"target", "track.stimulus"},
+                                                {"joint_state", "world.joint_state"},
+                                                {"taxels", "believed.taxels"}}));
 
   // Same seed: the same metrics but for wall-clock figures.
   const auto again = run_config("pps_learn_visual_objects", kShort, "b");
