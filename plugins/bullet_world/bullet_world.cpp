@@ -97,6 +97,28 @@ PluginSpec BulletWorld::spec() {
           "normal force per metre of penetration reported for a kinematic object touching "
           "immovable robot geometry (locked links, the fixed base), where the solver applies no "
           "force; the object keeps its path");
+  s.add_double("guide_max_force")
+      .unit_is("N")
+      .defaults(5.0)
+      .range(0, 1e4)
+      .describe(
+          "largest force that pulls a guided object along its path (a hand holding it): "
+          "against the robot it presses with at most this much");
+  s.add_double("guide_bandwidth")
+      .unit_is("1/s")
+      .defaults(100.0)
+      .range(1, 1e4)
+      .describe(
+          "bandwidth of the critically damped servo that keeps a guided object on its path "
+          "(keep bandwidth x step well below 1)");
+  s.add_double("guide_contact_stiffness")
+      .unit_is("N/m")
+      .defaults(1000.0)
+      .range(0, 1e7)
+      .describe(
+          "contact stiffness of guided objects (0: rigid): pressed with F, a guided object sinks "
+          "about F / stiffness into what it touches, as a held object into the soft skin "
+          "(the same law as kinematic_contact_stiffness)");
   s.add_double("contact_history")
       .unit_is("s")
       .defaults(0.1)
@@ -193,8 +215,16 @@ void BulletWorld::configure(NodeContext& ctx) {
   const MotorGains gains{ctx.param<double>("position_gain"), ctx.param<double>("velocity_gain"),
                          ctx.param<double>("max_torque")};
   motors_ = std::make_unique<JointMotors>(*robot_, physics_->world(), gains, dt_, q0);
+  const ObjectGuide guide{ctx.param<double>("guide_max_force"),
+                          ctx.param<double>("guide_bandwidth"),
+                          ctx.param<double>("guide_contact_stiffness")};
+  if (guide.bandwidth * dt_ > 0.5)
+    ctx.param_error("guide_bandwidth",
+                    fmt::format("{} 1/s at a {} s step makes the guide unstable: keep "
+                                "guide_bandwidth x step <= 0.5 (here <= {:g} 1/s)",
+                                guide.bandwidth, dt_, 0.5 / dt_));
   objects_ = std::make_unique<ObjectManager>(physics_->world(), *shapes_,
-                                             ObjectMaterial{friction, rolling, restitution});
+                                             ObjectMaterial{friction, rolling, restitution}, guide);
   physics_->world().updateAabbs();
 
   if (const std::string scene = ctx.param<std::string>("scene"); !scene.empty()) {
@@ -269,7 +299,7 @@ void BulletWorld::step(NodeContext& ctx) {
       objects_withdrawn_ += objects_->remove_named(name);
   }
   objects_->remove_expired(t);
-  objects_->move_kinematic(t + dt_);
+  objects_->drive(t, dt_);
   motors_->update_limits();
   physics_->step(dt_);
   ++steps_;
@@ -298,7 +328,7 @@ void BulletWorld::publish(double t) {
   const auto n = static_cast<std::int64_t>(contacts_->points.size());
   contact_points_ += n;
   max_contact_points_ = std::max(max_contact_points_, n);
-  check_blowup(*robot_, *objects_, deepest, limits_, t);
+  check_blowup(*robot_, *objects_, *contacts_, deepest, limits_, t);
   objects_out_of_bounds_ += objects_->remove_beyond(world_radius_);
   objects_->write_states(*object_states_);
 }

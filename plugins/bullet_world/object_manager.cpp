@@ -11,8 +11,8 @@
 namespace somasim::bullet_world {
 
 ObjectManager::ObjectManager(btMultiBodyDynamicsWorld& world, ShapeStore& shapes,
-                             const ObjectMaterial& material)
-    : world_(world), shapes_(shapes), material_(material) {}
+                             const ObjectMaterial& material, const ObjectGuide& guide)
+    : world_(world), shapes_(shapes), material_(material), guide_(guide) {}
 
 ObjectManager::~ObjectManager() {
   for (auto& o : objects_)
@@ -39,7 +39,9 @@ int ObjectManager::add(const ObjectSpawn& s, double t) {
   shape->getBoundingSphere(centre, radius);
   o.radius = radius + centre.length();
 
-  const double mass = s.motion == ObjectMotion::kDynamic ? s.mass : 0.0;
+  const bool guided = s.motion == ObjectMotion::kGuided;
+  const double mass = s.motion == ObjectMotion::kDynamic || guided ? s.mass : 0.0;
+  o.mass = mass;
   btVector3 inertia(0, 0, 0);
   if (mass > 0) shape->calculateLocalInertia(mass, inertia);
   o.motion_state = std::make_unique<btDefaultMotionState>(to_bt(s.pose));
@@ -50,12 +52,20 @@ int ObjectManager::add(const ObjectSpawn& s, double t) {
   info.m_restitution = material_.restitution;
   o.body = std::make_unique<btRigidBody>(info);
   const int index = static_cast<int>(objects_.size());
-  set_tag(*o.body, {BodyKind::kObject, index, s.motion != ObjectMotion::kDynamic,
-                    s.motion == ObjectMotion::kKinematic});
+  set_tag(*o.body, {BodyKind::kObject, index, mass == 0.0, s.motion == ObjectMotion::kKinematic});
   if (s.motion == ObjectMotion::kKinematic)
     o.body->setCollisionFlags(o.body->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
   if (s.motion != ObjectMotion::kStatic) o.body->setActivationState(DISABLE_DEACTIVATION);
-  if (s.motion == ObjectMotion::kDynamic) o.body->setLinearVelocity(to_bt(s.linear_velocity));
+  if (s.motion == ObjectMotion::kDynamic || guided)
+    o.body->setLinearVelocity(to_bt(s.linear_velocity));
+  if (guided) {  // held: no gravity, no rotation
+    o.body->setFlags(o.body->getFlags() | BT_DISABLE_WORLD_GRAVITY);
+    o.body->setGravity(btVector3(0, 0, 0));
+    o.body->setAngularFactor(0.0);
+    if (guide_.contact_stiffness > 0)
+      o.body->setContactStiffnessAndDamping(guide_.contact_stiffness,
+                                            2.0 * std::sqrt(guide_.contact_stiffness * mass));
+  }
   world_.addRigidBody(o.body.get());
   o.last_pose = s.pose;
   o.last_linear = s.motion == ObjectMotion::kStatic ? Eigen::Vector3d::Zero() : s.linear_velocity;
@@ -85,7 +95,9 @@ int ObjectManager::remove_expired(double t) {
 int ObjectManager::remove_beyond(double radius) {
   int n = 0;
   for (int i = 0; i < size(); ++i)
-    if (present(i) && objects_[i].motion == ObjectMotion::kDynamic &&
+    if (present(i) &&
+        (objects_[i].motion == ObjectMotion::kDynamic ||
+         objects_[i].motion == ObjectMotion::kGuided) &&
         pose(i).translation().norm() > radius) {
       remove(i);
       ++n;
@@ -93,12 +105,23 @@ int ObjectManager::remove_beyond(double radius) {
   return n;
 }
 
-void ObjectManager::move_kinematic(double t_next) {
+void ObjectManager::drive(double t, double dt) {
+  const double w = guide_.bandwidth;
   for (auto& o : objects_) {
-    if (!o.body || o.motion != ObjectMotion::kKinematic) continue;
-    Eigen::Isometry3d p = o.start_pose;
-    p.translation() += (t_next - o.spawn_time) * o.velocity;
-    o.motion_state->setWorldTransform(to_bt(p));
+    if (!o.body) continue;
+    if (o.motion == ObjectMotion::kKinematic) {
+      Eigen::Isometry3d p = o.start_pose;
+      p.translation() += (t + dt - o.spawn_time) * o.velocity;
+      o.motion_state->setWorldTransform(to_bt(p));
+    } else if (o.motion == ObjectMotion::kGuided) {
+      const Eigen::Vector3d target = o.start_pose.translation() + (t - o.spawn_time) * o.velocity;
+      const Eigen::Vector3d p = to_eigen(o.body->getWorldTransform().getOrigin());
+      const Eigen::Vector3d v = to_eigen(o.body->getLinearVelocity());
+      Eigen::Vector3d force = o.mass * (w * w * (target - p) + 2.0 * w * (o.velocity - v));
+      const double norm = force.norm();
+      if (norm > guide_.max_force) force *= guide_.max_force / norm;
+      o.body->applyCentralForce(to_bt(force));
+    }
   }
 }
 

@@ -1,8 +1,10 @@
 #pragma once
 /// @file
-/// Objects of the world (spheres, boxes, cylinders, meshes) that are static, dynamic, or
-/// kinematic (moved at a constant velocity by setting their pose every step). Objects keep their
-/// index for the whole run; removed ones stay as empty slots (ObjectStates::present = false).
+/// Objects of the world (spheres, boxes, cylinders, meshes) that are static, dynamic, kinematic
+/// (moved at a constant velocity by setting their pose every step) or guided (dynamic bodies
+/// pulled along the same constant-velocity path by a bounded force: see ObjectGuide). Objects
+/// keep their index for the whole run; removed ones stay as empty slots
+/// (ObjectStates::present = false).
 ///
 /// Object frame: the shape's centre (mesh: the mesh file's origin). ObjectSpawn::size:
 /// sphere (r, -, -); box half extents; cylinder (r, half height, -) along z; mesh: per-axis scale
@@ -27,10 +29,25 @@ struct ObjectMaterial {
   double restitution = 0.0;
 };
 
+/// The bounded-force servo that pulls a guided object along its path p*(t) = p0 + (t - t0) v:
+/// a = bandwidth² (p* - p) + 2 bandwidth (v - v_body) (critically damped, feed-forward of the
+/// path's velocity), F = mass · a with |F| <= max_force. In free space the body stays on the path
+/// (it starts on it with the path's velocity); against the robot it presses with at most
+/// max_force and never drives a joint without bound. Guided bodies feel no gravity and do not
+/// rotate (a hand holds them).
+struct ObjectGuide {
+  double max_force = 5.0;    ///< [N]
+  double bandwidth = 100.0;  ///< [1/s]; stable while bandwidth · dt stays well below 1
+  /// Contact stiffness of guided objects [N/m] (0: rigid): a held object and the soft skin give
+  /// way, so an object pressed with F sinks about F / stiffness into what it touches (critically
+  /// damped with its mass).
+  double contact_stiffness = 1000.0;
+};
+
 class ObjectManager {
  public:
-  ObjectManager(btMultiBodyDynamicsWorld& world, ShapeStore& shapes,
-                const ObjectMaterial& material);
+  ObjectManager(btMultiBodyDynamicsWorld& world, ShapeStore& shapes, const ObjectMaterial& material,
+                const ObjectGuide& guide = {});
   ~ObjectManager();
   ObjectManager(const ObjectManager&) = delete;
   ObjectManager& operator=(const ObjectManager&) = delete;
@@ -42,10 +59,12 @@ class ObjectManager {
   void remove(int index);
   /// Removes objects whose lifetime ended by time `t`; returns how many.
   int remove_expired(double t);
-  /// Removes dynamic objects farther than `radius` [m] from the root; returns how many.
+  /// Removes dynamic and guided objects farther than `radius` [m] from the root; returns how
+  /// many.
   int remove_beyond(double radius);
-  /// Sets the poses kinematic objects must reach at `t_next` [s] (call before stepping).
-  void move_kinematic(double t_next);
+  /// Before a step from `t` to `t + dt` [s]: sets the poses kinematic objects reach at t + dt and
+  /// applies the guide's force to guided objects.
+  void drive(double t, double dt);
   /// Removes the present objects named `name`; returns how many.
   int remove_named(const std::string& name);
 
@@ -66,6 +85,7 @@ class ObjectManager {
     ObjectMotion motion = ObjectMotion::kDynamic;
     Eigen::Isometry3d start_pose = Eigen::Isometry3d::Identity();
     Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
+    double mass = 0.0;  ///< [kg] (dynamic, guided)
     double spawn_time = 0.0;
     double remove_time = std::numeric_limits<double>::infinity();
     double radius = 0.0;
@@ -81,6 +101,7 @@ class ObjectManager {
   btMultiBodyDynamicsWorld& world_;
   ShapeStore& shapes_;
   ObjectMaterial material_;
+  ObjectGuide guide_;
   std::vector<Object> objects_;
 };
 

@@ -5,6 +5,8 @@
 #include <limits>
 #include <sstream>
 
+#include <fmt/format.h>
+
 #include <Eigen/Geometry>
 
 #include "somasim/diagnostics.hpp"
@@ -15,6 +17,25 @@
 namespace somasim::plugins {
 
 namespace {
+
+// How far an object's path stays from the links it is not aimed at [m].
+constexpr double kPathClearance = 0.005;
+// Taxels drawn, and paths tried for each, before a presentation is given up as impossible.
+constexpr int kTaxelDraws = 50;
+constexpr int kPathAttempts = 100;
+
+const char* shape_name(ObjectShape shape) {
+  switch (shape) {
+    case ObjectShape::kBox:
+      return "box";
+    case ObjectShape::kCylinder:
+      return "cylinder";
+    case ObjectShape::kMesh:
+      return "mesh";
+    default:
+      return "sphere";
+  }
+}
 
 // Radius of a sphere around the centre that holds the whole object [m].
 double bounding_radius(ObjectShape shape, double size, double half_height) {
@@ -121,6 +142,22 @@ PluginSpec ObjectThrower::spec() {
           "reports a contact during its presentation — a person holding it does not push on "
           "into an arm that came to meet it; needs the 'contacts' input; < 0: it flies its "
           "whole planned path");
+  s.add_double("withdraw_after_robot_contact")
+      .unit_is("s")
+      .defaults(-1.0)
+      .range(-1, 100)
+      .describe(
+          "the object is withdrawn this long after it first touches any robot link, with or "
+          "without skin (the world's contacts); needs the 'world_contacts' input; < 0: off");
+  s.add_string("object_motion")
+      .defaults(std::string("guided"))
+      .one_of({"guided", "kinematic"})
+      .describe(
+          "guided: a dynamic body pulled along its path by a bounded force (bullet_world's "
+          "guide_max_force), stopped by what it meets, as in a hand; kinematic: moved along "
+          "its path whatever it meets (pushes the robot without bound)");
+  s.add_double("mass").unit_is("kg").defaults(0.1).range(1e-4, 100).describe(
+      "mass of guided objects");
   s.add_double("position_noise")
       .unit_is("m")
       .defaults(0.0)
@@ -148,6 +185,11 @@ PluginSpec ObjectThrower::spec() {
   s.input<ContactEvents>("contacts",
                          "skin contact events (for true_offsets and withdraw_after_skin_contact)",
                          /*optional=*/true);
+  s.input<Contacts>("world_contacts",
+                    "the world's contacts (world.contacts): touches of any robot link by the "
+                    "current object are counted (metrics robot_contact_*) and can end it "
+                    "(withdraw_after_robot_contact)",
+                    /*optional=*/true);
   s.input<SkinTaxels>("believed_taxels",
                       "taxels posed by the believed kinematics (believed_kinematics.taxels), for "
                       "the perceived D of true_offsets; unwired: the true taxels",
@@ -253,6 +295,18 @@ void ObjectThrower::configure(NodeContext& ctx) {
   if (withdraw_after_skin_contact_ >= 0 && !contacts_)
     ctx.param_error("withdraw_after_skin_contact",
                     "needs the skin's contact events: wire input 'contacts' (e.g. skin.contacts)");
+  object_motion_ = ctx.param<std::string>("object_motion") == "kinematic" ? ObjectMotion::kKinematic
+                                                                          : ObjectMotion::kGuided;
+  object_mass_ = ctx.param<double>("mass");
+  withdraw_after_robot_contact_ = ctx.param<double>("withdraw_after_robot_contact");
+  if (ctx.is_wired("world_contacts")) {
+    robot_contacts_ = std::make_unique<RobotContactLog>(*model_);
+    world_contacts_ = &ctx.input<Contacts>("world_contacts");
+  }
+  if (withdraw_after_robot_contact_ >= 0 && !world_contacts_)
+    ctx.param_error(
+        "withdraw_after_robot_contact",
+        "needs the world's contacts: wire input 'world_contacts' (e.g. world.contacts)");
   believed_taxels_ =
       ctx.is_wired("believed_taxels") ? &ctx.input<SkinTaxels>("believed_taxels") : nullptr;
   spawns_ = &ctx.output<ObjectSpawns>("spawns");
@@ -276,24 +330,50 @@ void ObjectThrower::launch(NodeContext& ctx) {
                    "' is not in the 'taxels' input (is the skin node wired?)");
   auto& rng = ctx.rng();
   std::uniform_int_distribution<std::size_t> pick(0, sp->taxel_ids.size() - 1);
-  const std::size_t k = pick(rng);
-  const Eigen::Vector3d n = sp->normals[k].normalized();
-  const double margin = bounding_radius(shape, geometry_.size, cylinder_half_height_) + 0.01;
-  const auto clear = [&](const Eigen::Vector3d& p) {
-    return !link_poses_ || robot::point_clear_of_robot(*model_, link_poses_->poses, p, margin);
+  // The start clear of the whole robot; the path clear of every link but the aimed one, so
+  // that the object reaches the skin it is aimed at without meeting another link first.
+  const double reach = bounding_radius(shape, geometry_.size, cylinder_half_height_);
+  const int aimed_link = model_->link_index(sp->link);
+  const auto clear = [&](const Eigen::Vector3d& start, const Eigen::Vector3d& end) {
+    if (!link_poses_) return true;
+    return robot::point_clear_of_robot(*model_, link_poses_->poses, start, reach + 0.01) &&
+           robot::segment_clear_of_robot(*model_, link_poses_->poses, start, end,
+                                         reach + kPathClearance, std::span(&aimed_link, 1));
   };
   // The distance from the centre to the skin at contact: also the stimulus radius.
   const bool corner = shape == ObjectShape::kBox && box_corner_;
   radius_ = corner ? std::sqrt(3.0) * geometry_.size : geometry_.size;
   PresentationGeometry g = geometry_;
   g.size = radius_;
-  const PlannedObject plan = plan_presentation(motion, sp->positions[k], n, g, rng, clear, part);
+  // A taxel that no clear path reaches (another link in the way) is given up for another one.
+  std::size_t k = 0;
+  std::optional<PlannedObject> planned;
+  for (int draw = 0; !planned; ++draw) {
+    if (draw == kTaxelDraws)
+      throw RunError(fmt::format(
+          "no path clear of the robot for a {} (motion '{}') aimed at '{}': {} taxels drawn, {} "
+          "paths "
+          "each (start {}-{} m from the skin within {:.0f} deg of its normal, {:.3f} m clear of "
+          "the other links); raise 'distance_min', lower 'cone_deg' or 'size', or change the "
+          "posture",
+          shape_name(shape), motion_name(motion), part, kTaxelDraws, kPathAttempts,
+          motion == PresentationMotion::kReceding ? g.receding_start_min : g.distance_min,
+          motion == PresentationMotion::kReceding ? g.receding_start_max : g.distance_max,
+          rad_to_deg(g.cone_rad), reach + kPathClearance));
+    if (draw > 0) ++unreachable_draws_[part];
+    k = pick(rng);
+    planned = plan_presentation(motion, sp->positions[k], sp->normals[k].normalized(), g, rng,
+                                clear, kPathAttempts);
+  }
+  const PlannedObject& plan = *planned;
+  const Eigen::Vector3d n = sp->normals[k].normalized();
 
   ObjectSpawn spawn;
   spawn.id = next_spawn_id_++;
   spawn.name = "pps_object_" + std::to_string(spawn.id);
   spawn.shape = shape;
-  spawn.motion = ObjectMotion::kKinematic;
+  spawn.motion = object_motion_;
+  spawn.mass = object_mass_;
   spawn.pose = Eigen::Isometry3d::Identity();
   if (shape == ObjectShape::kCylinder) {
     // The axis (local z) across the normal: the round side faces the taxel.
@@ -399,14 +479,31 @@ void ObjectThrower::learn_true_offsets() {
   }
 }
 
-void ObjectThrower::withdraw_when_felt(double now) {
+void ObjectThrower::withdraw_when_felt() {
   const Presentation& p = *presentation_;
   for (const auto& e : contacts_->recent) {
     if (e.id <= last_felt_event_id_) continue;
     last_felt_event_id_ = e.id;
     if (p.active && e.time_s >= p.start_time_s)
-      withdraw_at_s_ = std::min(withdraw_at_s_, e.time_s + withdraw_after_skin_contact_);
+      withdraw_at(e.time_s + withdraw_after_skin_contact_);
   }
+}
+
+void ObjectThrower::withdraw_at(double time_s) {
+  withdraw_at_s_ = std::min(withdraw_at_s_, time_s);
+}
+
+void ObjectThrower::watch_robot_contacts() {
+  const Presentation& p = *presentation_;
+  if (!p.active) return;
+  const std::optional<double> first =
+      robot_contacts_->add(*world_contacts_, *objects_, p.object, p.id);
+  if (first && withdraw_after_robot_contact_ >= 0)
+    withdraw_at(*first + withdraw_after_robot_contact_);
+}
+
+void ObjectThrower::withdraw_if_due(double now) {
+  const Presentation& p = *presentation_;
   if (p.active && now >= withdraw_at_s_ - 1e-9 && spawns_->withdraw.empty()) {
     spawns_->withdraw.push_back(p.object);
     ++withdrawn_;
@@ -420,7 +517,9 @@ void ObjectThrower::step(NodeContext& ctx) {
   const bool between = launched_ > 0 && now - p.start_time_s < lifetime_ + pause_ - 1e-9;
   const bool done = !p.active && !between && launched_ >= presentations_;
   if (!p.active && !between && !done) launch(ctx);
-  if (withdraw_after_skin_contact_ >= 0) withdraw_when_felt(now);
+  if (withdraw_after_skin_contact_ >= 0) withdraw_when_felt();
+  if (world_contacts_) watch_robot_contacts();
+  withdraw_if_due(now);
   perceive(ctx);
   true_offsets_.sync_layout(*skin_);
   if (contacts_) learn_true_offsets();
@@ -430,7 +529,9 @@ void ObjectThrower::step(NodeContext& ctx) {
 
 void ObjectThrower::finish(NodeContext& ctx) {
   ctx.report_metric("objects_presented", launched_);
-  if (withdraw_after_skin_contact_ >= 0) ctx.report_metric("objects_withdrawn", withdrawn_);
+  if (withdraw_after_skin_contact_ >= 0 || withdraw_after_robot_contact_ >= 0)
+    ctx.report_metric("objects_withdrawn", withdrawn_);
+  if (robot_contacts_) robot_contacts_->report(ctx);
   nlohmann::json per_motion = nlohmann::json::object();
   for (const auto& [motion, n] : per_motion_) per_motion[motion] = n;
   ctx.report_metric("presented_per_motion", per_motion);
@@ -438,6 +539,8 @@ void ObjectThrower::finish(NodeContext& ctx) {
   const auto means = true_offsets_.part_means();
   for (const auto& [part, n] : per_part_presentations_) {
     per_part[part] = {{"presentations", n}};
+    // Taxels drawn but given up: no path to them clear of the other links.
+    if (link_poses_) per_part[part]["unreachable_draws"] = unreachable_draws_[part];
     if (contacts_) per_part[part]["contact_events"] = per_part_events_[part];
     if (const auto it = means.find(part); it != means.end()) {
       per_part[part]["true_offset_mean_m"] = it->second.first;

@@ -22,6 +22,7 @@
 
 #include "believed_vision.hpp"
 #include "presentation_plan.hpp"
+#include "robot_contact_log.hpp"
 #include "somasim/plugin.hpp"
 #include "somasim/pps/ports.hpp"
 #include "somasim/pps/true_offsets.hpp"
@@ -43,8 +44,16 @@ class ObjectThrower : public Plugin {
   void launch(NodeContext& ctx);
   void perceive(NodeContext& ctx);
   void learn_true_offsets();
-  /// Withdraws the current object withdraw_after_skin_contact_ after the skin first felt it.
-  void withdraw_when_felt(double now);
+  /// Sets the current object's withdrawal withdraw_after_skin_contact_ after the skin first felt
+  /// it.
+  void withdraw_when_felt();
+  /// Logs the current object's touches of robot links; withdraws it
+  /// withdraw_after_robot_contact_ after the first.
+  void watch_robot_contacts();
+  /// The current object goes at `time_s` [s] or earlier.
+  void withdraw_at(double time_s);
+  /// Asks the world to remove the current object once its withdrawal time has come.
+  void withdraw_if_due(double now);
 
   std::shared_ptr<const robot::RobotModel> model_;
   std::unique_ptr<BelievedVision> vision_;  // set when believed_state is wired
@@ -53,8 +62,13 @@ class ObjectThrower : public Plugin {
   std::vector<PresentationMotion> motions_;
   PresentationGeometry geometry_;
   bool box_corner_ = false;
-  double withdraw_after_skin_contact_ = -1.0;  // [s]; < 0: objects fly their whole path
-  double withdraw_at_s_ = 0.0;                 // when the current object goes (inf: not yet)
+  double withdraw_after_skin_contact_ = -1.0;   // [s]; < 0: objects fly their whole path
+  double withdraw_at_s_ = 0.0;                  // when the current object goes (inf: not yet)
+  double withdraw_after_robot_contact_ = -1.0;  // [s]; < 0: off
+  ObjectMotion object_motion_ = ObjectMotion::kGuided;
+  double object_mass_ = 0.1;                         // [kg] (guided)
+  const Contacts* world_contacts_ = nullptr;         // optional
+  std::unique_ptr<RobotContactLog> robot_contacts_;  // set when world_contacts is wired
   std::uint64_t last_felt_event_id_ = 0;
   int withdrawn_ = 0;
   double cylinder_half_height_ = 0, position_noise_ = 0, velocity_noise_ = 0, pause_ = 0;
@@ -86,6 +100,7 @@ class ObjectThrower : public Plugin {
   std::optional<Seen> seen_;
   pps::TrueOffsets true_offsets_;
   std::map<std::string, int> per_part_presentations_, per_part_events_;
+  std::map<std::string, int> unreachable_draws_;  // taxels given up per part (no clear path)
   std::map<std::string, int> per_motion_;
 };
 

@@ -1,15 +1,14 @@
 #include "presentation_plan.hpp"
 
-#include "somasim/error.hpp"
 #include "somasim/random_directions.hpp"
 
 namespace somasim::plugins {
 
-PlannedObject plan_presentation(PresentationMotion motion, const Eigen::Vector3d& taxel,
-                                const Eigen::Vector3d& normal, const PresentationGeometry& g,
-                                std::mt19937_64& rng,
-                                const std::function<bool(const Eigen::Vector3d&)>& clear,
-                                const std::string& part) {
+std::optional<PlannedObject> plan_presentation(PresentationMotion motion,
+                                               const Eigen::Vector3d& taxel,
+                                               const Eigen::Vector3d& normal,
+                                               const PresentationGeometry& g, std::mt19937_64& rng,
+                                               const PathCheck& clear, int attempts) {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const Eigen::Vector3d target = taxel + g.size * normal;
   const bool receding = motion == PresentationMotion::kReceding;
@@ -18,13 +17,14 @@ PlannedObject plan_presentation(PresentationMotion motion, const Eigen::Vector3d
   Eigen::Vector3d dir;
   double distance = 0.0;
   for (int attempt = 0;; ++attempt) {
+    if (attempt == attempts) return std::nullopt;
     dir = sample_direction_in_cone(normal, g.cone_rad, rng);
     distance = lo + unit(rng) * (hi - lo);
-    if (clear(target + distance * dir)) break;
-    if (attempt == 100)
-      throw RunError(std::string("no start point clear of the robot for a ") + motion_name(motion) +
-                     " object aimed at '" + part + "' (raise '" +
-                     (receding ? "receding_start_min" : "distance_min") + "' or lower 'cone_deg')");
+    const Eigen::Vector3d start = target + distance * dir;
+    const Eigen::Vector3d end = motion == PresentationMotion::kApproach ? target
+                                : receding ? start + g.distance_max * dir
+                                           : start;
+    if (clear(start, end)) break;
   }
   PlannedObject out;
   out.start = target + distance * dir;

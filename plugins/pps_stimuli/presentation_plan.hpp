@@ -11,6 +11,7 @@
 //   receding: starts at target + s·dir, s in receding_start_min..max, moves at +speed·dir and is
 //             removed after travelling distance_max.
 #include <functional>
+#include <optional>
 #include <random>
 
 #include <Eigen/Geometry>
@@ -38,15 +39,19 @@ struct PlannedObject {
   double travel = 0.0;    ///< approach: time to reach the skin [s]; otherwise 0
 };
 
+/// Accepts or rejects the path of an object's centre, `start` -> `end` [m, root frame]
+/// (approach: start -> target; static: start -> start; receding: start -> where it is removed).
+using PathCheck = std::function<bool(const Eigen::Vector3d& start, const Eigen::Vector3d& end)>;
+
 /// Draws one presentation for `motion` aimed at the taxel (`taxel`, unit `normal`). Draws, in
 /// order: per attempt a direction (2 numbers) and a start distance (1); then a speed (1, also
-/// for static objects, so the streams of mixed motions stay aligned). `clear(point)` accepts or
-/// rejects a start point (e.g. robot::point_clear_of_robot); after 100 rejected attempts a
-/// RunError names `part` and the parameters to change.
-PlannedObject plan_presentation(PresentationMotion motion, const Eigen::Vector3d& taxel,
-                                const Eigen::Vector3d& normal, const PresentationGeometry& g,
-                                std::mt19937_64& rng,
-                                const std::function<bool(const Eigen::Vector3d&)>& clear,
-                                const std::string& part);
+/// for static objects, so the streams of mixed motions stay aligned). `clear` accepts or
+/// rejects each attempt's path (e.g. start and path clear of the robot); nullopt when
+/// `attempts` attempts were all rejected.
+std::optional<PlannedObject> plan_presentation(PresentationMotion motion,
+                                               const Eigen::Vector3d& taxel,
+                                               const Eigen::Vector3d& normal,
+                                               const PresentationGeometry& g, std::mt19937_64& rng,
+                                               const PathCheck& clear, int attempts = 100);
 
 }  // namespace somasim::plugins

@@ -47,7 +47,9 @@ TEST(PpsLearnVisualObjects, ObjectsSeenByTheEyesAreTrackedAndTeachTheLearner) {
   EXPECT_GT(track["object_tracked_share"].get<double>(), 0.3);
   EXPECT_LT(track["position_rms_m"].get<double>(), 0.035);
   EXPECT_LT(track["velocity_rms_m_s"].get<double>(), 0.04);
-  EXPECT_EQ(track["false_fixes"], 0);
+  // False fixes (a fix while no object is present): at most 1 %
+  // of the tracked frames.
+  EXPECT_LE(track["false_fixes"].get<double>(), 0.01 * track["frames_tracked"].get<double>());
   EXPECT_GT(run.metrics["nodes"]["pps"]["events"].get<int>(), 0);
   // The gaze followed the tracked object and went home (idle) between objects ...
   const auto& gaze = run.metrics["nodes"]["gaze"];

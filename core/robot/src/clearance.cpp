@@ -1,6 +1,8 @@
 #include "somasim/robot/clearance.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace somasim::robot {
 
@@ -30,6 +32,48 @@ bool point_clear_of_robot(const RobotModel& model, const std::vector<Eigen::Isom
           link_poses[static_cast<std::size_t>(l)] * g.origin.translation();
       if ((point - centre).norm() < bound + margin) return false;
     }
+  return true;
+}
+
+double distance_to_shape(const Geometry& g, const Eigen::Vector3d& point) {
+  const Eigen::Vector3d p = g.origin.inverse() * point;
+  switch (g.type) {
+    case GeometryType::Sphere:
+      return p.norm() - g.radius;
+    case GeometryType::Box: {
+      const Eigen::Vector3d q = p.cwiseAbs() - 0.5 * g.size;
+      return q.cwiseMax(0.0).norm() + std::min(q.maxCoeff(), 0.0);
+    }
+    case GeometryType::Cylinder: {
+      const Eigen::Vector2d q(p.head<2>().norm() - g.radius, std::abs(p.z()) - 0.5 * g.length);
+      return q.cwiseMax(0.0).norm() + std::min(q.maxCoeff(), 0.0);
+    }
+    case GeometryType::Capsule: {
+      const double z = std::clamp(p.z(), -0.5 * g.length, 0.5 * g.length);
+      return (p - Eigen::Vector3d(0, 0, z)).norm() - g.radius;
+    }
+    case GeometryType::Mesh:
+      break;
+  }
+  return std::numeric_limits<double>::infinity();
+}
+
+bool segment_clear_of_robot(const RobotModel& model,
+                            const std::vector<Eigen::Isometry3d>& link_poses,
+                            const Eigen::Vector3d& from, const Eigen::Vector3d& to, double margin,
+                            std::span<const int> ignored_links) {
+  if (link_poses.size() != static_cast<std::size_t>(model.num_links())) return true;
+  constexpr double kStep = 0.002;  // [m]
+  const int samples = 1 + static_cast<int>(std::ceil((to - from).norm() / kStep));
+  for (int l = 0; l < model.num_links(); ++l) {
+    if (std::find(ignored_links.begin(), ignored_links.end(), l) != ignored_links.end()) continue;
+    const Eigen::Isometry3d link_from_root = link_poses[static_cast<std::size_t>(l)].inverse();
+    for (const auto& g : model.link(l).collision)
+      for (int i = 0; i <= samples; ++i) {
+        const Eigen::Vector3d p = from + (to - from) * (static_cast<double>(i) / samples);
+        if (distance_to_shape(g, link_from_root * p) <= margin) return false;
+      }
+  }
   return true;
 }
 

@@ -61,7 +61,7 @@ std::string spawn_problem(const ObjectSpawn& s) {
       if ((s.size.array() < 0).any()) return "mesh scale must not be negative";
       break;
   }
-  if (s.motion == ObjectMotion::kDynamic && s.mass <= 0)
+  if ((s.motion == ObjectMotion::kDynamic || s.motion == ObjectMotion::kGuided) && s.mass <= 0)
     return fmt::format("dynamic object mass must be > 0 kg, got {}", s.mass);
   return "";
 }

@@ -27,7 +27,8 @@ const std::map<std::string, ObjectShape> kShapes = {{"sphere", ObjectShape::kSph
                                                     {"mesh", ObjectShape::kMesh}};
 const std::map<std::string, ObjectMotion> kMotions = {{"static", ObjectMotion::kStatic},
                                                       {"dynamic", ObjectMotion::kDynamic},
-                                                      {"kinematic", ObjectMotion::kKinematic}};
+                                                      {"kinematic", ObjectMotion::kKinematic},
+                                                      {"guided", ObjectMotion::kGuided}};
 
 template <class T>
 std::vector<std::string> keys_of(const std::map<std::string, T>& m) {

@@ -26,7 +26,10 @@ std::string folder_name(int index, std::size_t count) {
 std::vector<Job> expand_jobs(const SweepSpec& spec) {
   // Each combination: one value index per axis.
   std::vector<std::vector<std::size_t>> combos;
-  if (spec.mode == SweepMode::kZip) {
+  // Where a size error points: the first axis, or the experiment key of a seed soak.
+  const SourceLocation& anchor =
+      spec.axes.empty() ? spec.experiment_where : spec.axes.front().where;
+  if (spec.mode == SweepMode::kZip && !spec.axes.empty()) {
     Diagnostics diags;
     const Axis& first = spec.axes.front();
     for (const Axis& a : spec.axes)
@@ -42,8 +45,8 @@ std::vector<Job> expand_jobs(const SweepSpec& spec) {
     for (const Axis& a : spec.axes) total *= static_cast<double>(a.values.size());
     if (total * static_cast<double>(std::max<std::size_t>(spec.seeds.size(), 1)) >
         static_cast<double>(kMaxJobs))
-      throw InputError(fmt::format("{}: key 'axes': the grid has more than {} runs",
-                                   spec.axes.front().where.str(), kMaxJobs));
+      throw InputError(
+          fmt::format("{}: key 'axes': the grid has more than {} runs", anchor.str(), kMaxJobs));
     std::vector<std::size_t> idx(spec.axes.size(), 0);
     while (true) {
       combos.push_back(idx);
@@ -54,8 +57,8 @@ std::vector<Job> expand_jobs(const SweepSpec& spec) {
   }
   const std::size_t seeds = std::max<std::size_t>(spec.seeds.size(), 1);
   if (combos.size() * seeds > kMaxJobs)
-    throw InputError(fmt::format("{}: key 'seeds': the sweep has more than {} runs",
-                                 spec.axes.front().where.str(), kMaxJobs));
+    throw InputError(
+        fmt::format("{}: key 'seeds': the sweep has more than {} runs", anchor.str(), kMaxJobs));
   std::vector<Job> jobs;
   const std::size_t count = combos.size() * seeds;
   for (const auto& combo : combos)

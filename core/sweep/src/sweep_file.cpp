@@ -262,7 +262,11 @@ class SweepReader {
 
   void read_axes(const YAML::Node& n, const YAML::Node& root) {
     if (!n) {
-      error(root, "axes", "missing required key (expected a map of PATH: values)");
+      // A seed soak: the experiment as it is, once per seed.
+      if (!spec_.seeds.empty()) return;
+      error(root, "axes",
+            "missing required key (expected a map of PATH: values; a sweep without axes needs "
+            "'seeds')");
       return;
     }
     if (!n.IsMap() || n.size() == 0) {

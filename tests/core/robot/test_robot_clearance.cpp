@@ -1,5 +1,9 @@
 // point_clear_of_robot: points inside or next to the robot are not clear; far points are.
+// distance_to_shape against sampled surfaces; segment_clear_of_robot with an ignored link.
 #include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
 
 #include "robot_test_support.hpp"
 #include "somasim/robot/clearance.hpp"
@@ -38,4 +42,101 @@ TEST(RobotClearance, FarAwayIsClearAndMarginsCount) {
 TEST(RobotClearance, WithoutPosesNothingIsTested) {
   const RobotModel model = load_icub();
   EXPECT_TRUE(point_clear_of_robot(model, {}, Eigen::Vector3d::Zero(), 0.1));
+}
+
+namespace {
+
+// The primitive's surface sampled densely (in the shape's own frame).
+std::vector<Eigen::Vector3d> surface_samples(const Geometry& g) {
+  std::vector<Eigen::Vector3d> out;
+  const int n = 120;
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= n; ++j) {
+      const double u = static_cast<double>(i) / n, v = static_cast<double>(j) / n;
+      const double phi = 2 * M_PI * u, theta = M_PI * v;
+      switch (g.type) {
+        case GeometryType::Sphere:
+          out.push_back(g.radius * Eigen::Vector3d(std::sin(theta) * std::cos(phi),
+                                                   std::sin(theta) * std::sin(phi),
+                                                   std::cos(theta)));
+          break;
+        case GeometryType::Box:
+          for (int axis = 0; axis < 3; ++axis)
+            for (const double side : {-0.5, 0.5}) {
+              Eigen::Vector3d p;
+              p[axis] = side * g.size[axis];
+              p[(axis + 1) % 3] = (u - 0.5) * g.size[(axis + 1) % 3];
+              p[(axis + 2) % 3] = (v - 0.5) * g.size[(axis + 2) % 3];
+              out.push_back(p);
+            }
+          break;
+        case GeometryType::Cylinder:
+          out.emplace_back(g.radius * std::cos(phi), g.radius * std::sin(phi),
+                           (v - 0.5) * g.length);
+          for (const double side : {-0.5, 0.5})
+            out.emplace_back(v * g.radius * std::cos(phi), v * g.radius * std::sin(phi),
+                             side * g.length);
+          break;
+        case GeometryType::Capsule:
+          out.emplace_back(g.radius * std::cos(phi), g.radius * std::sin(phi),
+                           (v - 0.5) * g.length);
+          for (const double side : {-1.0, 1.0})
+            out.emplace_back(g.radius * std::sin(0.5 * theta) * std::cos(phi),
+                             g.radius * std::sin(0.5 * theta) * std::sin(phi),
+                             side * (0.5 * g.length + g.radius * std::cos(0.5 * theta)));
+          break;
+        case GeometryType::Mesh:
+          break;
+      }
+    }
+  return out;
+}
+
+}  // namespace
+
+// Generated cases: random primitives and points; outside, the distance is the nearest surface
+// sample's (within the sampling's resolution); inside, it is negative.
+TEST(RobotClearance, DistanceToEveryPrimitiveMatchesItsSampledSurface) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int trial = 0; trial < 40; ++trial) {
+    Geometry g;
+    g.type = static_cast<GeometryType>(trial % 4);
+    g.radius = 0.01 + 0.04 * u(rng);
+    g.length = 0.02 + 0.1 * u(rng);
+    g.size = Eigen::Vector3d(0.02 + 0.1 * u(rng), 0.02 + 0.1 * u(rng), 0.02 + 0.1 * u(rng));
+    g.origin = Eigen::Translation3d(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5) *
+               Eigen::AngleAxisd(M_PI * u(rng), Eigen::Vector3d(u(rng), u(rng), 1).normalized());
+    const auto surface = surface_samples(g);
+    for (int k = 0; k < 20; ++k) {
+      const Eigen::Vector3d local(0.3 * (u(rng) - 0.5), 0.3 * (u(rng) - 0.5), 0.3 * (u(rng) - 0.5));
+      double nearest = 1e9;
+      for (const auto& s : surface) nearest = std::min(nearest, (s - local).norm());
+      const double d = distance_to_shape(g, g.origin * local);
+      EXPECT_NEAR(std::abs(d), nearest, 0.003)
+          << geometry_type_name(g.type) << " at " << local.transpose();
+    }
+    EXPECT_LT(distance_to_shape(g, g.origin.translation()), 0.0) << "the centre is inside";
+  }
+  Geometry mesh;
+  mesh.type = GeometryType::Mesh;
+  EXPECT_TRUE(std::isinf(distance_to_shape(mesh, Eigen::Vector3d::Zero())));
+}
+
+TEST(RobotClearance, APathBesideTheForearmIsBlockedUnlessItsLinkIsIgnored) {
+  const RobotModel model = load_icub();
+  const auto poses = rest_poses(model);
+  const auto forearm = model.link_index("l_forearm");
+  const auto& pose = poses[static_cast<std::size_t>(forearm)];
+  // Through the forearm's middle (its cylinder: r = 0.02 along -y from the wrist to -0.14).
+  const Eigen::Vector3d from = pose * Eigen::Vector3d(0.0, -0.07, 0.3);
+  const Eigen::Vector3d to = pose * Eigen::Vector3d(0.0, -0.07, -0.3);
+  EXPECT_FALSE(segment_clear_of_robot(model, poses, from, to, 0.0));
+  const int ignored[] = {forearm};
+  // A path that ends 2 mm above the forearm's collision surface: within a 5 mm margin of the
+  // forearm, clear of every other link.
+  const Eigen::Vector3d above = pose * Eigen::Vector3d(0.0, -0.07, 0.022);
+  EXPECT_TRUE(segment_clear_of_robot(model, poses, from, above, 0.005, ignored));
+  EXPECT_FALSE(segment_clear_of_robot(model, poses, from, above, 0.005));
+  EXPECT_TRUE(segment_clear_of_robot(model, {}, from, to, 0.1)) << "no poses: nothing tested";
 }

@@ -84,6 +84,25 @@ TEST_F(SweepFile, GridRunsEveryCombinationWithSeedsInnermost) {
   EXPECT_EQ(jobs[11].overrides[2].value, "w");
 }
 
+TEST_F(SweepFile, ASeedSoakNeedsNoAxes) {
+  for (const std::string mode : {"grid", "zip"}) {
+    const auto jobs = expand_jobs(load("sweep: soak\nexperiment: exp.yaml\nmode: " + mode +
+                                       "\nseeds: {from: 3, to: 6}\nset: {duration_s: 2}\n"));
+    ASSERT_EQ(jobs.size(), 4u) << mode;
+    for (std::size_t i = 0; i < jobs.size(); ++i) {
+      EXPECT_EQ(*jobs[i].seed, 3u + i);
+      EXPECT_TRUE(jobs[i].axis_values.empty());
+      ASSERT_EQ(jobs[i].overrides.size(), 1u);
+      EXPECT_EQ(jobs[i].overrides[0].path, "duration_s");
+    }
+  }
+  // A soak of a base experiment that does not exist is refused, located, before any run.
+  EXPECT_EQ(error_of("sweep: soak\nexperiment: gone.yaml\nseeds: [1, 2]\n"),
+            "s.yaml:2:13: key 'experiment': expected an experiment file (relative to the sweep "
+            "file), but '" +
+                (dir / "gone.yaml").string() + "' does not exist");
+}
+
 TEST_F(SweepFile, ZipPairsTheValues) {
   const auto jobs = expand_jobs(
       load("sweep: z\nexperiment: exp.yaml\nmode: zip\naxes: {a.x: [1, 2, 3], a.y: [u, v, w]}\n"));
@@ -125,7 +144,8 @@ TEST_F(SweepFile, BadInputsAreLocated) {
                 (dir / "none.yaml").string() + "' does not exist");
   EXPECT_EQ(error_of("sweep: b c\nexperiment: exp.yaml\n"),
             "2 errors:\n  s.yaml:1:1: key 'axes': missing required key (expected a map of PATH: "
-            "values)\n  s.yaml:1:8: key 'sweep': expected a name of letters, digits, '_' and '-', "
+            "values; a sweep without axes needs 'seeds')\n  s.yaml:1:8: key 'sweep': expected a "
+            "name of letters, digits, '_' and '-', "
             "got 'b c'");
 }
 

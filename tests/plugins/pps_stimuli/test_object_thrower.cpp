@@ -21,7 +21,7 @@ TEST(ObjectThrower, SpawnsMoveTowardTheAimedTaxelFromTheConeAtASpeedInRange) {
   const SkinPart part = forearm();
   int sphere = 0, box = 0;
   for (const auto& s : spawns) {
-    EXPECT_EQ(s.motion, ObjectMotion::kKinematic);
+    EXPECT_EQ(s.motion, ObjectMotion::kGuided);
     (s.shape == somasim::ObjectShape::kSphere ? sphere : box)++;
     const double speed = s.linear_velocity.norm();
     EXPECT_GE(speed, 0.1 - 1e-12);

@@ -1,6 +1,7 @@
 // object_thrower: static and receding presentations, cylinders, the presentation output, start
-// points clear of the robot, bad lists and ranges (whole messages).
+// points and paths clear of the robot, bad lists and ranges (whole messages).
 #include <cmath>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -93,7 +94,7 @@ TEST(ObjectThrowerMotions, PartsShapesAndMotionsCycleCylindersShowTheirSide) {
     const auto& s = spawns[i];
     EXPECT_EQ(s.pose.translation().z() > 0.9, i % 2 == 1) << i;  // the palm
     EXPECT_EQ(s.shape, i % 4 < 2 ? ObjectShape::kSphere : ObjectShape::kCylinder) << i;
-    EXPECT_EQ(s.motion, ObjectMotion::kKinematic);
+    EXPECT_EQ(s.motion, ObjectMotion::kGuided);
     EXPECT_EQ(s.linear_velocity.isZero(), i % 3 == 1) << i;  // the static ones
     if (i % 3 == 2) {                                        // receding
       EXPECT_NEAR(s.remove_after_s * s.linear_velocity.norm(), 0.25, 1e-12) << i;
@@ -205,10 +206,16 @@ TEST(ObjectThrowerMotions, StartPointsAreClearOfTheRobotForEveryMotion) {
     if (wired) h.input<LinkPoses>("poses").poses = data.link_poses;
     return all_spawns(h, /*feed=*/false);
   };
+  const int forearm_link = model->link_index("l_forearm");
+  // The start clear of the robot, and the whole path (to where it is removed) clear of every
+  // link but the forearm it is aimed at.
   auto clear = [&](const somasim::ObjectSpawn& s) {
     const double bound = s.shape == ObjectShape::kBox ? std::sqrt(3.0) * 0.02 : 0.02;
-    return somasim::robot::point_clear_of_robot(*model, data.link_poses, s.pose.translation(),
-                                                bound + 0.01);
+    const Eigen::Vector3d start = s.pose.translation();
+    const Eigen::Vector3d end = start + std::max(0.0, s.remove_after_s - 0.1) * s.linear_velocity;
+    return somasim::robot::point_clear_of_robot(*model, data.link_poses, start, bound + 0.01) &&
+           somasim::robot::segment_clear_of_robot(*model, data.link_poses, start, end,
+                                                  bound + 0.004, std::span(&forearm_link, 1));
   };
   int unclear_without = 0;
   for (const auto& s : starts(false)) unclear_without += clear(s) ? 0 : 1;
@@ -216,6 +223,35 @@ TEST(ObjectThrowerMotions, StartPointsAreClearOfTheRobotForEveryMotion) {
   const auto spawns = starts(true);
   ASSERT_EQ(spawns.size(), 30u);
   for (const auto& s : spawns) EXPECT_TRUE(clear(s)) << s.pose.translation().transpose();
+}
+
+TEST(ObjectThrowerMotions, APartNoPathCanReachIsABadPresentationNamingWhatWasTried) {
+  // Every taxel faces into the chest: the forearm pressed against the body, nothing reaches it.
+  const auto model = somasim::robot::load_robot_model_shared(kRobot);
+  somasim::robot::RobotData data(*model);
+  somasim::robot::forward_kinematics(*model, data, Eigen::VectorXd::Zero(model->num_dofs()));
+  const Eigen::Isometry3d chest = data.link_poses[std::size_t(model->link_index("chest"))];
+  SkinPart part = forearm();
+  for (std::size_t k = 0; k < 3; ++k) {
+    part.positions[k] = chest.translation();
+    part.normals[k] = Eigen::Vector3d::UnitZ();
+  }
+  Harness h(thrower("approaches: 2, cone_deg: 10", "link_poses: harness.poses"));
+  feed_world(h);
+  h.input<SkinTaxels>("taxels").parts = {part};
+  h.input<LinkPoses>("poses").poses = data.link_poses;
+  std::string msg;
+  try {
+    h.step();
+  } catch (const somasim::RunError& e) {
+    msg = e.what();
+  }
+  EXPECT_EQ(
+      msg,
+      "no path clear of the robot for a sphere (motion 'approach') aimed at 'left_forearm': "
+      "50 taxels drawn, 100 paths each (start 0.2-0.3 m from the skin within 10 deg of its normal, "
+      "0.030 m clear of the other links); raise 'distance_min', lower 'cone_deg' or 'size', "
+      "or change the posture");
 }
 
 TEST(ObjectThrowerMotions, BadListsAndRangesAreNamed) {

@@ -59,7 +59,11 @@ struct Contacts {
 };
 
 enum class ObjectShape : std::uint8_t { kSphere, kBox, kCylinder, kMesh };
-enum class ObjectMotion : std::uint8_t { kStatic, kDynamic, kKinematic };
+/// How an object moves. kKinematic: along its path (pose + t · linear_velocity) whatever it meets,
+/// pushing the robot without bound. kGuided: a dynamic body (its mass, no gravity, no rotation)
+/// pulled along the same path by a bounded force (bullet_world's guide_max_force), as a hand
+/// holds an object: it follows the path in free space and is stopped by what it meets.
+enum class ObjectMotion : std::uint8_t { kStatic, kDynamic, kKinematic, kGuided };
 
 /// A request to add an object to the world (consumed once per `id`).
 struct ObjectSpawn {
@@ -70,9 +74,9 @@ struct ObjectSpawn {
                                                    ///< cylinder: (r, half height, -) [m]
   std::string mesh;                                ///< mesh file for kMesh
   ObjectMotion motion = ObjectMotion::kDynamic;
-  double mass = 0.1;                                          ///< [kg] (dynamic)
+  double mass = 0.1;                                          ///< [kg] (dynamic, guided)
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();     ///< initial pose, root frame
-  Eigen::Vector3d linear_velocity = Eigen::Vector3d::Zero();  ///< initial / kinematic [m/s]
+  Eigen::Vector3d linear_velocity = Eigen::Vector3d::Zero();  ///< initial / path [m/s]
   double remove_after_s = 0.0;                                ///< > 0: removed after this long
 };
 

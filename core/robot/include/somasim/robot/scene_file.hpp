@@ -11,11 +11,11 @@
 ///     length: 0.1                # cylinder: full height along its z [m]
 ///     file: cup.obj              # mesh: relative to the scene file (OBJ/STL/DAE via assimp)
 ///     scale: 1                   # mesh: s or [sx, sy, sz]
-///     motion: dynamic            # static | dynamic | kinematic (constant velocity)
+///     motion: dynamic            # static | dynamic | kinematic | guided (ports.hpp)
 ///     mass: 0.1                  # dynamic [kg]
 ///     xyz: [0, 0, 0.5]           # pose in the root frame [m]
 ///     rpy_deg: [0, 0, 0]         # R = Rz(yaw)·Ry(pitch)·Rx(roll) [deg]
-///     velocity: [0, 0, 0]        # initial (dynamic) or constant (kinematic) [m/s]
+///     velocity: [0, 0, 0]        # initial (dynamic) or of the path [m/s]
 ///     remove_after_s: 0          # > 0: removed after this long [s]
 /// ```
 /// Errors name file:line:column, the object and the key; all errors are reported together.

@@ -14,7 +14,8 @@
 ///                                 # outermost; zip: the i-th value of every axis together
 ///   set:                          # optional fixed overrides for every run: PATH: VALUE
 ///     duration_s: 20
-///   axes:                         # required, at least one: a --set PATH and its values, as
+///   axes:                         # at least one (may be left out when `seeds` is given: a
+///                                 # seed soak, one run per seed): a --set PATH and its values, as
 ///     nodes.thrower.params.offset: [-0.1, 0.0, 0.1]          # a list of YAML values,
 ///     nodes.filter.params.particles: {from: 100, to: 500, step: 200}  # a range (both ends
 ///     nodes.pps.params.ttc_max: {from: 1, to: 3, count: 5}   # included when hit), or count
