@@ -56,6 +56,19 @@ void declare_learner_params(PluginSpec& s) {
       .defaults(3.0)
       .range(0, 1e6)
       .describe("samples kept before a contact (paper 3 s, code 4 s); 0 keeps every sample");
+  s.add_int("contact_min_events")
+      .defaults(std::int64_t{2})
+      .range(1, 100000)
+      .describe(
+          "a taxel's contact offset estimate needs at least this many contact events that agree "
+          "(fewer: no estimate, counted in contact_estimates_withheld)");
+  s.add_double("contact_agreement")
+      .unit_is("m")
+      .defaults(0.02)
+      .range(1e-4, 10)
+      .describe(
+          "contact events whose offset is farther than this from the taxel's median are "
+          "outliers; an estimate needs more than half of them within it");
   s.add_double("buffer_reset")
       .unit_is("s")
       .defaults(2.0)
@@ -84,6 +97,8 @@ pps::LearnerParams read_learner_params(const NodeContext& ctx) {
   p.buffer.horizon_s = ctx.param<double>("buffer_horizon");
   p.buffer.reset_after_s = ctx.param<double>("buffer_reset");
   pps::parse_pps_model(ctx.param<std::string>("model"), p.model);
+  p.contact.min_events = ctx.param<int>("contact_min_events");
+  p.contact.agreement_m = ctx.param<double>("contact_agreement");
   return p;
 }
 

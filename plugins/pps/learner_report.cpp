@@ -15,6 +15,19 @@ namespace somasim::plugins {
 
 namespace {
 
+const char* evidence_name(pps::ContactEvidence e) {
+  switch (e) {
+    case pps::ContactEvidence::kEstimated:
+      return "estimated";
+    case pps::ContactEvidence::kTooFew:
+      return "too_few";
+    case pps::ContactEvidence::kDisagreeing:
+      return "disagreeing";
+    default:
+      return "none";
+  }
+}
+
 using nlohmann::json;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -103,6 +116,8 @@ void report_learning(NodeContext& ctx, std::vector<LearnerPart>& parts, int min_
   json per_taxel = json::object(), per_part = json::object();
   json mean_contact = json::object(), mean_floor = json::object(), mean_ridge = json::object(),
        mean_paper = json::object(), mean_truth = json::object();
+  // Touched taxels whose contact evidence gives no estimate, by reason.
+  std::size_t too_few = 0, disagreeing = 0;
   for (LearnerPart& part : parts) {
     if (!part.learner) continue;
     pps::BodyPartLearner& learner = *part.learner;
@@ -128,9 +143,13 @@ void report_learning(NodeContext& ctx, std::vector<LearnerPart>& parts, int min_
       double truth = kNaN;
       if (const auto it = truth_by_label.find(label); it != truth_by_label.end())
         truth = it->second;
+      const pps::ContactEvidence evidence = learner.contact_evidence(static_cast<int>(k));
+      too_few += evidence == pps::ContactEvidence::kTooFew ? 1 : 0;
+      disagreeing += evidence == pps::ContactEvidence::kDisagreeing ? 1 : 0;
       json& t = per_taxel[single ? id : label];
       t = {{"samples", samples},
            {"contacts", learner.contact_count(static_cast<int>(k))},
+           {"contact_evidence", evidence_name(evidence)},
            {"offset_contact_m", opt_json(contact)},
            {"offset_floor_m", opt_json(floor)},
            {"offset_ridge_m", opt_json(ridge)},
@@ -172,6 +191,8 @@ void report_learning(NodeContext& ctx, std::vector<LearnerPart>& parts, int min_
     totals.behind_skin += t.behind_skin;
   }
   ctx.report_metric("events", events);
+  ctx.report_metric("contact_estimates_withheld",
+                    json{{"too_few", too_few}, {"disagreeing", disagreeing}});
   const json sums = sample_metrics(totals);
   for (const char* key : {"samples", "positive_samples", "negative_samples", "negative_d_share"})
     ctx.report_metric(key, sums[key]);

@@ -28,8 +28,7 @@ BodyPartLearner::BodyPartLearner(std::string body_part, std::vector<TaxelInfo> t
   for (std::size_t k = 0; k < taxels_.size(); ++k) maps_.emplace_back(map_grid_, params_.parzen);
   touched_.assign(taxels_.size(), 0);
   scratch_poses_.resize(taxels_.size());
-  contact_d_sum_.assign(taxels_.size(), 0.0);
-  contact_count_.assign(taxels_.size(), 0);
+  contact_.resize(taxels_.size());
 }
 
 namespace {
@@ -85,8 +84,7 @@ void BodyPartLearner::record_contact_offset(std::span<const TaxelPose> taxels_ro
   if (touched.empty()) return;
   const auto record = [&](std::size_t k, const Stimulus& perceived, double skin_d) {
     const TaxelFrameStimulus local = to_taxel_frame(taxels_root[k], perceived);
-    contact_d_sum_[k] += compute_d_ttc(local.p, local.v, params_.ttc).d - skin_d;
-    ++contact_count_[k];
+    contact_.add(k, compute_d_ttc(local.p, local.v, params_.ttc).d - skin_d);
   };
   if (!touch) {  // the contact taken at the taxel centres, at the touch
     for (const std::size_t k : touched) record(k, perceived_at(touch_time_s), 0.0);
@@ -135,8 +133,7 @@ void BodyPartLearner::record_contact_offset(std::span<const TaxelPose> taxels_ro
 
 std::optional<double> BodyPartLearner::contact_offset(int k) const {
   const auto kk = static_cast<std::size_t>(k);
-  if (contact_count_[kk] == 0) return std::nullopt;
-  return contact_d_sum_[kk] / contact_count_[kk];
+  return contact_.estimate(kk, params_.contact);
 }
 
 int BodyPartLearner::index_of(int id) const {

@@ -28,6 +28,14 @@ Stimulus object_at(double t) {
   return s;
 }
 
+// One touch measures the offset: the evidence rule (contact_evidence.hpp, tested there) set to
+// accept a single event.
+LearnerParams one_event() {
+  LearnerParams p = LearnerParams::code();
+  p.contact.min_events = 1;
+  return p;
+}
+
 double d_of(const TaxelPose& taxel, const Stimulus& s) {
   const TaxelFrameStimulus local = to_taxel_frame(taxel, s);
   return compute_d_ttc(local.p, local.v, TtcDefinition::kUnsigned).d;
@@ -49,7 +57,7 @@ void approach(BodyPartLearner& l) {
 
 // One touch with the taxel believed at `believed` (root frame); the contact estimate.
 double one_touch(const TaxelPose& believed, bool with_touch_point) {
-  BodyPartLearner l("patch", {TaxelInfo{7, kTrueTaxel}}, LearnerParams::code());
+  BodyPartLearner l("patch", {TaxelInfo{7, kTrueTaxel}}, one_event());
   approach(l);
   std::optional<SkinTouch> touch;
   if (with_touch_point) touch = SkinTouch{kContact, Eigen::Vector3d::UnitZ()};
@@ -94,7 +102,7 @@ TEST(PpsContactOffset, CreditsTheTaxelNearestTheCentreOfPressure) {
   std::vector<TaxelInfo> taxels;
   for (int i = 0; i < 4; ++i)
     taxels.push_back({i, TaxelPose{Eigen::Vector3d(0.015 * i, 0, 0), Eigen::Vector3d::UnitZ()}});
-  BodyPartLearner l("patch", taxels, LearnerParams::code());
+  BodyPartLearner l("patch", taxels, one_event());
   approach(l);
   std::vector<TaxelPose> poses;  // believed 1 cm inside, exactly translated
   for (const auto& t : taxels)
@@ -122,7 +130,7 @@ TEST(PpsContactOffset, ToleratesARotatedBelievedLinkPose) {
   Eigen::Isometry3d believed = Eigen::Isometry3d::Identity();
   believed.rotate(Eigen::AngleAxisd(3.0 * M_PI / 180, Eigen::Vector3d(1, 1, 0).normalized()));
   believed.pretranslate(Eigen::Vector3d(0.004, -0.003, -0.01));
-  BodyPartLearner l("patch", taxels, LearnerParams::code());
+  BodyPartLearner l("patch", taxels, one_event());
   approach(l);
   std::vector<TaxelPose> poses;
   for (const auto& t : taxels)

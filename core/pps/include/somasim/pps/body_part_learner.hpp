@@ -9,6 +9,7 @@
 
 #include <Eigen/Geometry>
 
+#include "somasim/pps/contact_evidence.hpp"
 #include "somasim/pps/grid.hpp"
 #include "somasim/pps/receptive_field.hpp"
 #include "somasim/pps/stimulus.hpp"
@@ -28,11 +29,18 @@ struct LearnerParams {
   /// kDistanceOnly: 1-D maps over D (grid's D axis only); every in-RF sample with D in range
   /// counts (receding or static ones too), and activation() ignores the velocity.
   PpsModel model = PpsModel::kDTtc;
+  /// When the contact offset estimator reports an estimate (contact_evidence.hpp).
+  ContactEstimateSpec contact;
 
   static LearnerParams paper() { return LearnerParams{}; }
   static LearnerParams code() {
-    return LearnerParams{GridSpec::code(),       ParzenSpec::code(), ReceptiveField::code(),
-                         TtcDefinition::kSigned, BufferSpec::code(), PpsModel::kDTtc};
+    return LearnerParams{GridSpec::code(),
+                         ParzenSpec::code(),
+                         ReceptiveField::code(),
+                         TtcDefinition::kSigned,
+                         BufferSpec::code(),
+                         PpsModel::kDTtc,
+                         {}};
   }
 };
 
@@ -109,15 +117,19 @@ class BodyPartLearner {
                              std::span<const int> touched_ids, double touch_time_s,
                              const std::optional<SkinTouch>& touch = std::nullopt);
   /// Sum of the recorded contact D of taxel index k [m] and their count.
-  double contact_d_sum(int k) const { return contact_d_sum_[static_cast<std::size_t>(k)]; }
-  std::uint32_t contact_count(int k) const { return contact_count_[static_cast<std::size_t>(k)]; }
+  double contact_d_sum(int k) const { return contact_.sum(static_cast<std::size_t>(k)); }
+  std::uint32_t contact_count(int k) const { return contact_.count(static_cast<std::size_t>(k)); }
   /// Restores recorded evidence (e.g. from a learned file).
   void set_contact_offset(int k, double d_sum, std::uint32_t count) {
-    contact_d_sum_[static_cast<std::size_t>(k)] = d_sum;
-    contact_count_[static_cast<std::size_t>(k)] = count;
+    contact_.restore(static_cast<std::size_t>(k), d_sum, count);
   }
-  /// The estimate: mean contact D of taxel index k [m], or nullopt before any contact.
+  /// The estimate of taxel index k [m]: the mean of its contact D values that agree with their
+  /// median (params().contact); nullopt when there is too little or disagreeing evidence.
   std::optional<double> contact_offset(int k) const;
+  /// Whether taxel index k has an estimate, and why not.
+  ContactEvidence contact_evidence(int k) const {
+    return contact_.state(static_cast<std::size_t>(k), params_.contact);
+  }
 
   /// Totals over all events so far.
   const LearningStats& totals() const { return totals_; }
@@ -140,8 +152,7 @@ class BodyPartLearner {
   std::vector<TaxelPose> scratch_poses_;
   std::vector<std::uint8_t> touched_;
   Stimulus perceived_at(double t) const;
-  std::vector<double> contact_d_sum_;
-  std::vector<std::uint32_t> contact_count_;
+  ContactEvidenceLog contact_;
 };
 
 }  // namespace somasim::pps
