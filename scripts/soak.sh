@@ -2,7 +2,8 @@
 # The seed soak: every configs/sweeps/soak_*.yaml (or the names given) run with `somasim sweep
 # run -j JOBS` into runs/soak/NAME and collected; prints one table row per sweep (runs,
 # completed, failed with seed and error, wall time of the slowest run).
-# Usage: scripts/soak.sh [-j JOBS] [NAME...]     (NAME: pps_avoidance for soak_pps_avoidance.yaml)
+# Usage: [SOMASIM=path/to/somasim] scripts/soak.sh [-j JOBS] [NAME...]
+#        (NAME: pps_avoidance for soak_pps_avoidance.yaml)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=$(nproc)
@@ -17,7 +18,7 @@ if ((${#names[@]} == 0)); then
     names+=("${n#soak_}")
   done
 fi
-somasim=build/bin/somasim
+somasim=${SOMASIM:-build/bin/somasim}  # SOMASIM: another build's binary
 status=0
 echo "| config | runs | completed | slowest run [s] | failures |"
 echo "|---|---|---|---|---|"

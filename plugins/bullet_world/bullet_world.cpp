@@ -17,7 +17,7 @@ PluginSpec BulletWorld::spec() {
   PluginSpec s("bullet_world",
                "Physics (Bullet, double precision): the robot as a fixed-base btMultiBody with "
                "joint motors and limits, gravity, self-collision (adjacent links filtered), "
-               "static/dynamic/kinematic objects and contacts. One fixed step per tick.");
+               "static/dynamic/kinematic/guided objects and contacts. One fixed step per tick.");
   robot::add_robot_param(s);
   s.add_string("initial_posture_deg")
       .accepts_map_as_text()

@@ -17,6 +17,11 @@
 /// Kinematic objects touch immovable robot geometry (locked links, the fixed base) too: the
 /// solver ignores such pairs (both bodies immovable), so their contacts carry a penetration
 /// force, kinematic_contact_stiffness × depth.
+///
+/// Guided objects (object_manager.hpp: ObjectGuide) are dynamic bodies pulled along their path
+/// by at most guide_max_force: what they meet stops them, so a link they press on feels a
+/// bounded force instead of a prescribed motion. A blow-up that still happens names the bodies
+/// in contact at that step.
 #include <memory>
 #include <set>
 #include <vector>

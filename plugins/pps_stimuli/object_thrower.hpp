@@ -6,8 +6,12 @@
 // One object at a time, aimed at a random taxel of a part; parts, `shapes` and `motions`
 // (approach / static / receding; geometry in presentation_plan.hpp) are each taken in turn with
 // the presentation index (lists of coprime lengths visit every combination); the world removes it
-// at the end of its lifetime, and the next one follows after `pause`. Start points are clear of the
-// robot when `link_poses` is wired.
+// at the end of its lifetime, and the next one follows after `pause`. With `link_poses` wired,
+// start points are clear of the robot and paths clear of every link but the aimed one (a taxel
+// no such path reaches is given up for another; unreachable_draws counts them). Objects are
+// guided by default (a held object: stopped by what it meets; bullet_world's guide_max_force);
+// with `world_contacts`, touches of any robot link are counted (robot_contact_*), and
+// withdraw_after_robot_contact ends a presentation that meets the robot anywhere.
 //
 // `truth` is the object's centre and velocity (root frame) read back from the world.
 // `stimulus` is what the robot perceives: the truth plus Gaussian noise, placed through the
