@@ -23,6 +23,39 @@ constexpr double kPathClearance = 0.005;
 // Taxels drawn, and paths tried for each, before a presentation is given up as impossible.
 constexpr int kTaxelDraws = 50;
 constexpr int kPathAttempts = 100;
+// While no presentation can be placed, it is tried again this often [s].
+constexpr double kRetryInterval = 0.5;
+
+// How an object is turned toward the taxel it is aimed at (outward unit normal `n`), and its
+// ObjectSpawn::size.
+struct PresentedBody {
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();  // root <- object
+  Eigen::Vector3d size = Eigen::Vector3d::Zero();
+};
+
+PresentedBody presented_body(ObjectShape shape, bool corner, const Eigen::Vector3d& n, double size,
+                             double cylinder_half_height) {
+  PresentedBody b;
+  if (shape == ObjectShape::kCylinder) {
+    // The axis (local z) across the normal: the round side faces the taxel.
+    const Eigen::Vector3d axis = n.unitOrthogonal();
+    b.rotation.col(0) = n;
+    b.rotation.col(1) = axis.cross(n);
+    b.rotation.col(2) = axis;
+    b.size = Eigen::Vector3d(size, cylinder_half_height, 0);
+  } else if (corner) {
+    // The cube's corner (+1, +1, +1)·size points at the taxel.
+    b.rotation = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::Ones().normalized(), -n)
+                     .toRotationMatrix();
+    b.size = Eigen::Vector3d::Constant(size);
+  } else {
+    // A cube's face (its local +z) faces the taxel.
+    b.rotation = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), n).toRotationMatrix();
+    b.size = shape == ObjectShape::kSphere ? Eigen::Vector3d(size, 0, 0)
+                                           : Eigen::Vector3d::Constant(size);
+  }
+  return b;
+}
 
 const char* shape_name(ObjectShape shape) {
   switch (shape) {
@@ -149,6 +182,14 @@ PluginSpec ObjectThrower::spec() {
       .describe(
           "the object is withdrawn this long after it first touches any robot link, with or "
           "without skin (the world's contacts); needs the 'world_contacts' input; < 0: off");
+  s.add_double("wait_for_clear_path")
+      .unit_is("s")
+      .defaults(10.0)
+      .range(0, 1e6)
+      .describe(
+          "when no path clear of the robot reaches the part (the posture blocks it), the "
+          "presentation is tried again every 0.5 s for this long, then the run stops naming "
+          "what was tried (metric presentations_postponed)");
   s.add_string("object_motion")
       .defaults(std::string("guided"))
       .one_of({"guided", "kinematic"})
@@ -298,6 +339,7 @@ void ObjectThrower::configure(NodeContext& ctx) {
   object_motion_ = ctx.param<std::string>("object_motion") == "kinematic" ? ObjectMotion::kKinematic
                                                                           : ObjectMotion::kGuided;
   object_mass_ = ctx.param<double>("mass");
+  wait_for_clear_path_ = ctx.param<double>("wait_for_clear_path");
   withdraw_after_robot_contact_ = ctx.param<double>("withdraw_after_robot_contact");
   if (ctx.is_wired("world_contacts")) {
     robot_contacts_ = std::make_unique<RobotContactLog>(*model_);
@@ -316,7 +358,7 @@ void ObjectThrower::configure(NodeContext& ctx) {
   true_offsets_out_ = &ctx.output<TaxelValues>("true_offsets");
 }
 
-void ObjectThrower::launch(NodeContext& ctx) {
+bool ObjectThrower::launch(NodeContext& ctx) {
   const std::size_t index = static_cast<std::size_t>(launched_);
   // Parts, shapes and motions in turn, each with the presentation index.
   const std::string& part = parts_[index % parts_.size()];
@@ -330,43 +372,49 @@ void ObjectThrower::launch(NodeContext& ctx) {
                    "' is not in the 'taxels' input (is the skin node wired?)");
   auto& rng = ctx.rng();
   std::uniform_int_distribution<std::size_t> pick(0, sp->taxel_ids.size() - 1);
-  // The start clear of the whole robot; the path clear of every link but the aimed one, so
-  // that the object reaches the skin it is aimed at without meeting another link first.
-  const double reach = bounding_radius(shape, geometry_.size, cylinder_half_height_);
-  const int aimed_link = model_->link_index(sp->link);
-  const auto clear = [&](const Eigen::Vector3d& start, const Eigen::Vector3d& end) {
-    if (!link_poses_) return true;
-    return robot::point_clear_of_robot(*model_, link_poses_->poses, start, reach + 0.01) &&
-           robot::segment_clear_of_robot(*model_, link_poses_->poses, start, end,
-                                         reach + kPathClearance, std::span(&aimed_link, 1));
-  };
   // The distance from the centre to the skin at contact: also the stimulus radius.
   const bool corner = shape == ObjectShape::kBox && box_corner_;
   radius_ = corner ? std::sqrt(3.0) * geometry_.size : geometry_.size;
   PresentationGeometry g = geometry_;
   g.size = radius_;
-  // A taxel that no clear path reaches (another link in the way) is given up for another one.
+  // The start clear of the whole robot; the path of the object (its cover of spheres, turned
+  // as it will be presented) clear of every link but the aimed one, so that it reaches the
+  // skin it is aimed at without meeting another link first. A taxel no such path reaches is
+  // given up for another one.
+  const double reach = bounding_radius(shape, geometry_.size, cylinder_half_height_);
+  const int aimed_link = model_->link_index(sp->link);
   std::size_t k = 0;
+  PresentedBody body;
+  std::vector<robot::CoverSphere> cover;
+  const auto clear = [&](const Eigen::Vector3d& start, const Eigen::Vector3d& end) {
+    if (!link_poses_) return true;
+    return robot::point_clear_of_robot(*model_, link_poses_->poses, start, reach + 0.01) &&
+           robot::object_path_clear_of_robot(*model_, link_poses_->poses, cover, body.rotation,
+                                             start, end, kPathClearance, std::span(&aimed_link, 1));
+  };
   std::optional<PlannedObject> planned;
   for (int draw = 0; !planned; ++draw) {
-    if (draw == kTaxelDraws)
-      throw RunError(fmt::format(
+    if (draw == kTaxelDraws) {
+      unplaced_ = fmt::format(
           "no path clear of the robot for a {} (motion '{}') aimed at '{}': {} taxels drawn, {} "
-          "paths "
-          "each (start {}-{} m from the skin within {:.0f} deg of its normal, {:.3f} m clear of "
-          "the other links); raise 'distance_min', lower 'cone_deg' or 'size', or change the "
-          "posture",
+          "paths each (start {}-{} m from the skin within {:.0f} deg of its normal, the object "
+          "{:.3f} m clear of the other links); raise 'distance_min', lower 'cone_deg' or "
+          "'size', or change the posture",
           shape_name(shape), motion_name(motion), part, kTaxelDraws, kPathAttempts,
           motion == PresentationMotion::kReceding ? g.receding_start_min : g.distance_min,
           motion == PresentationMotion::kReceding ? g.receding_start_max : g.distance_max,
-          rad_to_deg(g.cone_rad), reach + kPathClearance));
+          rad_to_deg(g.cone_rad), kPathClearance);
+      return false;
+    }
     if (draw > 0) ++unreachable_draws_[part];
     k = pick(rng);
+    body = presented_body(shape, corner, sp->normals[k].normalized(), geometry_.size,
+                          cylinder_half_height_);
+    cover = robot::sphere_cover(shape, body.size);
     planned = plan_presentation(motion, sp->positions[k], sp->normals[k].normalized(), g, rng,
                                 clear, kPathAttempts);
   }
   const PlannedObject& plan = *planned;
-  const Eigen::Vector3d n = sp->normals[k].normalized();
 
   ObjectSpawn spawn;
   spawn.id = next_spawn_id_++;
@@ -375,26 +423,8 @@ void ObjectThrower::launch(NodeContext& ctx) {
   spawn.motion = object_motion_;
   spawn.mass = object_mass_;
   spawn.pose = Eigen::Isometry3d::Identity();
-  if (shape == ObjectShape::kCylinder) {
-    // The axis (local z) across the normal: the round side faces the taxel.
-    const Eigen::Vector3d axis = n.unitOrthogonal();
-    spawn.pose.linear().col(0) = n;
-    spawn.pose.linear().col(1) = axis.cross(n);
-    spawn.pose.linear().col(2) = axis;
-    spawn.size = Eigen::Vector3d(geometry_.size, cylinder_half_height_, 0);
-  } else if (corner) {
-    // The cube's corner (+1, +1, +1)·size points at the taxel.
-    spawn.pose.linear() =
-        Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::Ones().normalized(), -n)
-            .toRotationMatrix();
-    spawn.size = Eigen::Vector3d::Constant(geometry_.size);
-  } else {
-    // A cube's face (its local +z) faces the taxel.
-    spawn.pose.linear() =
-        Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), n).toRotationMatrix();
-    spawn.size = shape == ObjectShape::kSphere ? Eigen::Vector3d(geometry_.size, 0, 0)
-                                               : Eigen::Vector3d::Constant(geometry_.size);
-  }
+  spawn.pose.linear() = body.rotation;
+  spawn.size = body.size;
   spawn.pose.translation() = plan.start;
   spawn.linear_velocity = plan.velocity;
   spawn.remove_after_s = plan.lifetime;
@@ -418,6 +448,7 @@ void ObjectThrower::launch(NodeContext& ctx) {
   seen_.reset();
   ++per_part_presentations_[part];
   ++per_motion_[motion_name(motion)];
+  return true;
 }
 
 void ObjectThrower::perceive(NodeContext& ctx) {
@@ -510,13 +541,28 @@ void ObjectThrower::withdraw_if_due(double now) {
   }
 }
 
+void ObjectThrower::try_launch(NodeContext& ctx, double now) {
+  if (launch(ctx)) {
+    waiting_since_s_.reset();
+    return;
+  }
+  // No clear path in this posture (e.g. an arm that has just avoided): wait for the robot to
+  // move, as the experimenter would, then give up.
+  if (!waiting_since_s_) waiting_since_s_ = now;
+  ++postponed_;
+  if (now - *waiting_since_s_ >= wait_for_clear_path_ - 1e-9)
+    throw RunError(unplaced_ +
+                   fmt::format(" (waited {:g} s for a clear path)", now - *waiting_since_s_));
+  retry_at_s_ = now + kRetryInterval;
+}
+
 void ObjectThrower::step(NodeContext& ctx) {
   const double now = ctx.time_s();
   Presentation& p = *presentation_;
   if (p.active && now - p.start_time_s >= lifetime_ - 1e-9) p.active = false;
   const bool between = launched_ > 0 && now - p.start_time_s < lifetime_ + pause_ - 1e-9;
   const bool done = !p.active && !between && launched_ >= presentations_;
-  if (!p.active && !between && !done) launch(ctx);
+  if (!p.active && !between && !done && now >= retry_at_s_ - 1e-9) try_launch(ctx, now);
   if (withdraw_after_skin_contact_ >= 0) withdraw_when_felt();
   if (world_contacts_) watch_robot_contacts();
   withdraw_if_due(now);
@@ -529,6 +575,7 @@ void ObjectThrower::step(NodeContext& ctx) {
 
 void ObjectThrower::finish(NodeContext& ctx) {
   ctx.report_metric("objects_presented", launched_);
+  if (link_poses_) ctx.report_metric("presentations_postponed", postponed_);
   if (withdraw_after_skin_contact_ >= 0 || withdraw_after_robot_contact_ >= 0)
     ctx.report_metric("objects_withdrawn", withdrawn_);
   if (robot_contacts_) robot_contacts_->report(ctx);

@@ -45,7 +45,10 @@ class ObjectThrower : public Plugin {
 
  private:
   void read_lists(NodeContext& ctx);
-  void launch(NodeContext& ctx);
+  /// Presents the next object; false (unplaced_ says why) when no clear path reaches its part.
+  bool launch(NodeContext& ctx);
+  /// launch(), or wait for a clear path (wait_for_clear_path_), then a RunError.
+  void try_launch(NodeContext& ctx, double now);
   void perceive(NodeContext& ctx);
   void learn_true_offsets();
   /// Sets the current object's withdrawal withdraw_after_skin_contact_ after the skin first felt
@@ -71,6 +74,11 @@ class ObjectThrower : public Plugin {
   double withdraw_after_robot_contact_ = -1.0;  // [s]; < 0: off
   ObjectMotion object_motion_ = ObjectMotion::kGuided;
   double object_mass_ = 0.1;                         // [kg] (guided)
+  double wait_for_clear_path_ = 10.0;                // [s]
+  double retry_at_s_ = 0.0;                          // no launch before this time [s]
+  std::optional<double> waiting_since_s_;            // first failed launch of the current wait [s]
+  std::string unplaced_;                             // why the last launch failed
+  int postponed_ = 0;                                // failed launches
   const Contacts* world_contacts_ = nullptr;         // optional
   std::unique_ptr<RobotContactLog> robot_contacts_;  // set when world_contacts is wired
   std::uint64_t last_felt_event_id_ = 0;

@@ -77,4 +77,46 @@ bool segment_clear_of_robot(const RobotModel& model,
   return true;
 }
 
+std::vector<CoverSphere> sphere_cover(ObjectShape shape, const Eigen::Vector3d& size) {
+  std::vector<CoverSphere> out;
+  switch (shape) {
+    case ObjectShape::kSphere:
+      out.push_back({Eigen::Vector3d::Zero(), size.x()});
+      break;
+    case ObjectShape::kBox:
+      for (const double x : {-0.5, 0.5})
+        for (const double y : {-0.5, 0.5})
+          for (const double z : {-0.5, 0.5})
+            out.push_back(
+                {Eigen::Vector3d(x * size.x(), y * size.y(), z * size.z()), 0.5 * size.norm()});
+      break;
+    case ObjectShape::kCylinder: {
+      const double r = size.x(), half = size.y();
+      const int n = std::max(1, static_cast<int>(std::ceil(2.0 * half / r)));
+      const double piece = 2.0 * half / n;  // length each sphere holds
+      for (int i = 0; i < n; ++i)
+        out.push_back(
+            {Eigen::Vector3d(0, 0, -half + (i + 0.5) * piece), std::hypot(r, 0.5 * piece)});
+      break;
+    }
+    case ObjectShape::kMesh:
+      break;
+  }
+  return out;
+}
+
+bool object_path_clear_of_robot(const RobotModel& model,
+                                const std::vector<Eigen::Isometry3d>& link_poses,
+                                std::span<const CoverSphere> cover, const Eigen::Matrix3d& rotation,
+                                const Eigen::Vector3d& from, const Eigen::Vector3d& to,
+                                double clearance, std::span<const int> ignored_links) {
+  for (const CoverSphere& s : cover) {
+    const Eigen::Vector3d offset = rotation * s.centre;
+    if (!segment_clear_of_robot(model, link_poses, from + offset, to + offset, s.radius + clearance,
+                                ignored_links))
+      return false;
+  }
+  return true;
+}
+
 }  // namespace somasim::robot

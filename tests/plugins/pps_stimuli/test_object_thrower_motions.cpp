@@ -236,22 +236,59 @@ TEST(ObjectThrowerMotions, APartNoPathCanReachIsABadPresentationNamingWhatWasTri
     part.positions[k] = chest.translation();
     part.normals[k] = Eigen::Vector3d::UnitZ();
   }
-  Harness h(thrower("approaches: 2, cone_deg: 10", "link_poses: harness.poses"));
+  Harness h(
+      thrower("approaches: 2, cone_deg: 10, wait_for_clear_path: 1", "link_poses: harness.poses"));
   feed_world(h);
   h.input<SkinTaxels>("taxels").parts = {part};
   h.input<LinkPoses>("poses").poses = data.link_poses;
+  // Tried at t = 0, 0.5 and 1 s (20 Hz ticks), then given up.
   std::string msg;
+  int steps = 0;
   try {
-    h.step();
+    while (steps < 100) {
+      ++steps;
+      h.step();
+    }
   } catch (const somasim::RunError& e) {
     msg = e.what();
   }
-  EXPECT_EQ(
-      msg,
-      "no path clear of the robot for a sphere (motion 'approach') aimed at 'left_forearm': "
-      "50 taxels drawn, 100 paths each (start 0.2-0.3 m from the skin within 10 deg of its normal, "
-      "0.030 m clear of the other links); raise 'distance_min', lower 'cone_deg' or 'size', "
-      "or change the posture");
+  EXPECT_EQ(steps, 21);
+  EXPECT_EQ(msg,
+            "no path clear of the robot for a sphere (motion 'approach') aimed at 'left_forearm': "
+            "50 taxels drawn, 100 paths each (start 0.2-0.3 m from the skin within 10 deg of its "
+            "normal, the object 0.005 m clear of the other links); raise 'distance_min', lower "
+            "'cone_deg' or 'size', or change the posture (waited 1 s for a clear path)");
+}
+
+TEST(ObjectThrowerMotions, APresentationWaitsForThePostureToClearItsPath) {
+  // The taxels face into the chest for the first second, then the robot is elsewhere (its
+  // links far below): the object is presented at the next retry, after two postponements.
+  const auto model = somasim::robot::load_robot_model_shared(kRobot);
+  somasim::robot::RobotData data(*model);
+  somasim::robot::forward_kinematics(*model, data, Eigen::VectorXd::Zero(model->num_dofs()));
+  const Eigen::Isometry3d chest = data.link_poses[std::size_t(model->link_index("chest"))];
+  SkinPart part = forearm();
+  for (std::size_t k = 0; k < 3; ++k) {
+    part.positions[k] = chest.translation();
+    part.normals[k] = Eigen::Vector3d::UnitZ();
+  }
+  Harness h(thrower("approaches: 1, cone_deg: 10", "link_poses: harness.poses"));
+  feed_world(h);
+  h.input<SkinTaxels>("taxels").parts = {part};
+  auto& poses = h.input<LinkPoses>("poses").poses;
+  poses = data.link_poses;
+  const auto& spawns = h.output<ObjectSpawns>("t.spawns").recent;
+  while (h.time_s() < 0.9) {
+    ASSERT_TRUE(h.step());
+    EXPECT_TRUE(spawns.empty()) << h.time_s();
+  }
+  for (auto& pose : poses) pose.translation() += Eigen::Vector3d(0, 0, -5);
+  while (spawns.empty()) ASSERT_TRUE(h.step());
+  EXPECT_NEAR(h.time_s(), 1.05, 1e-9);  // launched at the retry at t = 1 s
+  while (h.step()) {
+  }
+  h.finish();
+  EXPECT_EQ(h.metric("t", "presentations_postponed"), 2);
 }
 
 TEST(ObjectThrowerMotions, BadListsAndRangesAreNamed) {

@@ -7,6 +7,7 @@
 
 #include <Eigen/Geometry>
 
+#include "somasim/robot/ports.hpp"
 #include "somasim/robot/robot_model.hpp"
 
 namespace somasim::robot {
@@ -32,5 +33,26 @@ bool segment_clear_of_robot(const RobotModel& model,
                             const std::vector<Eigen::Isometry3d>& link_poses,
                             const Eigen::Vector3d& from, const Eigen::Vector3d& to, double margin,
                             std::span<const int> ignored_links = {});
+
+/// One sphere of a cover: centre [m] in the object's frame, radius [m].
+struct CoverSphere {
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  double radius = 0.0;
+};
+
+/// Spheres whose union holds an object of `shape` and `size` (as ObjectSpawn::size: sphere
+/// (r), box half extents, cylinder (r, half height) along z), in the object's frame: tighter
+/// than one bounding sphere for elongated shapes (a cylinder: one sphere per radius of its
+/// length; a box: its eight octants). Meshes: empty (not bounded).
+std::vector<CoverSphere> sphere_cover(ObjectShape shape, const Eigen::Vector3d& size);
+
+/// True when an object (its `cover`, turned into the root frame by `rotation`) moved with its
+/// centre along `from` -> `to` [m, root frame] stays farther than `clearance` [m] from every
+/// collision shape of the links not in `ignored_links` (segment_clear_of_robot per sphere).
+bool object_path_clear_of_robot(const RobotModel& model,
+                                const std::vector<Eigen::Isometry3d>& link_poses,
+                                std::span<const CoverSphere> cover, const Eigen::Matrix3d& rotation,
+                                const Eigen::Vector3d& from, const Eigen::Vector3d& to,
+                                double clearance, std::span<const int> ignored_links = {});
 
 }  // namespace somasim::robot
