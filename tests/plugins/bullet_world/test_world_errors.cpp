@@ -151,6 +151,15 @@ TEST(BulletWorldErrors, HugeGravityIsCaughtAsABlowUp) {
   EXPECT_NE(msg.find("rad/s (max_joint_speed: 99 rad/s)"), std::string::npos) << msg;
 }
 
+TEST(BulletWorldErrors, AGuideTooStiffForTheStepIsALocatedError) {
+  const std::string msg =
+      message_of<InputError>([&] { Harness h(world_yaml("guide_bandwidth: 800")); });
+  EXPECT_NE(msg.find("node 'world', key 'params.guide_bandwidth': 800 1/s at a 0.001 s step makes "
+                     "the guide unstable: keep guide_bandwidth x step <= 0.5 (here <= 500 1/s)"),
+            std::string::npos)
+      << msg;
+}
+
 TEST(BulletWorldErrors, BadSpawnRequest) {
   Harness h(world_yaml());
   auto s = sphere(3, "flat", 0.0, Eigen::Vector3d(-1, 0, 0.5));
