@@ -90,6 +90,29 @@ TEST_F(SweepCli, ExpandWritesTheJobList) {
   EXPECT_EQ(cli({"sweep", "expand", "sweep.yaml"}, dir).out, "6 runs: runs/sweeps/s/jobs.tsv\n");
 }
 
+// A seed soak: no axes, one run per seed, each seed's row in sweep.csv.
+TEST_F(SweepCli, ASeedSoakRunsOncePerSeedAndCollects) {
+  write_file(dir / "soak.yaml",
+             "sweep: soak\nexperiment: exp.yaml\nseeds: {from: 3, to: 5}\n"
+             "set: {nodes.c.params.increment: 2}\n");
+  CliResult r = cli({"sweep", "run", "soak.yaml", "-j", "2", "--out", "soak"}, dir);
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("sweep soak: 3 runs: 3 completed"), std::string::npos) << r.out;
+  r = cli({"sweep", "collect", "soak"}, dir, false);
+  EXPECT_EQ(r.code, 0) << r.err;
+  std::stringstream csv(read_file(dir / "soak/sweep.csv"));
+  std::string header, line;
+  std::getline(csv, header);
+  EXPECT_EQ(header.rfind("index,folder,seed,", 0), 0u) << header;
+  std::vector<std::string> seeds;  // the first three columns of each row
+  while (std::getline(csv, line)) {
+    std::size_t end = 0;
+    for (int comma = 0; comma < 3; ++comma) end = line.find(',', end) + 1;
+    seeds.push_back(line.substr(0, end - 1));
+  }
+  EXPECT_EQ(seeds, (std::vector<std::string>{"0,runs/0000,3", "1,runs/0001,4", "2,runs/0002,5"}));
+}
+
 TEST_F(SweepCli, RunSkipsCompletedRunsReportsFailuresAndCollects) {
   CliResult r = cli({"sweep", "run", "sweep.yaml", "-j", "2", "--out", "out"}, dir);
   EXPECT_EQ(r.code, 3) << r.err;
