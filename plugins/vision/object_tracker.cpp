@@ -126,6 +126,14 @@ PluginSpec ObjectTracker::spec() {
       .describe(
           "a triangulation whose RMS reprojection error exceeds this is no fix (the eyes track "
           "different things)");
+  s.add_double("max_jump_m")
+      .unit_is("m")
+      .defaults(0.08)
+      .range(0.001, 100)
+      .describe(
+          "a fix farther than this from where the Kalman filter predicts the object tracked in "
+          "the previous frame is something else the colour trackers slid onto (the object was "
+          "removed or hidden): both are dropped and re-acquired by motion (metric jump_drops)");
   s.add_double("max_distance_m")
       .unit_is("m")
       .defaults(0.8)
@@ -225,6 +233,7 @@ void ObjectTracker::configure(NodeContext& ctx) {
   max_reprojection_px_ = ctx.param<double>("max_reprojection_px");
   inconsistent_frames_lost_ = ctx.param<int>("inconsistent_frames_lost");
   max_distance_ = ctx.param<double>("max_distance_m");
+  max_jump_ = ctx.param<double>("max_jump_m");
   max_colour_distance_ = ctx.param<double>("max_colour_distance");
   reset_after_lost_ = ctx.param<int>("reset_after_lost");
   predict_windows_ = ctx.param<bool>("predict_windows");
@@ -400,6 +409,13 @@ void ObjectTracker::step(NodeContext& ctx) {
       for (Eye& eye : eyes_) eye.tracker.lose();
       ++far_drops_;
       inconsistent_ = 0;
+    } else if (lost_ == 0 && kalman_.initialised() && dt > 0.0 &&
+               (object.centre.point - (kalman_.position() + dt * kalman_.velocity())).norm() >
+                   max_jump_) {
+      object.centre.valid = false;  // not the object of the previous frame
+      for (Eye& eye : eyes_) eye.tracker.lose();
+      ++jump_drops_;
+      inconsistent_ = 0;
     } else {
       inconsistent_ = 0;
     }
@@ -453,6 +469,7 @@ void ObjectTracker::finish(NodeContext& ctx) {
   ctx.report_metric("partial_border_frames", partial_border_);
   ctx.report_metric("still_drops", still_drops_);
   ctx.report_metric("far_drops", far_drops_);
+  ctx.report_metric("jump_drops", jump_drops_);
   ctx.report_metric("colour_mismatches", colour_mismatches_);
   ctx.report_metric("refused_acquisitions", refused_);
   ctx.report_metric("own_colour_refusals", own_colour_refused_);

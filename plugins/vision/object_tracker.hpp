@@ -6,7 +6,8 @@
 // default) gives position and velocity; a pps::Stimulus in the root frame. The head may move
 // (gaze_controller): the cameras are posed at the images' render time, the previous image and
 // search windows follow the camera's own rotation, and the robot's own colours, fixes beyond
-// max_distance_m and two eyes on unlike colours are refused.
+// max_distance_m, fixes beyond max_jump_m of the filter's prediction (the trackers slid onto
+// clutter when the object went) and two eyes on unlike colours are refused.
 #include <array>
 #include <deque>
 #include <memory>
@@ -68,6 +69,7 @@ class ObjectTracker : public Plugin {
   double max_reprojection_px_ = 0.0;
   int inconsistent_frames_lost_ = 0;
   double max_distance_ = 0.0;  // [m] from the middle of the eyes
+  double max_jump_ = 0.0;      // [m] from the filter's prediction
   double max_colour_distance_ = 0.0;
   int reset_after_lost_ = 0;
   double radius_min_ = 0.0, radius_max_ = 0.0;
@@ -90,6 +92,7 @@ class ObjectTracker : public Plugin {
   std::int64_t still_drops_ = 0, refused_ = 0;  // static tracks dropped, acquisitions refused
   std::int64_t own_colour_refused_ = 0;         // of those: the robot's own colours
   std::int64_t far_drops_ = 0;                  // fixes beyond max_distance_m
+  std::int64_t jump_drops_ = 0;                 // fixes beyond max_jump_m of the prediction
   std::int64_t colour_mismatches_ = 0;          // both eyes tracked things of unlike colours
   // Recent (sim time [s], encoder values): the head's pose when an image was rendered.
   std::deque<std::pair<double, Eigen::VectorXd>> joint_history_;
