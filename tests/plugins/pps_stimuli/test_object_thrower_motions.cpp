@@ -225,17 +225,31 @@ TEST(ObjectThrowerMotions, StartPointsAreClearOfTheRobotForEveryMotion) {
   for (const auto& s : spawns) EXPECT_TRUE(clear(s)) << s.pose.translation().transpose();
 }
 
-TEST(ObjectThrowerMotions, APartNoPathCanReachIsABadPresentationNamingWhatWasTried) {
-  // Every taxel faces into the chest: the forearm pressed against the body, nothing reaches it.
-  const auto model = somasim::robot::load_robot_model_shared(kRobot);
-  somasim::robot::RobotData data(*model);
+namespace {
+
+// A part whose three taxels sit at the chest's centre facing up: no path reaches them.
+struct InsideTheChest {
+  std::shared_ptr<const somasim::robot::RobotModel> model =
+      somasim::robot::load_robot_model_shared(kRobot);
+  somasim::robot::RobotData data{*model};
+
+}  // namespace
+SkinPart part = forearm();
+InsideTheChest() {
   somasim::robot::forward_kinematics(*model, data, Eigen::VectorXd::Zero(model->num_dofs()));
   const Eigen::Isometry3d chest = data.link_poses[std::size_t(model->link_index("chest"))];
-  SkinPart part = forearm();
   for (std::size_t k = 0; k < 3; ++k) {
     part.positions[k] = chest.translation();
     part.normals[k] = Eigen::Vector3d::UnitZ();
   }
+}
+};  // namespace
+
+TEST(ObjectThrowerMotions, APartNoPathCanReachIsABadPresentationNamingWhatWasTried) {
+  // Every taxel faces into the chest: the forearm pressed against the body, nothing reaches it.
+  const InsideTheChest scene;
+  const SkinPart& part = scene.part;
+  const auto& data = scene.data;
   Harness h(
       thrower("approaches: 2, cone_deg: 10, wait_for_clear_path: 1", "link_poses: harness.poses"));
   feed_world(h);
@@ -263,15 +277,9 @@ TEST(ObjectThrowerMotions, APartNoPathCanReachIsABadPresentationNamingWhatWasTri
 TEST(ObjectThrowerMotions, APresentationWaitsForThePostureToClearItsPath) {
   // The taxels face into the chest for the first second, then the robot is elsewhere (its
   // links far below): the object is presented at the next retry, after two postponements.
-  const auto model = somasim::robot::load_robot_model_shared(kRobot);
-  somasim::robot::RobotData data(*model);
-  somasim::robot::forward_kinematics(*model, data, Eigen::VectorXd::Zero(model->num_dofs()));
-  const Eigen::Isometry3d chest = data.link_poses[std::size_t(model->link_index("chest"))];
-  SkinPart part = forearm();
-  for (std::size_t k = 0; k < 3; ++k) {
-    part.positions[k] = chest.translation();
-    part.normals[k] = Eigen::Vector3d::UnitZ();
-  }
+  const InsideTheChest scene;
+  const SkinPart& part = scene.part;
+  const auto& data = scene.data;
   Harness h(thrower("approaches: 1, cone_deg: 10", "link_poses: harness.poses"));
   feed_world(h);
   h.input<SkinTaxels>("taxels").parts = {part};
