@@ -232,18 +232,18 @@ struct InsideTheChest {
   std::shared_ptr<const somasim::robot::RobotModel> model =
       somasim::robot::load_robot_model_shared(kRobot);
   somasim::robot::RobotData data{*model};
+  SkinPart part = forearm();
+  InsideTheChest() {
+    somasim::robot::forward_kinematics(*model, data, Eigen::VectorXd::Zero(model->num_dofs()));
+    const Eigen::Isometry3d chest = data.link_poses[std::size_t(model->link_index("chest"))];
+    for (std::size_t k = 0; k < 3; ++k) {
+      part.positions[k] = chest.translation();
+      part.normals[k] = Eigen::Vector3d::UnitZ();
+    }
+  }
+};
 
 }  // namespace
-SkinPart part = forearm();
-InsideTheChest() {
-  somasim::robot::forward_kinematics(*model, data, Eigen::VectorXd::Zero(model->num_dofs()));
-  const Eigen::Isometry3d chest = data.link_poses[std::size_t(model->link_index("chest"))];
-  for (std::size_t k = 0; k < 3; ++k) {
-    part.positions[k] = chest.translation();
-    part.normals[k] = Eigen::Vector3d::UnitZ();
-  }
-}
-};  // namespace
 
 TEST(ObjectThrowerMotions, APartNoPathCanReachIsABadPresentationNamingWhatWasTried) {
   // Every taxel faces into the chest: the forearm pressed against the body, nothing reaches it.
