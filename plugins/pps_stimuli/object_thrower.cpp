@@ -26,50 +26,6 @@ constexpr int kPathAttempts = 100;
 // While no presentation can be placed, it is tried again this often [s].
 constexpr double kRetryInterval = 0.5;
 
-// How an object is turned toward the taxel it is aimed at (outward unit normal `n`), and its
-// ObjectSpawn::size.
-struct PresentedBody {
-  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();  // root <- object
-  Eigen::Vector3d size = Eigen::Vector3d::Zero();
-};
-
-PresentedBody presented_body(ObjectShape shape, bool corner, const Eigen::Vector3d& n, double size,
-                             double cylinder_half_height) {
-  PresentedBody b;
-  if (shape == ObjectShape::kCylinder) {
-    // The axis (local z) across the normal: the round side faces the taxel.
-    const Eigen::Vector3d axis = n.unitOrthogonal();
-    b.rotation.col(0) = n;
-    b.rotation.col(1) = axis.cross(n);
-    b.rotation.col(2) = axis;
-    b.size = Eigen::Vector3d(size, cylinder_half_height, 0);
-  } else if (corner) {
-    // The cube's corner (+1, +1, +1)·size points at the taxel.
-    b.rotation = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::Ones().normalized(), -n)
-                     .toRotationMatrix();
-    b.size = Eigen::Vector3d::Constant(size);
-  } else {
-    // A cube's face (its local +z) faces the taxel.
-    b.rotation = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), n).toRotationMatrix();
-    b.size = shape == ObjectShape::kSphere ? Eigen::Vector3d(size, 0, 0)
-                                           : Eigen::Vector3d::Constant(size);
-  }
-  return b;
-}
-
-const char* shape_name(ObjectShape shape) {
-  switch (shape) {
-    case ObjectShape::kBox:
-      return "box";
-    case ObjectShape::kCylinder:
-      return "cylinder";
-    case ObjectShape::kMesh:
-      return "mesh";
-    default:
-      return "sphere";
-  }
-}
-
 // Radius of a sphere around the centre that holds the whole object [m].
 double bounding_radius(ObjectShape shape, double size, double half_height) {
   switch (shape) {

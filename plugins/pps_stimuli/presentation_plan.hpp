@@ -54,4 +54,17 @@ std::optional<PlannedObject> plan_presentation(PresentationMotion motion,
                                                const PresentationGeometry& g, std::mt19937_64& rng,
                                                const PathCheck& clear, int attempts = 100);
 
+/// How an object is turned toward the taxel it is aimed at (outward unit normal), and its
+/// ObjectSpawn::size: a cylinder's round side faces the taxel (its axis across the normal), a
+/// cube a corner (`corner`) or its local +z face, a sphere as it is.
+struct PresentedBody {
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();  ///< root <- object
+  Eigen::Vector3d size = Eigen::Vector3d::Zero();          ///< as ObjectSpawn::size [m]
+};
+PresentedBody presented_body(ObjectShape shape, bool corner, const Eigen::Vector3d& normal,
+                             double size, double cylinder_half_height);
+
+/// "sphere", "box", "cylinder", "mesh".
+const char* shape_name(ObjectShape shape);
+
 }  // namespace somasim::plugins
