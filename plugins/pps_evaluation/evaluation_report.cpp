@@ -130,6 +130,16 @@ nlohmann::json evaluation_metrics(const std::vector<PresentationRecord>& records
   nlohmann::json parts = nlohmann::json::object();
   for (const auto& [part, group] : per_part) parts[part] = approach_metrics(group);
   m["per_part"] = parts;
+  // Approaches the cameras could and could not see coming, apart (when the source checked).
+  std::map<PresentationSight, std::vector<const PresentationRecord*>> per_sight;
+  for (const auto* r : approaches) per_sight[r->sight].push_back(r);
+  std::size_t out_of_view = 0;
+  for (const auto& r : records) out_of_view += r.seen && r.sight == PresentationSight::kOutOfView;
+  if (!per_sight.contains(PresentationSight::kNotChecked) || approaches.empty()) {
+    m["presentations_out_of_view"] = out_of_view;
+    for (const auto sight : {PresentationSight::kInView, PresentationSight::kOutOfView})
+      m[presentation_sight_name(sight)] = approach_metrics(per_sight[sight]);
+  }
   m["per_motion"] = {{"approach", approach_metrics(approaches)}, {"static", s}, {"receding", rc}};
   return m;
 }
@@ -142,7 +152,7 @@ void write_presentations_csv(const std::filesystem::path& file,
          "trigger_time [s],trigger_taxel_id,trigger_distance [m],min_distance "
          "[m],min_distance_any_part [m],"
          "max_activation,triggered_other_part,skin_contact,skin_contact_any_part,"
-         "contact_time [s],object_contact,max_controller_speed [m/s],seen\n";
+         "contact_time [s],object_contact,max_controller_speed [m/s],seen,sight\n";
   for (const auto& r : records)
     out << r.id << ',' << motion_name(r.motion) << ',' << r.body_part << ',' << r.taxel_id << ','
         << r.object << ',' << r.shape << ',' << number(r.speed) << ',' << number(r.start_s) << ','
@@ -151,7 +161,7 @@ void write_presentations_csv(const std::filesystem::path& file,
         << number(r.min_distance_m) << ',' << number(r.min_distance_any_part_m) << ','
         << number(r.max_activation) << ',' << r.triggered_other_part << ',' << r.skin_contact << ','
         << r.skin_contact_any << ',' << number(r.contact_time_s) << ',' << r.object_contact << ','
-        << number(r.max_speed) << ',' << r.seen << '\n';
+        << number(r.max_speed) << ',' << r.seen << ',' << presentation_sight_name(r.sight) << '\n';
   if (!out) throw InputError("cannot write " + file.string());
 }
 

@@ -151,6 +151,7 @@ void PpsEvaluator::follow_presentation(NodeContext& ctx) {
   r.body_part = p.body_part;
   r.taxel_id = p.taxel_id;
   r.speed = p.speed;
+  r.sight = p.sight;
   r.start_s = p.start_time_s;
   record_of_object_[r.object] = records_.size();
   records_.push_back(std::move(r));

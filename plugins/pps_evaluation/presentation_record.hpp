@@ -19,7 +19,8 @@ struct PresentationRecord {
   PresentationMotion motion = PresentationMotion::kApproach;
   std::string object, body_part, shape;  ///< shape: "sphere", "box", "cylinder" or "unknown"
   int taxel_id = -1;
-  double speed = 0.0;                     ///< [m/s]
+  double speed = 0.0;                                        ///< [m/s]
+  PresentationSight sight = PresentationSight::kNotChecked;  ///< could the cameras see it coming
   double start_s = 0.0, end_s = kNaN;     ///< presented over [start, end]; NaN: still open
   bool seen = false;                      ///< the object was found in the world at least once
   bool triggered = false;                 ///< a taxel of the aimed part went above threshold

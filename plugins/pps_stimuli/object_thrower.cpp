@@ -155,6 +155,29 @@ PluginSpec ObjectThrower::spec() {
           "its path whatever it meets (pushes the robot without bound)");
   s.add_double("mass").unit_is("kg").defaults(0.1).range(1e-4, 100).describe(
       "mass of guided objects");
+  s.add_string("view")
+      .defaults(std::string("report"))
+      .one_of({"ignore", "report", "require"})
+      .describe(
+          "whether the cameras (view_cameras) can see each object coming - its centre in "
+          "their images and not behind the robot's links, the head as it is when the object "
+          "appears, until view_until from the skin: report labels each presentation (its "
+          "'sight'; metric presentations_out_of_view), require presents only objects seen "
+          "coming (paths_out_of_view counts the paths given up), ignore does neither; needs "
+          "link_poses");
+  s.add_string_list("view_cameras")
+      .defaults(std::vector<std::string>{})
+      .describe("cameras that must see the object (empty: every camera of the robot)");
+  s.add_double("view_until")
+      .unit_is("m")
+      .defaults(0.05)
+      .range(0, 5)
+      .describe("an approaching object must be seen until this far from the end of its path");
+  s.add_double("view_margin")
+      .unit_is("px")
+      .defaults(10.0)
+      .range(0, 1000)
+      .describe("the object's centre stays this far inside the images");
   s.add_double("position_noise")
       .unit_is("m")
       .defaults(0.0)
@@ -292,6 +315,7 @@ void ObjectThrower::configure(NodeContext& ctx) {
   if (withdraw_after_skin_contact_ >= 0 && !contacts_)
     ctx.param_error("withdraw_after_skin_contact",
                     "needs the skin's contact events: wire input 'contacts' (e.g. skin.contacts)");
+  configure_view(ctx);
   object_motion_ = ctx.param<std::string>("object_motion") == "kinematic" ? ObjectMotion::kKinematic
                                                                           : ObjectMotion::kGuided;
   object_mass_ = ctx.param<double>("mass");
@@ -312,6 +336,37 @@ void ObjectThrower::configure(NodeContext& ctx) {
   truth_ = &ctx.output<pps::Stimulus>("truth");
   presentation_ = &ctx.output<Presentation>("presentation");
   true_offsets_out_ = &ctx.output<TaxelValues>("true_offsets");
+}
+
+void ObjectThrower::configure_view(NodeContext& ctx) {
+  const std::string policy = ctx.param<std::string>("view");
+  view_policy_ = policy == "require"  ? ViewPolicy::kRequire
+                 : policy == "report" ? ViewPolicy::kReport
+                                      : ViewPolicy::kIgnore;
+  if (view_policy_ == ViewPolicy::kIgnore) return;
+  std::vector<std::string> known;
+  for (const auto& c : model_->cameras()) known.push_back(c.name);
+  std::vector<int> cameras;
+  for (const auto& name : ctx.param<std::vector<std::string>>("view_cameras")) {
+    const int c = model_->find_camera(name);
+    if (c < 0)
+      ctx.param_error("view_cameras", "unknown camera '" + name + "'" + did_you_mean(name, known) +
+                                          "; the robot's cameras: " + join_names(known));
+    if (std::find(cameras.begin(), cameras.end(), c) != cameras.end())
+      ctx.param_error("view_cameras", "camera '" + name + "' is named twice");
+    cameras.push_back(c);
+  }
+  if (cameras.empty())
+    for (int c = 0; c < static_cast<int>(model_->cameras().size()); ++c) cameras.push_back(c);
+  const bool can_check = link_poses_ && !cameras.empty();
+  if (view_policy_ == ViewPolicy::kRequire && !can_check)
+    ctx.param_error("view", link_poses_ ? "robot '" + model_->name() + "' has no camera"
+                                        : std::string("needs the robot's link poses: wire "
+                                                      "input 'link_poses' (world.link_poses)"));
+  if (can_check)
+    view_ = std::make_unique<PresentationView>(*model_, std::move(cameras),
+                                               ctx.param<double>("view_until"),
+                                               ctx.param<double>("view_margin"));
 }
 
 bool ObjectThrower::launch(NodeContext& ctx) {
@@ -342,11 +397,24 @@ bool ObjectThrower::launch(NodeContext& ctx) {
   std::size_t k = 0;
   PresentedBody body;
   std::vector<robot::CoverSphere> cover;
+  std::pair<Eigen::Vector3d, Eigen::Vector3d> path;  // of the last path accepted
+  std::optional<std::string> unseen;                 // why the last path tried was not seen
+  int out_of_view = 0;                               // paths given up as not seen
   const auto clear = [&](const Eigen::Vector3d& start, const Eigen::Vector3d& end) {
     if (!link_poses_) return true;
-    return robot::point_clear_of_robot(*model_, link_poses_->poses, start, reach + 0.01) &&
-           robot::object_path_clear_of_robot(*model_, link_poses_->poses, cover, body.rotation,
-                                             start, end, kPathClearance, std::span(&aimed_link, 1));
+    if (!robot::point_clear_of_robot(*model_, link_poses_->poses, start, reach + 0.01) ||
+        !robot::object_path_clear_of_robot(*model_, link_poses_->poses, cover, body.rotation, start,
+                                           end, kPathClearance, std::span(&aimed_link, 1)))
+      return false;
+    if (view_policy_ == ViewPolicy::kRequire) {
+      unseen = view_->unseen(link_poses_->poses, motion, start, end);
+      if (unseen) {
+        ++out_of_view;
+        return false;
+      }
+    }
+    path = {start, end};
+    return true;
   };
   std::optional<PlannedObject> planned;
   for (int draw = 0; !planned; ++draw) {
@@ -354,12 +422,18 @@ bool ObjectThrower::launch(NodeContext& ctx) {
       unplaced_ = fmt::format(
           "no path clear of the robot for a {} (motion '{}') aimed at '{}': {} taxels drawn, {} "
           "paths each (start {}-{} m from the skin within {:.0f} deg of its normal, the object "
-          "{:.3f} m clear of the other links); raise 'distance_min', lower 'cone_deg' or "
+          "{:.3f} m clear of the other links{}); raise 'distance_min', lower 'cone_deg' or "
           "'size', or change the posture",
           shape_name(shape), motion_name(motion), part, kTaxelDraws, kPathAttempts,
           motion == PresentationMotion::kReceding ? g.receding_start_min : g.distance_min,
           motion == PresentationMotion::kReceding ? g.receding_start_max : g.distance_max,
-          rad_to_deg(g.cone_rad), kPathClearance);
+          rad_to_deg(g.cone_rad), kPathClearance,
+          out_of_view == 0
+              ? std::string()
+              : fmt::format(", seen coming by the cameras (view: require): {} clear paths were "
+                            "not, the last {}",
+                            out_of_view, *unseen));
+      paths_out_of_view_ += out_of_view;
       return false;
     }
     if (draw > 0) ++unreachable_draws_[part];
@@ -371,6 +445,13 @@ bool ObjectThrower::launch(NodeContext& ctx) {
                                 clear, kPathAttempts);
   }
   const PlannedObject& plan = *planned;
+  paths_out_of_view_ += out_of_view;
+  PresentationSight sight = PresentationSight::kNotChecked;
+  if (view_ && link_poses_)
+    sight = view_->unseen(link_poses_->poses, motion, path.first, path.second)
+                ? PresentationSight::kOutOfView
+                : PresentationSight::kInView;
+  if (sight == PresentationSight::kOutOfView) ++per_part_out_of_view_[part];
 
   ObjectSpawn spawn;
   spawn.id = next_spawn_id_++;
@@ -398,6 +479,7 @@ bool ObjectThrower::launch(NodeContext& ctx) {
   p.aimed_point = sp->positions[k];
   p.start_time_s = ctx.time_s();
   p.speed = plan.speed;
+  p.sight = sight;
   lifetime_ = plan.lifetime;
   withdraw_at_s_ = std::numeric_limits<double>::infinity();
   spawns_->withdraw.clear();
@@ -535,6 +617,13 @@ void ObjectThrower::finish(NodeContext& ctx) {
   if (withdraw_after_skin_contact_ >= 0 || withdraw_after_robot_contact_ >= 0)
     ctx.report_metric("objects_withdrawn", withdrawn_);
   if (robot_contacts_) robot_contacts_->report(ctx);
+  if (view_) {
+    int out_of_view = 0;
+    for (const auto& [part, n] : per_part_out_of_view_) out_of_view += n;
+    ctx.report_metric("presentations_out_of_view", out_of_view);
+    if (view_policy_ == ViewPolicy::kRequire)
+      ctx.report_metric("paths_out_of_view", paths_out_of_view_);
+  }
   nlohmann::json per_motion = nlohmann::json::object();
   for (const auto& [motion, n] : per_motion_) per_motion[motion] = n;
   ctx.report_metric("presented_per_motion", per_motion);
@@ -545,6 +634,7 @@ void ObjectThrower::finish(NodeContext& ctx) {
     // Taxels drawn but given up: no path to them clear of the other links.
     if (link_poses_) per_part[part]["unreachable_draws"] = unreachable_draws_[part];
     if (contacts_) per_part[part]["contact_events"] = per_part_events_[part];
+    if (view_) per_part[part]["out_of_view"] = per_part_out_of_view_[part];
     if (const auto it = means.find(part); it != means.end()) {
       per_part[part]["true_offset_mean_m"] = it->second.first;
       per_part[part]["taxels_touched"] = it->second.second;

@@ -11,7 +11,9 @@
 // no such path reaches is given up for another; unreachable_draws counts them). Objects are
 // guided by default (a held object: stopped by what it meets; bullet_world's guide_max_force);
 // with `world_contacts`, touches of any robot link are counted (robot_contact_*), and
-// withdraw_after_robot_contact ends a presentation that meets the robot anywhere.
+// withdraw_after_robot_contact ends a presentation that meets the robot anywhere. With `view`,
+// each presentation is checked against the cameras (presentation_view.hpp): reported as in or
+// out of view, or (require) drawn again until the eyes can see it coming.
 //
 // `truth` is the object's centre and velocity (root frame) read back from the world.
 // `stimulus` is what the robot perceives: the truth plus Gaussian noise, placed through the
@@ -26,6 +28,7 @@
 
 #include "believed_vision.hpp"
 #include "presentation_plan.hpp"
+#include "presentation_view.hpp"
 #include "robot_contact_log.hpp"
 #include "somasim/plugin.hpp"
 #include "somasim/pps/ports.hpp"
@@ -45,6 +48,7 @@ class ObjectThrower : public Plugin {
 
  private:
   void read_lists(NodeContext& ctx);
+  void configure_view(NodeContext& ctx);
   /// Presents the next object; false (unplaced_ says why) when no clear path reaches its part.
   bool launch(NodeContext& ctx);
   /// launch(), or wait for a clear path (wait_for_clear_path_), then a RunError.
@@ -114,6 +118,10 @@ class ObjectThrower : public Plugin {
   std::map<std::string, int> per_part_presentations_, per_part_events_;
   std::map<std::string, int> unreachable_draws_;  // taxels given up per part (no clear path)
   std::map<std::string, int> per_motion_;
+  ViewPolicy view_policy_ = ViewPolicy::kReport;
+  std::unique_ptr<PresentationView> view_;           // set when the view can be checked
+  std::map<std::string, int> per_part_out_of_view_;  // presentations not seen coming
+  int paths_out_of_view_ = 0;                        // paths given up (view: require)
 };
 
 }  // namespace somasim::plugins

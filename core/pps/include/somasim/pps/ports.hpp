@@ -31,17 +31,35 @@ inline const char* motion_name(PresentationMotion motion) {
   return "unknown";
 }
 
+/// Whether the robot's cameras could see a presented object coming (its source checks the path
+/// against the cameras' images and the robot's body at presentation time).
+enum class PresentationSight : std::uint8_t { kNotChecked, kInView, kOutOfView };
+
+/// "not_checked", "in_view" or "out_of_view" (as in metrics).
+inline const char* presentation_sight_name(PresentationSight sight) {
+  switch (sight) {
+    case PresentationSight::kNotChecked:
+      return "not_checked";
+    case PresentationSight::kInView:
+      return "in_view";
+    case PresentationSight::kOutOfView:
+      return "out_of_view";
+  }
+  return "unknown";
+}
+
 /// The object a stimulus source is presenting now (one at a time), for evaluators.
 struct Presentation {
   std::uint64_t id = 0;  ///< 1, 2, ... per producer; 0: nothing presented yet
   bool active = false;   ///< the object is in the world now
   PresentationMotion motion = PresentationMotion::kApproach;
-  std::string object;                                     ///< object name in ObjectStates
-  std::string body_part;                                  ///< skin part aimed at
-  int taxel_id = -1;                                      ///< taxel aimed at (layout id)
-  Eigen::Vector3d aimed_point = Eigen::Vector3d::Zero();  ///< taxel at presentation [m], root
-  double start_time_s = 0.0;                              ///< sim time it appeared [s]
-  double speed = 0.0;                                     ///< [m/s] (0 for static)
+  std::string object;                                        ///< object name in ObjectStates
+  std::string body_part;                                     ///< skin part aimed at
+  int taxel_id = -1;                                         ///< taxel aimed at (layout id)
+  Eigen::Vector3d aimed_point = Eigen::Vector3d::Zero();     ///< taxel at presentation [m], root
+  double start_time_s = 0.0;                                 ///< sim time it appeared [s]
+  double speed = 0.0;                                        ///< [m/s] (0 for static)
+  PresentationSight sight = PresentationSight::kNotChecked;  ///< seen coming by the cameras
 };
 
 template <>
