@@ -120,6 +120,11 @@ PluginSpec ObjectThrower::spec() {
       .describe("objects presented (all motions); the run stops after the last");
   s.add_double("pause").unit_is("s").defaults(1.0).range(0, 100).describe(
       "pause between the removal of an object and the next one");
+  s.add_double("first_after")
+      .unit_is("s")
+      .defaults(0.0)
+      .range(0, 1e6)
+      .describe("the first object appears this long after the start (e.g. once the gaze settled)");
   s.add_double("linger").unit_is("s").defaults(0.1).range(0, 10).describe(
       "an approaching object is removed this long after reaching the skin");
   s.add_double("withdraw_after_skin_contact")
@@ -159,9 +164,9 @@ PluginSpec ObjectThrower::spec() {
       .defaults(std::string("report"))
       .one_of({"ignore", "report", "require"})
       .describe(
-          "whether the cameras (view_cameras) can see each object coming - its centre in "
-          "their images and not behind the robot's links, the head as it is when the object "
-          "appears, until view_until from the skin: report labels each presentation (its "
+          "whether the cameras (view_cameras) can see each object coming - all of it in their "
+          "images where it appears, then its centre in them and not behind the robot's links "
+          "until view_until from the skin, the head as it is when the object appears: report labels each presentation (its "
           "'sight'; metric presentations_out_of_view), require presents only objects seen "
           "coming (paths_out_of_view counts the paths given up), ignore does neither; needs "
           "link_poses");
@@ -283,6 +288,7 @@ void ObjectThrower::configure(NodeContext& ctx) {
   g.linger = ctx.param<double>("linger");
   presentations_ = ctx.param<int>("approaches");
   pause_ = ctx.param<double>("pause");
+  retry_at_s_ = ctx.param<double>("first_after");
   withdraw_after_skin_contact_ = ctx.param<double>("withdraw_after_skin_contact");
   position_noise_ = ctx.param<double>("position_noise");
   velocity_noise_ = ctx.param<double>("velocity_noise");
@@ -407,7 +413,7 @@ bool ObjectThrower::launch(NodeContext& ctx) {
                                            end, kPathClearance, std::span(&aimed_link, 1)))
       return false;
     if (view_policy_ == ViewPolicy::kRequire) {
-      unseen = view_->unseen(link_poses_->poses, motion, start, end);
+      unseen = view_->unseen(link_poses_->poses, motion, start, end, reach);
       if (unseen) {
         ++out_of_view;
         return false;
@@ -448,7 +454,7 @@ bool ObjectThrower::launch(NodeContext& ctx) {
   paths_out_of_view_ += out_of_view;
   PresentationSight sight = PresentationSight::kNotChecked;
   if (view_ && link_poses_)
-    sight = view_->unseen(link_poses_->poses, motion, path.first, path.second)
+    sight = view_->unseen(link_poses_->poses, motion, path.first, path.second, reach)
                 ? PresentationSight::kOutOfView
                 : PresentationSight::kInView;
   if (sight == PresentationSight::kOutOfView) ++per_part_out_of_view_[part];

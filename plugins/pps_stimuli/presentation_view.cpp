@@ -21,7 +21,7 @@ PresentationView::PresentationView(const robot::RobotModel& model, std::vector<i
 
 std::optional<std::string> PresentationView::unseen(
     const std::vector<Eigen::Isometry3d>& link_poses, PresentationMotion motion,
-    const Eigen::Vector3d& start, const Eigen::Vector3d& end) const {
+    const Eigen::Vector3d& start, const Eigen::Vector3d& end, double reach) const {
   const double length = (end - start).norm();
   double checked = 0.0;  // length of the path that must be seen [m]
   if (motion == PresentationMotion::kApproach) checked = std::max(0.0, length - until_);
@@ -43,7 +43,10 @@ std::optional<std::string> PresentationView::unseen(
     for (int i = 0; i <= steps; ++i) {
       const auto [p, to_end] = point(i);
       const auto uv = robot::project_point(camera, pose, p);
-      if (!uv || !robot::inside_image(camera, *uv, margin_px_))
+      // The whole object where it appears, its centre afterwards.
+      const double depth = (pose.inverse() * p).z();
+      const double extent = i == 0 && uv ? camera.fx * reach / depth : 0.0;
+      if (!uv || !robot::inside_image(camera, *uv, margin_px_ + extent))
         return report(camera, uv ? robot::Sight::kOutOfImage : robot::Sight::kBehind, to_end);
     }
   }

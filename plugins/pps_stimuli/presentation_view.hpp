@@ -1,7 +1,8 @@
 #pragma once
-// Whether the robot's eyes can see a presented object coming (object_thrower's `view`): its
-// centre, along the path it will fly, inside every checked camera's image and not hidden
-// behind the robot's own links, the head posed as it is when the object appears. An
+// Whether the robot's eyes can see a presented object coming (object_thrower's `view`): the
+// whole object (its bounding sphere) inside every checked camera's image where it appears (a
+// tracker can acquire it there), its centre inside them and not hidden behind the robot's own
+// links along the path it will fly, the head posed as it is when the object appears. An
 // approaching object is checked until it is `until` from the skin (the last stretch may leave
 // the image as the object meets the skin), a static one where it stands, a receding one along
 // its whole path. Points and poses in the root frame [m].
@@ -27,12 +28,13 @@ class PresentationView {
   PresentationView(const robot::RobotModel& model, std::vector<int> cameras, double until,
                    double margin_px);
 
-  /// nullopt when every camera sees the centre along the path `start` -> `end` of `motion`;
+  /// nullopt when every camera sees an object of bounding radius `reach` [m] along the path
+  /// `start` -> `end` of `motion` (see above);
   /// otherwise which camera does not, where and why (e.g. "'right_eye': outside the image
   /// 0.21 m from the end of the path").
   std::optional<std::string> unseen(const std::vector<Eigen::Isometry3d>& link_poses,
                                     PresentationMotion motion, const Eigen::Vector3d& start,
-                                    const Eigen::Vector3d& end) const;
+                                    const Eigen::Vector3d& end, double reach) const;
 
  private:
   const robot::RobotModel& model_;
