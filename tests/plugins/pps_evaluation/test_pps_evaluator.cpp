@@ -340,3 +340,43 @@ TEST(PpsEvaluator, BadWiringAndUnknownPartsAreReported) {
                  "'taxels' input (did you mean 'left_forearm'?); parts: left_forearm, right_palm");
   }
 }
+
+TEST(PpsEvaluator, ApproachesOutOfTheCamerasViewAreReportedApart) {
+  Bench b;
+  // Seen coming and triggered; not seen, untriggered and touched; seen, untriggered.
+  const std::pair<somasim::PresentationSight, double> shown[] = {
+      {somasim::PresentationSight::kInView, 0.1},
+      {somasim::PresentationSight::kOutOfView, 0.0},
+      {somasim::PresentationSight::kInView, 0.0}};
+  std::uint64_t id = 0;
+  for (const auto& [sight, trigger_below] : shown) {
+    ++id;
+    b.h.input<Presentation>("presentation").sight = sight;
+    approach_taxel_10(b, id, trigger_below, /*touch=*/sight != somasim::PresentationSight::kInView);
+  }
+  EXPECT_EQ(b.h.finish(), "");
+  EXPECT_NEAR(b.metric("triggered_rate").get<double>(), 1.0 / 3.0, 1e-12);  // all: not hidden
+  EXPECT_EQ(b.metric("presentations_out_of_view"), 1);
+  EXPECT_EQ(b.metric("in_view")["approaches"], 2);
+  EXPECT_EQ(b.metric("in_view")["triggered_rate"], 0.5);
+  EXPECT_EQ(b.metric("in_view")["skin_contact_rate"], 0.0);
+  EXPECT_EQ(b.metric("out_of_view")["approaches"], 1);
+  EXPECT_EQ(b.metric("out_of_view")["triggered_rate"], 0.0);
+  EXPECT_EQ(b.metric("out_of_view")["skin_contact_rate"], 1.0);
+  std::ifstream csv(b.h.out_dir() / "presentations.csv");
+  std::string header, row;
+  std::getline(csv, header);
+  EXPECT_EQ(field(header, 23), "sight");
+  std::getline(csv, row);
+  EXPECT_EQ(field(row, 23), "in_view");
+  std::getline(csv, row);
+  EXPECT_EQ(field(row, 23), "out_of_view");
+}
+
+TEST(PpsEvaluator, UncheckedSightAddsNoViewMetrics) {
+  Bench b;
+  approach_taxel_10(b, 1, 0.1, /*touch=*/false);
+  EXPECT_EQ(b.h.finish(), "");
+  EXPECT_TRUE(b.metric("in_view").is_null());
+  EXPECT_TRUE(b.metric("presentations_out_of_view").is_null());
+}
