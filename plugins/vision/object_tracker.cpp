@@ -156,6 +156,14 @@ PluginSpec ObjectTracker::spec() {
       .describe(
           "after this many consecutive frames whose two tracks do not triangulate, both tracks "
           "are dropped and the object re-acquired by motion");
+  s.add_int("unfixed_frames_lost")
+      .defaults(std::int64_t{10})
+      .at_least(1)
+      .describe(
+          "an eye's track that gave no stereo fix for this many consecutive frames (the other "
+          "eye sees nothing, or something unlike it, or it is cut by the border) is dropped "
+          "and the eye re-acquires by motion: a track left on clutter when the object went "
+          "cannot keep the eye from acquiring the next object (metric unfixed_drops)");
   s.add_int("reset_after_lost")
       .defaults(std::int64_t{3})
       .at_least(1)
@@ -232,6 +240,7 @@ void ObjectTracker::configure(NodeContext& ctx) {
   for (Eye& eye : eyes_) eye.tracker = vision::ColourTracker(colour);
   max_reprojection_px_ = ctx.param<double>("max_reprojection_px");
   inconsistent_frames_lost_ = ctx.param<int>("inconsistent_frames_lost");
+  unfixed_frames_lost_ = ctx.param<int>("unfixed_frames_lost");
   max_distance_ = ctx.param<double>("max_distance_m");
   max_jump_ = ctx.param<double>("max_jump_m");
   max_colour_distance_ = ctx.param<double>("max_colour_distance");
@@ -313,6 +322,17 @@ void ObjectTracker::track_eye(Eye& eye, const Image& image, const render::Camera
   }
   image.data.copyTo(eye.previous);
   eye.previous_rotation = camera.pose_root.linear();
+}
+
+void ObjectTracker::drop_unfixed(bool fixed) {
+  for (Eye& eye : eyes_) {
+    eye.unfixed_frames = fixed || !eye.tracker.tracking() ? 0 : eye.unfixed_frames + 1;
+    if (eye.unfixed_frames >= unfixed_frames_lost_) {
+      eye.tracker.lose();
+      eye.unfixed_frames = 0;
+      ++unfixed_drops_;
+    }
+  }
 }
 
 void ObjectTracker::lose(double dt_s) {
@@ -420,6 +440,7 @@ void ObjectTracker::step(NodeContext& ctx) {
       inconsistent_ = 0;
     }
   }
+  drop_unfixed(object.centre.valid);
   if (!object.centre.valid) {
     pixels_->left.found = pixels_->right.found = false;
     lose(dt);
@@ -465,6 +486,7 @@ void ObjectTracker::finish(NodeContext& ctx) {
   ctx.report_metric("acquisitions", acquisitions_);
   ctx.report_metric("losses", losses_);
   ctx.report_metric("inconsistent_drops", inconsistent_drops_);
+  ctx.report_metric("unfixed_drops", unfixed_drops_);
   ctx.report_metric("partial_frames", partial_);
   ctx.report_metric("partial_border_frames", partial_border_);
   ctx.report_metric("still_drops", still_drops_);

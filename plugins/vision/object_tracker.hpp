@@ -7,7 +7,8 @@
 // (gaze_controller): the cameras are posed at the images' render time, the previous image and
 // search windows follow the camera's own rotation, and the robot's own colours, fixes beyond
 // max_distance_m, fixes beyond max_jump_m of the filter's prediction (the trackers slid onto
-// clutter when the object went) and two eyes on unlike colours are refused.
+// clutter when the object went) and two eyes on unlike colours are refused; an eye's track that
+// gives no stereo fix for unfixed_frames_lost frames is dropped.
 #include <array>
 #include <deque>
 #include <memory>
@@ -51,9 +52,13 @@ class ObjectTracker : public Plugin {
     Eigen::Vector2d anchor_px = Eigen::Vector2d::Zero();
     double anchor_radius_px = 0.0;
     int still_frames = 0;
+    int unfixed_frames = 0;  // consecutive frames tracked without a stereo fix
   };
   /// One eye's CamShift step (or acquisition by motion); `dt_s` [s] since the previous image.
   void track_eye(Eye& eye, const Image& image, const render::Camera& camera, double dt_s);
+  /// Drops each eye's track that gave no stereo fix for unfixed_frames_lost_ frames; `fixed`:
+  /// this frame made one.
+  void drop_unfixed(bool fixed);
   void lose(double dt_s);
   void score_against_truth(const std::vector<render::Camera>& cameras);
   /// The encoder values at the sim time closest to `time_s` among the recent steps [rad, m].
@@ -68,6 +73,7 @@ class ObjectTracker : public Plugin {
   double still_px_ = 0.0;
   double max_reprojection_px_ = 0.0;
   int inconsistent_frames_lost_ = 0;
+  int unfixed_frames_lost_ = 0;
   double max_distance_ = 0.0;  // [m] from the middle of the eyes
   double max_jump_ = 0.0;      // [m] from the filter's prediction
   double max_colour_distance_ = 0.0;
@@ -94,6 +100,7 @@ class ObjectTracker : public Plugin {
   std::int64_t far_drops_ = 0;                  // fixes beyond max_distance_m
   std::int64_t jump_drops_ = 0;                 // fixes beyond max_jump_m of the prediction
   std::int64_t colour_mismatches_ = 0;          // both eyes tracked things of unlike colours
+  std::int64_t unfixed_drops_ = 0;              // tracks dropped after unfixed_frames_lost
   // Recent (sim time [s], encoder values): the head's pose when an image was rendered.
   std::deque<std::pair<double, Eigen::VectorXd>> joint_history_;
   double pose_time_offset_max_s_ = 0.0;  // largest |image time - pose time| used [s]

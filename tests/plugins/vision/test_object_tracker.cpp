@@ -1,5 +1,6 @@
 // The `object_tracker` plugin through the public harness: its bad-input errors (a camera not in
-// the robot model, images of another size than the camera's calibration).
+// the robot model, images of another size than the camera's calibration), and a track only one
+// eye has dropped after unfixed_frames_lost.
 #include <gtest/gtest.h>
 
 #include "somasim/error.hpp"
@@ -56,4 +57,46 @@ TEST(ObjectTracker, ImagesOfAnotherSizeThanTheCalibrationAreARunError) {
                  "robot 'icub_v1' is calibrated for 320 × 240 px (wire images of that camera at "
                  "its resolution)");
   }
+}
+
+namespace {
+
+// Feeds `frames` frames of 320 x 240: a green chequered square (texture for the optical flow)
+// moving right 3 px a frame in the left eye, nothing in the right eye (grey); the robot at rest.
+// Returns the tracker's metric `name`.
+std::int64_t one_eyed_metric(const std::string& params, const std::string& name, int frames) {
+  // (The square's green is one of the robot's own colours: not refused here.)
+  Harness h(graph("refuse_own_colours: false" + (params.empty() ? "" : ", " + params)));
+  const auto model = somasim::robot::load_robot_model_shared(kRobot);
+  h.input<JointState>("q").position = Eigen::VectorXd::Zero(model->num_dofs());
+  for (int f = 1; f <= frames; ++f) {
+    for (const char* eye : {"left", "right"}) {
+      Image& image = h.input<Image>(eye);
+      image.data = cv::Mat(240, 320, CV_8UC3, cv::Scalar(110, 110, 110));
+      if (std::string(eye) == "left")
+        for (int r = 0; r < 30; ++r)
+          for (int c = 0; c < 30; ++c)
+            image.data.at<cv::Vec3b>(100 + r, 60 + 3 * f + c) =
+                (r / 5 + c / 5) % 2 ? cv::Vec3b(30, 170, 40) : cv::Vec3b(20, 120, 30);
+      image.encoding = somasim::ImageEncoding::kRgb8;
+      image.camera = std::string(eye) + "_eye";
+      image.frame = static_cast<std::uint64_t>(f);
+      image.time_s = h.time_s();
+    }
+    h.step(1);
+  }
+  h.finish();
+  return h.metric("track", name).get<std::int64_t>();
+}
+
+}  // namespace
+
+// An object only one eye sees gives no stereo fix; its track is dropped every
+// unfixed_frames_lost frames (and re-acquired by motion), so that a track left on clutter cannot
+// keep that eye from acquiring the next object. Without the drop the track is kept throughout.
+TEST(ObjectTracker, AOneEyedTrackIsDroppedAfterUnfixedFramesLost) {
+  EXPECT_EQ(one_eyed_metric("", "frames_tracked", 40), 0);
+  EXPECT_GT(one_eyed_metric("", "acquisitions", 40), 0);
+  EXPECT_GE(one_eyed_metric("unfixed_frames_lost: 10", "unfixed_drops", 40), 2);
+  EXPECT_EQ(one_eyed_metric("unfixed_frames_lost: 1000", "unfixed_drops", 40), 0);
 }
