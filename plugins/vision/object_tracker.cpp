@@ -408,6 +408,13 @@ void ObjectTracker::step(NodeContext& ctx) {
   if (l.tracked && r.tracked && (border || !comparable)) {
     ++partial_;
     partial_border_ += border ? 1 : 0;
+    // Unlike areas, neither cut by the border: one eye holds something else (e.g. clutter
+    // its tracker slid onto when the last object went). The smaller track is dropped and its
+    // eye re-acquires by motion; the object, if that was it, is moving and is found again.
+    if (!border) {
+      eyes_[l.object_px < r.object_px ? 0 : 1].tracker.lose();
+      ++area_drops_;
+    }
   } else if (l.tracked && r.tracked) {
     object = vision::triangulate_object(cams[0], l.centre_px, l.radius_px, cams[1], r.centre_px,
                                         r.radius_px);
@@ -487,6 +494,7 @@ void ObjectTracker::finish(NodeContext& ctx) {
   ctx.report_metric("losses", losses_);
   ctx.report_metric("inconsistent_drops", inconsistent_drops_);
   ctx.report_metric("unfixed_drops", unfixed_drops_);
+  ctx.report_metric("area_drops", area_drops_);
   ctx.report_metric("partial_frames", partial_);
   ctx.report_metric("partial_border_frames", partial_border_);
   ctx.report_metric("still_drops", still_drops_);

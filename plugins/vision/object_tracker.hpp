@@ -8,7 +8,8 @@
 // search windows follow the camera's own rotation, and the robot's own colours, fixes beyond
 // max_distance_m, fixes beyond max_jump_m of the filter's prediction (the trackers slid onto
 // clutter when the object went) and two eyes on unlike colours are refused; an eye's track that
-// gives no stereo fix for unfixed_frames_lost frames is dropped.
+// gives no stereo fix for unfixed_frames_lost frames is dropped, and of two tracks of unlike
+// areas the smaller one at once.
 #include <array>
 #include <deque>
 #include <memory>
@@ -101,6 +102,7 @@ class ObjectTracker : public Plugin {
   std::int64_t jump_drops_ = 0;                 // fixes beyond max_jump_m of the prediction
   std::int64_t colour_mismatches_ = 0;          // both eyes tracked things of unlike colours
   std::int64_t unfixed_drops_ = 0;              // tracks dropped after unfixed_frames_lost
+  std::int64_t area_drops_ = 0;                 // smaller tracks dropped for unlike areas
   // Recent (sim time [s], encoder values): the head's pose when an image was rendered.
   std::deque<std::pair<double, Eigen::VectorXd>> joint_history_;
   double pose_time_offset_max_s_ = 0.0;  // largest |image time - pose time| used [s]
