@@ -92,6 +92,15 @@ PluginSpec BodySchemaFilter::spec() {
       .unit_is("1/px")
       .at_least(0.0)
       .describe("λ of L = exp(−λ d̄): 0.01 in the paper's text, 25/255 = 0.098 in its code");
+  s.add_double("edge_orientation_weight")
+      .defaults(0.0)
+      .unit_is("px")
+      .range(0.0, 255.0)
+      .describe(
+          "edges: oriented chamfer - each contour pixel also costs this much times the angle "
+          "between its normal and the nearest observed edge's normal over 90 deg (a "
+          "perpendicular edge counts as this many pixels farther); 0: the paper's plain "
+          "chamfer distance");
   s.add_list("canny").size(2).defaults(std::vector<double>{65, 195}).describe("Canny thresholds");
   s.add_list("hand_hsv_low")
       .size(3)
@@ -205,6 +214,7 @@ void BodySchemaFilter::configure_scorer(NodeContext& ctx) {
   options.form = body_schema::silhouette_form_from_name(ctx.param<std::string>("silhouette_form"));
   options.power = ctx.param<double>("silhouette_power");
   options.edge_lambda = ctx.param<double>("edge_lambda");
+  options.edge_orientation_weight = ctx.param<double>("edge_orientation_weight");
   options.margin_px = ctx.param<int>("margin_px");
   options.contour_width = ctx.param<int>("contour_width");
   scorer_ = std::make_unique<body_schema::HypothesisScorer>(
@@ -370,6 +380,8 @@ std::vector<cv::Mat> BodySchemaFilter::observe(NodeContext& ctx) {
     }
     if (scorer_->options().kind == body_schema::LikelihoodKind::kSilhouette)
       out.push_back(body_schema::segment_colour(rgb, hand_colour_));
+    else if (scorer_->options().edge_orientation_weight > 0)
+      out.push_back(body_schema::oriented_edge_map(rgb, canny_low_, canny_high_));
     else
       out.push_back(body_schema::edge_distance_map(rgb, canny_low_, canny_high_));
   }

@@ -11,6 +11,7 @@
 #include "somasim/body_schema/eye_hand.hpp"
 #include "somasim/body_schema/hypothesis_scorer.hpp"
 #include "somasim/body_schema/observation.hpp"
+#include "somasim/body_schema/oriented_edges.hpp"
 #include "somasim/body_schema/particle_filter.hpp"
 #include "somasim/body_schema/ports.hpp"
 #include "somasim/plugin.hpp"

@@ -4,6 +4,7 @@
 
 #include <numbers>
 
+#include "somasim/body_schema/oriented_edges.hpp"
 #include "somasim/error.hpp"
 #include "somasim/render/robot_scene.hpp"
 
@@ -116,9 +117,12 @@ std::vector<double> HypothesisScorer::score(const Eigen::VectorXd& q,
             silhouette_likelihood(jaccard(obs, tiles.tiles[m]), options_.form, options_.power);
     } else {
       const cv::Mat distance = observations[c](tiles.roi);
+      const double weight = options_.edge_orientation_weight;
       for (std::size_t m = 0; m < m_count; ++m)
-        likelihoods[m] *=
-            edge_likelihood(mean_chamfer_distance(distance, tiles.tiles[m]), options_.edge_lambda);
+        likelihoods[m] *= edge_likelihood(
+            weight > 0 ? mean_oriented_chamfer_distance(distance, tiles.tiles[m], weight)
+                       : mean_chamfer_distance(distance, tiles.tiles[m]),
+            options_.edge_lambda);
     }
   }
   timing_.compare_ms = ms_since(t0);

@@ -49,6 +49,9 @@ struct ScorerOptions {
   double edge_lambda = 0.01;  ///< λ of L = exp(−λ d̄) [1/px]
   int margin_px = 8;          ///< ROI margin (render/hypothesis_batch.hpp)
   int contour_width = 1;      ///< edges: width of the hypothesis contours [px]
+  /// edges: cost of a perpendicular nearest edge [px] (oriented chamfer, oriented_edges.hpp,
+  /// on CV_8UC2 observations from oriented_edge_map); 0: the plain chamfer distance.
+  double edge_orientation_weight = 0.0;
 };
 
 /// Timing of the last score() call [ms].
@@ -70,7 +73,8 @@ class HypothesisScorer {
                                             const Eigen::VectorXd& offsets_deg);
 
   /// Likelihood of every particle (columns of `particles_deg`). `observations[c]` is camera c's
-  /// observed silhouette (CV_8U 0 / 255) or edge distance map (CV_8U [px]), full image.
+  /// observed silhouette (CV_8U 0 / 255) or edge distance map (CV_8U [px]; CV_8UC2
+  /// oriented_edge_map with an edge_orientation_weight), full image.
   /// Throws RunError (from the renderer) naming a camera none of whose hypotheses projects
   /// into its image.
   std::vector<double> score(const Eigen::VectorXd& q, const Eigen::MatrixXd& particles_deg,
