@@ -7,6 +7,8 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "somasim/body_schema/observation.hpp"
+
 namespace somasim::body_schema {
 
 namespace {
@@ -45,11 +47,8 @@ cv::Mat normal_orientations(const cv::Mat& image, const cv::Mat& where) {
 }  // namespace
 
 cv::Mat oriented_edge_map(const cv::Mat& rgb, double canny_low, double canny_high) {
-  CV_Assert(rgb.type() == CV_8UC3);
-  cv::Mat grey, edges, distance, labels;
-  cv::cvtColor(rgb, grey, cv::COLOR_RGB2GRAY);
-  cv::blur(grey, grey, {3, 3});
-  cv::Canny(grey, edges, canny_low, canny_high);
+  cv::Mat grey, distance, labels;
+  const cv::Mat edges = canny_edges(rgb, canny_low, canny_high, &grey);
   const cv::Mat normals = normal_orientations(grey, edges);
   // Labels number the zero pixels (the edges) of the input in row-major order.
   cv::distanceTransform(255 - edges, distance, labels, cv::DIST_L2, cv::DIST_MASK_5,

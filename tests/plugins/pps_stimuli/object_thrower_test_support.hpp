@@ -51,6 +51,25 @@ inline SkinPart forearm() {
   return p;
 }
 
+// forearm() with its three taxels on the real left forearm, posed by `link` (root <- l_forearm):
+// on the skin (2.1 cm from the link's axis, 7 cm along it) at `angles_deg` round it.
+inline SkinPart forearm_ring(const Eigen::Isometry3d& link, const double (&angles_deg)[3]) {
+  SkinPart part = forearm();
+  part.positions_link.clear();
+  part.normals_link.clear();
+  for (const double deg : angles_deg) {
+    const double a = deg * M_PI / 180.0;
+    part.normals_link.push_back({std::cos(a), 0.0, std::sin(a)});
+    part.positions_link.push_back(Eigen::Vector3d(0.0, -0.07, 0.0) +
+                                  0.021 * part.normals_link.back());
+  }
+  for (std::size_t k = 0; k < 3; ++k) {
+    part.positions[k] = link * part.positions_link[k];
+    part.normals[k] = link.linear() * part.normals_link[k];
+  }
+  return part;
+}
+
 inline int dofs() {
   return somasim::robot::load_robot_model_shared(kRobot)->num_dofs();
 }

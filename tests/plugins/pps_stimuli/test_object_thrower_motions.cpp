@@ -182,19 +182,7 @@ TEST(ObjectThrowerMotions, StartPointsAreClearOfTheRobotForEveryMotion) {
   q[model->dof_index("l_elbow")] = 60 * M_PI / 180;
   somasim::robot::forward_kinematics(*model, data, q);
   const Eigen::Isometry3d link = data.link_poses[std::size_t(model->link_index("l_forearm"))];
-  SkinPart part = forearm();
-  part.positions_link.clear();
-  part.normals_link.clear();
-  for (double deg : {90.0, 180.0, 270.0}) {
-    const double a = deg * M_PI / 180.0;
-    part.normals_link.push_back({std::cos(a), 0.0, std::sin(a)});
-    part.positions_link.push_back(Eigen::Vector3d(0.0, -0.07, 0.0) +
-                                  0.021 * part.normals_link.back());
-  }
-  for (std::size_t k = 0; k < 3; ++k) {
-    part.positions[k] = link * part.positions_link[k];
-    part.normals[k] = link.linear() * part.normals_link[k];
-  }
+  const SkinPart part = forearm_ring(link, {90.0, 180.0, 270.0});
   const std::string params =
       "motions: static receding approach, shapes: sphere box, approaches: 30, pause: 0, size: "
       "0.02, cone_deg: 60, distance_min: 0.0, distance_max: 0.2, receding_start_min: 0.0, "

@@ -32,18 +32,7 @@ struct ForearmScene {
     somasim::robot::forward_kinematics(*model, data, q);
     const Eigen::Isometry3d link = data.link_poses[std::size_t(model->link_index("l_forearm"))];
     // Three taxels round the forearm: one faces the eyes, the others its sides.
-    part.positions_link.clear();
-    part.normals_link.clear();
-    for (double deg : {0.0, 120.0, 240.0}) {
-      const double a = deg * M_PI / 180.0;
-      part.normals_link.push_back({std::cos(a), 0.0, std::sin(a)});
-      part.positions_link.push_back(Eigen::Vector3d(0.0, -0.07, 0.0) +
-                                    0.021 * part.normals_link.back());
-    }
-    for (std::size_t k = 0; k < 3; ++k) {
-      part.positions[k] = link * part.positions_link[k];
-      part.normals[k] = link.linear() * part.normals_link[k];
-    }
+    part = forearm_ring(link, {0.0, 120.0, 240.0});
   }
 
   // Whether both eyes see the object's centre at `point` (in the image, not behind a link).

@@ -18,6 +18,11 @@ struct HsvRange {
 /// 3×3 morphological opening removes isolated pixels (CV_8U, the image's size).
 cv::Mat segment_colour(const cv::Mat& rgb, const HsvRange& range);
 
+/// The released code's edges: grey → 3×3 blur → Canny(low, high) (CV_8U, 255 on edges); the
+/// blurred grey image in `*blurred_grey` when given.
+cv::Mat canny_edges(const cv::Mat& rgb, double canny_low, double canny_high,
+                    cv::Mat* blurred_grey = nullptr);
+
 /// Edge observation (the released code): grey → 3×3 blur → Canny(low, high) → L2 distance
 /// transform to the nearest edge pixel [px], saturated to 8 bits (CV_8U, 0 on edges, ≤ 255).
 cv::Mat edge_distance_map(const cv::Mat& rgb, double canny_low = 65.0, double canny_high = 195.0);
