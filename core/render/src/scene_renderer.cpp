@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <map>
 #include <string>
 
 #include "somasim/error.hpp"
@@ -191,6 +192,9 @@ void SceneRenderer::check_drawn(const std::vector<DrawItem>& items, const Camera
   const PinholeIntrinsics& k = camera.intrinsics;
   const Eigen::Isometry3d camera_root = camera.pose_root.inverse(Eigen::Isometry);
   const GlApi& gl = *gl_;
+  // Items of ids absent from the mask that should have shown, grouped by id (an id's items are
+  // checked together: a sub-pixel bar of a backdrop whose plane is hidden is no error).
+  std::map<std::int32_t, std::vector<std::size_t>> missing;
   for (std::size_t i = 0; i < items.size(); ++i) {
     const DrawItem& item = items[i];
     if (std::binary_search(present.begin(), present.end(), item.id)) continue;
@@ -199,43 +203,46 @@ void SceneRenderer::check_drawn(const std::vector<DrawItem>& items, const Camera
     // at the image edge can have its box overlap the image while the part itself is outside;
     // and a vertex within a pixel of the border may belong to a sliver that covers no pixel
     // centre.) Items smaller than 2 px across may legitimately cover no pixel centre either.
-    const MeshBuffer& mesh = meshes_[item.mesh.index];
     const Eigen::Isometry3d camera_item = camera_root * item.pose_root;
     const std::vector<Eigen::Vector3f>& vertices = vertices_[item.mesh.index];
     Eigen::AlignedBox3f box;
     for (const Eigen::Vector3f& vertex : vertices) box.extend(vertex);
     const double size_m = vertices.empty() ? 0.0 : static_cast<double>(box.diagonal().norm());
-    bool vertex_in_view = false;
     for (const Eigen::Vector3f& vertex : vertices) {
       const Eigen::Vector3d p = camera_item * vertex.cast<double>();
       if (!(p.z() > k.near && p.z() < k.far)) continue;
       const double u = k.fx * p.x() / p.z() + k.cx, v = k.fy * p.y() / p.z() + k.cy;
       const bool inside = u >= 0.5 && u <= k.width - 1.5 && v >= 0.5 && v <= k.height - 1.5;
       if (inside && std::min(k.fx, k.fy) * size_m / p.z() >= 2.0) {
-        vertex_in_view = true;
+        missing[item.id].push_back(i);
         break;
       }
     }
-    if (!vertex_in_view) continue;
-
-    // Hidden behind other items, or really drawing nothing? Draw it alone (depth only).
+  }
+  // Hidden behind other items, or really drawing nothing? Draw each id's items alone (depth
+  // only).
+  for (const auto& [item_id, group] : missing) {
     gl.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     const GLfloat far_depth = 1.0f;
     gl.ClearBufferfv(GL_DEPTH, 0, &far_depth);
     gl.BeginQuery(GL_ANY_SAMPLES_PASSED, query_);
     program_.use();
-    const Eigen::Matrix4f mvp = (camera.view_projection() * item.pose_root.matrix()).cast<float>();
-    gl.UniformMatrix4fv(u_mvp_, 1, GL_FALSE, mvp.data());
-    mesh.draw();
+    for (const std::size_t i : group) {
+      const Eigen::Matrix4f mvp =
+          (camera.view_projection() * items[i].pose_root.matrix()).cast<float>();
+      gl.UniformMatrix4fv(u_mvp_, 1, GL_FALSE, mvp.data());
+      meshes_[items[i].mesh.index].draw();
+    }
     gl.EndQuery(GL_ANY_SAMPLES_PASSED);
     GLuint any_sample = 0;
     gl.GetQueryObjectuiv(query_, GL_QUERY_RESULT, &any_sample);
     gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     gl.BindVertexArray(0);
-    check_gl(gl, fmt::format("{}: checking item {} (id {})", owner_of(camera), i, item.id));
+    check_gl(gl,
+             fmt::format("{}: checking item {} (id {})", owner_of(camera), group.front(), item_id));
     if (any_sample == 0)
       throw RunError(fmt::format("{}: item {} (id {}) projects into the image but drew no pixel",
-                                 owner_of(camera), i, item.id));
+                                 owner_of(camera), group.front(), item_id));
   }
 }
 

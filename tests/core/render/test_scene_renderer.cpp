@@ -277,6 +277,30 @@ TEST_F(SceneRendererTest, AnItemInViewThatDrawsNothingIsAnError) {
   EXPECT_NO_THROW(renderer.render({{degenerate, at(-1.0, 0, 0), {1, 1, 1}, 9}}, cam));
 }
 
+TEST_F(SceneRendererTest, ItemsSharingAnIdAreCheckedTogether) {
+  // A backdrop (id 7: a wall and a zero-width bar on it) hidden behind a near box that fills the
+  // image: the bar alone draws nothing, the group draws the wall — no error. (A camera turned
+  // toward a near object stopped a soak run here when each item was checked alone.)
+  const MeshHandle near_box = renderer.upload(tessellate_box({0.01, 2.0, 2.0}));
+  const MeshHandle wall = renderer.upload(tessellate_box({0.01, 1.0, 1.0}));
+  const MeshHandle bar = renderer.upload(tessellate_box({0.0, 0.6, 0.0}));
+  const Camera cam = forward_camera();
+  const std::vector<DrawItem> hidden = {{near_box, at(0.5, 0, 0), {1, 1, 1}, 1},
+                                        {wall, at(2.0, 0, 0), {0, 1, 0}, 7},
+                                        {bar, at(1.99, 0, 0.1), {1, 0, 0}, 7}};
+  RenderedImages img;
+  EXPECT_NO_THROW(img = renderer.render(hidden, cam));
+  EXPECT_EQ(cv::countNonZero(img.ids == 7), 0);
+  // The bar alone under its own id is still an error.
+  EXPECT_EQ(run_error([&] {
+              renderer.render({{near_box, at(0.5, 0, 0), {1, 1, 1}, 1},
+                               {wall, at(2.0, 0, 0), {0, 1, 0}, 7},
+                               {bar, at(1.99, 0, 0.1), {1, 0, 0}, 8}},
+                              cam);
+            }),
+            "camera 'test_cam': item 2 (id 8) projects into the image but drew no pixel");
+}
+
 TEST_F(SceneRendererTest, BadItemsNameTheCamera) {
   const MeshHandle ball = renderer.upload(tessellate_sphere(0.05, 16));
   const Camera cam = forward_camera();

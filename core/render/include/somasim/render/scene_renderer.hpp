@@ -32,7 +32,9 @@
 /// drew no pixel". The extra cost is one scan of the id mask, plus a vertex scan and a redraw
 /// only for items that show no pixel. Not checked: items smaller than 2 px, slivers within a
 /// pixel of the image border (they may cover no pixel centre), items seen only through a
-/// triangle whose vertices all lie outside the image; items sharing an id are checked together.
+/// triangle whose vertices all lie outside the image. Items sharing an id are checked together
+/// (drawn alone as a group; the error names the group's first item): a sub-pixel bar of a
+/// backdrop whose plane is hidden behind a near object is no error.
 ///
 /// Threads: as every GL object, a SceneRenderer lives on its context's thread (context.hpp).
 #include <cstdint>
