@@ -166,10 +166,10 @@ PluginSpec ObjectThrower::spec() {
       .describe(
           "whether the cameras (view_cameras) can see each object coming - all of it in their "
           "images where it appears, then its centre in them and not behind the robot's links "
-          "until view_until from the skin, the head as it is when the object appears: report labels each presentation (its "
-          "'sight'; metric presentations_out_of_view), require presents only objects seen "
-          "coming (paths_out_of_view counts the paths given up), ignore does neither; needs "
-          "link_poses");
+          "until view_until from the skin, the head as it is when the object appears: report "
+          "labels each presentation (its 'sight'; metric presentations_out_of_view), require "
+          "presents only objects seen coming (paths_out_of_view counts the paths given up), "
+          "ignore does neither; needs link_poses");
   s.add_string_list("view_cameras")
       .defaults(std::vector<std::string>{})
       .describe("cameras that must see the object (empty: every camera of the robot)");
