@@ -77,9 +77,9 @@ class ObjectThrower : public Plugin {
   double withdraw_at_s_ = 0.0;                  // when the current object goes (inf: not yet)
   double withdraw_after_robot_contact_ = -1.0;  // [s]; < 0: off
   ObjectMotion object_motion_ = ObjectMotion::kGuided;
-  double object_mass_ = 0.1;                         // [kg] (guided)
-  double wait_for_clear_path_ = 10.0;                // [s]
-  double retry_at_s_ = 0.0;  // no launch before this time (first_after, then retries) [s]
+  double object_mass_ = 0.1;           // [kg] (guided)
+  double wait_for_clear_path_ = 10.0;  // [s]
+  double retry_at_s_ = 0.0;            // no launch before this time (first_after, then retries) [s]
   std::optional<double> waiting_since_s_;            // first failed launch of the current wait [s]
   std::string unplaced_;                             // why the last launch failed
   int postponed_ = 0;                                // failed launches
