@@ -18,8 +18,6 @@ namespace somasim::plugins {
 
 namespace {
 
-// How far an object's path stays from the links it is not aimed at [m].
-constexpr double kPathClearance = 0.005;
 // Taxels drawn, and paths tried for each, before a presentation is given up as impossible.
 constexpr int kTaxelDraws = 50;
 constexpr int kPathAttempts = 100;
@@ -74,6 +72,24 @@ PluginSpec ObjectThrower::spec() {
       .defaults(0.04)
       .range(0.001, 0.5)
       .describe("half height of cylinders (their side faces the taxel)");
+  s.add_string("cylinder_axis")
+      .defaults(std::string("any"))
+      .one_of({"any", "across_part", "along_part"})
+      .describe(
+          "how a cylinder's axis lies across the aimed taxel's normal: any (a direction fixed by "
+          "the normal alone), across_part (across the skin part's long axis, the direction of "
+          "largest spread of its taxels: a cylinder spans a forearm's width, its round side "
+          "along the forearm) or along_part");
+  s.add_double("path_clearance")
+      .unit_is("m")
+      .defaults(0.005)
+      .range(0.0, 0.2)
+      .describe(
+          "how far an object's path (the whole object) stays from every robot link but the "
+          "aimed one; a taxel no such path reaches is given up for another (unreachable_draws). "
+          "Raise it where the robot moves toward the object (reaching), so that the arm's own "
+          "motion does not bring a neighbouring link (the hand next to a wrist taxel) into the "
+          "object's way");
   s.add_double("distance_min")
       .unit_is("m")
       .defaults(0.20)
@@ -219,6 +235,14 @@ PluginSpec ObjectThrower::spec() {
                       "taxels posed by the believed kinematics (believed_kinematics.taxels), for "
                       "the perceived D of true_offsets; unwired: the true taxels",
                       /*optional=*/true);
+  s.input<pps::Stimulus>(
+      "learner_stimulus",
+      "the stimulus the PPS learner is fed when it is not this node's (e.g. an object tracker's, "
+      "wired delayed): the perceived D of true_offsets then subtracts the radius the learner "
+      "perceives (its median over the presentation so far) instead of the contact distance - a "
+      "learner's D subtracts the radius it perceives, and a tracker's radius of a cube meeting "
+      "the skin with a corner is ~1 cm below that corner's distance from the centre",
+      /*optional=*/true);
   s.output<ObjectSpawns>("spawns", "objects to add to the world");
   s.output<pps::Stimulus>("stimulus", "the object as the robot perceives it (root frame)");
   s.output<pps::Stimulus>("truth", "the object's true centre and velocity (root frame)");
@@ -272,6 +296,8 @@ void ObjectThrower::configure(NodeContext& ctx) {
   g.size = ctx.param<double>("size");
   cylinder_half_height_ = ctx.param<double>("cylinder_half_height");
   box_corner_ = ctx.param<std::string>("box_facing") == "corner";
+  cylinder_axis_ = parse_cylinder_axis(ctx.param<std::string>("cylinder_axis"));
+  path_clearance_ = ctx.param<double>("path_clearance");
   g.distance_min = ctx.param<double>("distance_min");
   g.distance_max = ctx.param<double>("distance_max");
   if (g.distance_max < g.distance_min)
@@ -337,6 +363,12 @@ void ObjectThrower::configure(NodeContext& ctx) {
         "needs the world's contacts: wire input 'world_contacts' (e.g. world.contacts)");
   believed_taxels_ =
       ctx.is_wired("believed_taxels") ? &ctx.input<SkinTaxels>("believed_taxels") : nullptr;
+  learner_stimulus_ =
+      ctx.is_wired("learner_stimulus") ? &ctx.input<pps::Stimulus>("learner_stimulus") : nullptr;
+  if (learner_stimulus_ && !contacts_)
+    ctx.param_error("learner_stimulus",
+                    "is used only for true_offsets, which need the skin's contact events: wire "
+                    "input 'contacts' (e.g. skin.contacts)");
   spawns_ = &ctx.output<ObjectSpawns>("spawns");
   stimulus_ = &ctx.output<pps::Stimulus>("stimulus");
   truth_ = &ctx.output<pps::Stimulus>("truth");
@@ -400,6 +432,10 @@ bool ObjectThrower::launch(NodeContext& ctx) {
   // given up for another one.
   const double reach = bounding_radius(shape, geometry_.size, cylinder_half_height_);
   const int aimed_link = model_->link_index(sp->link);
+  const Eigen::Vector3d long_axis =
+      shape == ObjectShape::kCylinder && cylinder_axis_ != CylinderAxis::kAny
+          ? part_long_axis(sp->positions)
+          : Eigen::Vector3d::Zero();
   std::size_t k = 0;
   PresentedBody body;
   std::vector<robot::CoverSphere> cover;
@@ -410,7 +446,7 @@ bool ObjectThrower::launch(NodeContext& ctx) {
     if (!link_poses_) return true;
     if (!robot::point_clear_of_robot(*model_, link_poses_->poses, start, reach + 0.01) ||
         !robot::object_path_clear_of_robot(*model_, link_poses_->poses, cover, body.rotation, start,
-                                           end, kPathClearance, std::span(&aimed_link, 1)))
+                                           end, path_clearance_, std::span(&aimed_link, 1)))
       return false;
     if (view_policy_ == ViewPolicy::kRequire) {
       unseen = view_->unseen(link_poses_->poses, motion, start, end, reach);
@@ -428,12 +464,12 @@ bool ObjectThrower::launch(NodeContext& ctx) {
       unplaced_ = fmt::format(
           "no path clear of the robot for a {} (motion '{}') aimed at '{}': {} taxels drawn, {} "
           "paths each (start {}-{} m from the skin within {:.0f} deg of its normal, the object "
-          "{:.3f} m clear of the other links{}); raise 'distance_min', lower 'cone_deg' or "
-          "'size', or change the posture",
+          "{:.3f} m clear of the other links{}); raise 'distance_min', lower 'cone_deg', "
+          "'size' or 'path_clearance', or change the posture",
           shape_name(shape), motion_name(motion), part, kTaxelDraws, kPathAttempts,
           motion == PresentationMotion::kReceding ? g.receding_start_min : g.distance_min,
           motion == PresentationMotion::kReceding ? g.receding_start_max : g.distance_max,
-          rad_to_deg(g.cone_rad), kPathClearance,
+          rad_to_deg(g.cone_rad), path_clearance_,
           out_of_view == 0
               ? std::string()
               : fmt::format(", seen coming by the cameras (view: require): {} clear paths were "
@@ -445,7 +481,7 @@ bool ObjectThrower::launch(NodeContext& ctx) {
     if (draw > 0) ++unreachable_draws_[part];
     k = pick(rng);
     body = presented_body(shape, corner, sp->normals[k].normalized(), geometry_.size,
-                          cylinder_half_height_);
+                          cylinder_half_height_, cylinder_axis_, long_axis);
     cover = robot::sphere_cover(shape, body.size);
     planned = plan_presentation(motion, sp->positions[k], sp->normals[k].normalized(), g, rng,
                                 clear, kPathAttempts);
@@ -490,6 +526,7 @@ bool ObjectThrower::launch(NodeContext& ctx) {
   withdraw_at_s_ = std::numeric_limits<double>::infinity();
   spawns_->withdraw.clear();
   seen_.reset();
+  learner_radii_.clear();
   ++per_part_presentations_[part];
   ++per_motion_[motion_name(motion)];
   return true;
@@ -547,11 +584,25 @@ void ObjectThrower::learn_true_offsets() {
     truth.velocity = seen_->velocity;
     truth.radius = radius_;
     pps::Stimulus perceived = truth;
+    if (learner_stimulus_) {
+      if (learner_radii_.empty()) {
+        ++true_offset_events_unseen_;  // the learner never saw it: its D has no radius
+        continue;
+      }
+      perceived.radius = median_learner_radius();
+    }
     perceived.position = seen_->to_perceived * truth.position;
     perceived.velocity = seen_->to_perceived.linear() * truth.velocity;
     true_offsets_.add_event(e, *skin_, believed_taxels_ ? *believed_taxels_ : *skin_, perceived,
                             truth, pps::kOffsetClearance);
   }
+}
+
+double ObjectThrower::median_learner_radius() const {
+  std::vector<double> radii = learner_radii_;
+  const auto mid = radii.begin() + static_cast<std::ptrdiff_t>(radii.size() / 2);
+  std::nth_element(radii.begin(), mid, radii.end());
+  return *mid;
 }
 
 void ObjectThrower::withdraw_when_felt() {
@@ -611,6 +662,8 @@ void ObjectThrower::step(NodeContext& ctx) {
   if (world_contacts_) watch_robot_contacts();
   withdraw_if_due(now);
   perceive(ctx);
+  if (learner_stimulus_ && p.active && learner_stimulus_->present)
+    learner_radii_.push_back(learner_stimulus_->radius);
   true_offsets_.sync_layout(*skin_);
   if (contacts_) learn_true_offsets();
   true_offsets_.write(*true_offsets_out_);
@@ -630,6 +683,8 @@ void ObjectThrower::finish(NodeContext& ctx) {
     if (view_policy_ == ViewPolicy::kRequire)
       ctx.report_metric("paths_out_of_view", paths_out_of_view_);
   }
+  if (learner_stimulus_)
+    ctx.report_metric("true_offset_events_unseen_by_learner", true_offset_events_unseen_);
   nlohmann::json per_motion = nlohmann::json::object();
   for (const auto& [motion, n] : per_motion_) per_motion[motion] = n;
   ctx.report_metric("presented_per_motion", per_motion);

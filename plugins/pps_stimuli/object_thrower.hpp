@@ -65,6 +65,8 @@ class ObjectThrower : public Plugin {
   void withdraw_at(double time_s);
   /// Asks the world to remove the current object once its withdrawal time has come.
   void withdraw_if_due(double now);
+  /// The median of learner_radii_ (not empty) [m].
+  double median_learner_radius() const;
 
   std::shared_ptr<const robot::RobotModel> model_;
   std::unique_ptr<BelievedVision> vision_;  // set when believed_state is wired
@@ -73,6 +75,8 @@ class ObjectThrower : public Plugin {
   std::vector<PresentationMotion> motions_;
   PresentationGeometry geometry_;
   bool box_corner_ = false;
+  CylinderAxis cylinder_axis_ = CylinderAxis::kAny;
+  double path_clearance_ = 0.005;               // [m] of the path from links it is not aimed at
   double withdraw_after_skin_contact_ = -1.0;   // [s]; < 0: objects fly their whole path
   double withdraw_at_s_ = 0.0;                  // when the current object goes (inf: not yet)
   double withdraw_after_robot_contact_ = -1.0;  // [s]; < 0: off
@@ -93,9 +97,12 @@ class ObjectThrower : public Plugin {
   const JointState* state_ = nullptr;
   const JointState* believed_state_ = nullptr;  // optional
   const ObjectStates* objects_ = nullptr;
-  const LinkPoses* link_poses_ = nullptr;        // optional
-  const ContactEvents* contacts_ = nullptr;      // optional
-  const SkinTaxels* believed_taxels_ = nullptr;  // optional
+  const LinkPoses* link_poses_ = nullptr;            // optional
+  const ContactEvents* contacts_ = nullptr;          // optional
+  const SkinTaxels* believed_taxels_ = nullptr;      // optional
+  const pps::Stimulus* learner_stimulus_ = nullptr;  // optional
+  std::vector<double> learner_radii_;  // its radius [m] while the current object is presented
+  int true_offset_events_unseen_ = 0;  // contact events the learner never saw the object of
   ObjectSpawns* spawns_ = nullptr;
   pps::Stimulus* stimulus_ = nullptr;
   pps::Stimulus* truth_ = nullptr;

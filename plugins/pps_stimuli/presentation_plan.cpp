@@ -1,5 +1,9 @@
 #include "presentation_plan.hpp"
 
+#include <stdexcept>
+
+#include <Eigen/Eigenvalues>
+
 #include "somasim/random_directions.hpp"
 
 namespace somasim::plugins {
@@ -47,12 +51,60 @@ std::optional<PlannedObject> plan_presentation(PresentationMotion motion,
   return out;
 }
 
+const char* cylinder_axis_name(CylinderAxis axis) {
+  switch (axis) {
+    case CylinderAxis::kAcrossPart:
+      return "across_part";
+    case CylinderAxis::kAlongPart:
+      return "along_part";
+    default:
+      return "any";
+  }
+}
+
+CylinderAxis parse_cylinder_axis(const std::string& name) {
+  for (CylinderAxis a : {CylinderAxis::kAny, CylinderAxis::kAcrossPart, CylinderAxis::kAlongPart})
+    if (name == cylinder_axis_name(a)) return a;
+  throw std::invalid_argument("unknown cylinder axis '" + name +
+                              "' (expected any, across_part or along_part)");
+}
+
+Eigen::Vector3d part_long_axis(const std::vector<Eigen::Vector3d>& taxel_positions) {
+  if (taxel_positions.size() < 2) return Eigen::Vector3d::Zero();
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const auto& p : taxel_positions) mean += p;
+  mean /= static_cast<double>(taxel_positions.size());
+  Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+  for (const auto& p : taxel_positions) scatter += (p - mean) * (p - mean).transpose();
+  if (scatter.trace() <= 0.0) return Eigen::Vector3d::Zero();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(scatter);
+  return solver.eigenvectors().col(2).normalized();  // eigenvalues ascend
+}
+
+namespace {
+
+// A unit axis across the normal `n`, laid as `mode` says relative to `long_axis`.
+Eigen::Vector3d cylinder_axis_across(const Eigen::Vector3d& n, CylinderAxis mode,
+                                     const Eigen::Vector3d& long_axis) {
+  // A long axis within ~6 deg of the normal says nothing about the plane across it.
+  constexpr double kMinSine = 0.1;
+  if (mode != CylinderAxis::kAny) {
+    const Eigen::Vector3d along = long_axis - long_axis.dot(n) * n;
+    if (along.norm() > kMinSine)
+      return mode == CylinderAxis::kAlongPart ? along.normalized() : n.cross(along).normalized();
+  }
+  return n.unitOrthogonal();
+}
+
+}  // namespace
+
 PresentedBody presented_body(ObjectShape shape, bool corner, const Eigen::Vector3d& n, double size,
-                             double cylinder_half_height) {
+                             double cylinder_half_height, CylinderAxis axis_mode,
+                             const Eigen::Vector3d& long_axis) {
   PresentedBody b;
   if (shape == ObjectShape::kCylinder) {
     // The axis (local z) across the normal: the round side faces the taxel.
-    const Eigen::Vector3d axis = n.unitOrthogonal();
+    const Eigen::Vector3d axis = cylinder_axis_across(n, axis_mode, long_axis);
     b.rotation.col(0) = n;
     b.rotation.col(1) = axis.cross(n);
     b.rotation.col(2) = axis;

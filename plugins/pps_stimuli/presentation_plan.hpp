@@ -13,6 +13,8 @@
 #include <functional>
 #include <optional>
 #include <random>
+#include <string>
+#include <vector>
 
 #include <Eigen/Geometry>
 
@@ -54,15 +56,34 @@ std::optional<PlannedObject> plan_presentation(PresentationMotion motion,
                                                const PresentationGeometry& g, std::mt19937_64& rng,
                                                const PathCheck& clear, int attempts = 100);
 
+/// Which way a cylinder's axis lies in the plane across the aimed taxel's normal.
+enum class CylinderAxis {
+  kAny,         ///< a direction fixed by the normal alone (Eigen's unitOrthogonal)
+  kAcrossPart,  ///< across the skin part's long axis (across a forearm: spans its width)
+  kAlongPart,   ///< along the skin part's long axis
+};
+/// "any", "across_part", "along_part"; parse_cylinder_axis throws std::invalid_argument on
+/// another name.
+const char* cylinder_axis_name(CylinderAxis axis);
+CylinderAxis parse_cylinder_axis(const std::string& name);
+
+/// The long axis of a skin part: the unit direction of largest spread of its taxel positions
+/// [root frame] (sign arbitrary); zero for fewer than two distinct positions.
+Eigen::Vector3d part_long_axis(const std::vector<Eigen::Vector3d>& taxel_positions);
+
 /// How an object is turned toward the taxel it is aimed at (outward unit normal), and its
-/// ObjectSpawn::size: a cylinder's round side faces the taxel (its axis across the normal), a
-/// cube a corner (`corner`) or its local +z face, a sphere as it is.
+/// ObjectSpawn::size: a cylinder's round side faces the taxel (its axis across the normal, laid
+/// as `axis` says relative to the part's unit `long_axis`; kAny, or a long axis parallel to the
+/// normal or zero, falls back to a direction fixed by the normal), a cube a corner (`corner`) or
+/// its local +z face, a sphere as it is.
 struct PresentedBody {
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();  ///< root <- object
   Eigen::Vector3d size = Eigen::Vector3d::Zero();          ///< as ObjectSpawn::size [m]
 };
 PresentedBody presented_body(ObjectShape shape, bool corner, const Eigen::Vector3d& normal,
-                             double size, double cylinder_half_height);
+                             double size, double cylinder_half_height,
+                             CylinderAxis axis = CylinderAxis::kAny,
+                             const Eigen::Vector3d& long_axis = Eigen::Vector3d::Zero());
 
 /// "sphere", "box", "cylinder", "mesh".
 const char* shape_name(ObjectShape shape);

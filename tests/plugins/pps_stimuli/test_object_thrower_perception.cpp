@@ -125,6 +125,63 @@ TEST(ObjectThrowerPerception, TaxelsBelievedOutAlongTheirNormalsShowThatShift) {
                               {"taxels_touched", 1}}}}));
 }
 
+// A learner fed by a tracker subtracts the radius the tracker perceives (here 1.2 cm below the
+// contact distance, as for a cube meeting the skin with a corner): the true offset it should
+// show is then the kinematic shift plus that difference, the median radius over the
+// presentation (one wild radius does not move it).
+TEST(ObjectThrowerPerception, TheLearnersPerceivedRadiusEntersItsTrueOffset) {
+  for (const bool wired : {false, true}) {
+    SCOPED_TRACE(wired ? "learner_stimulus wired" : "unwired");
+    Harness h(thrower("approaches: 1, cone_deg: 0, size: 0.025",
+                      std::string("contacts: harness.contacts, believed_taxels: "
+                                  "harness.believed_taxels") +
+                          (wired ? ", learner_stimulus: harness.learner" : "")));
+    feed_world(h);
+    SkinPart shifted = forearm();
+    for (std::size_t k = 0; k < 3; ++k) shifted.positions[k] += 0.02 * shifted.normals[k];
+    h.input<SkinTaxels>("believed_taxels").parts = {shifted};
+    ASSERT_TRUE(h.step());
+    const std::size_t k = aimed(h);
+    const auto spawn = h.output<ObjectSpawns>("t.spawns").recent.back();
+    double t = 0.0;
+    for (const double radius : {0.013, 0.5, 0.013}) {
+      t += 0.05;
+      feed_object(h, spawn, t);
+      if (wired) {
+        auto& seen = h.input<Stimulus>("learner");
+        seen.present = true;
+        seen.radius = radius;
+      }
+      ASSERT_TRUE(h.step());
+    }
+    h.input<ContactEvents>("contacts").recent = {touch(1, 0.12, {int(k)})};
+    ASSERT_TRUE(h.step());
+    const double expected = -0.02 + (wired ? 0.025 - 0.013 : 0.0);
+    EXPECT_NEAR(h.output<TaxelValues>("t.true_offsets").values[k], expected, 1e-12);
+  }
+}
+
+// Contacts with objects the learner never perceived teach it nothing: they are not counted in
+// its true offsets either, but reported.
+TEST(ObjectThrowerPerception, ObjectsTheLearnerNeverSawAddNoTrueOffset) {
+  Harness h(thrower("approaches: 1, cone_deg: 0",
+                    "contacts: harness.contacts, learner_stimulus: harness.learner"));
+  feed_world(h);
+  ASSERT_TRUE(h.step());
+  feed_object(h, h.output<ObjectSpawns>("t.spawns").recent.back(), 0.05);
+  h.input<ContactEvents>("contacts").recent = {touch(1, 0.03, {0, 1, 2})};
+  ASSERT_TRUE(h.step());
+  for (double v : h.output<TaxelValues>("t.true_offsets").values) EXPECT_TRUE(std::isnan(v));
+  h.finish();
+  EXPECT_EQ(h.metric("t", "true_offset_events_unseen_by_learner"), 1);
+}
+
+TEST(ObjectThrowerPerception, ALearnerStimulusNeedsTheContacts) {
+  const std::string msg = error_of(thrower("approaches: 1", "learner_stimulus: harness.learner"));
+  EXPECT_NE(msg.find("learner_stimulus"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("contacts"), std::string::npos) << msg;
+}
+
 // Vision through a believed neck error and the true taxels: the offset is the D of the
 // object seen through the believed head minus its true D, at the event.
 TEST(ObjectThrowerPerception, AVisionErrorGivesTheDifferenceOfDistancesAtTheEvent) {
