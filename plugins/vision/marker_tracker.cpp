@@ -59,6 +59,15 @@ PluginSpec MarkerTracker::spec() {
       .describe(
           "frame (or link) of the robot model at the marker: where the believed kinematics "
           "expect it, to tell a wrong colour range from a hidden marker");
+  s.add_double("max_distance_from_believed")
+      .unit_is("m")
+      .defaults(0.06)
+      .range(0.0, 10.0)
+      .describe(
+          "a triangulated blob pair farther than this from where the believed kinematics "
+          "(encoders + joint_offsets_deg) put marker_frame is not the marker - e.g. the other "
+          "hand's marker of the same colour while this one is hidden (metric "
+          "far_from_believed_rejections); 0 = no such check");
   s.add_string("blob_centre")
       .defaults(std::string("circle"))
       .one_of({"circle", "centroid"})
@@ -143,6 +152,7 @@ void MarkerTracker::configure(NodeContext& ctx) {
   use_circle_ = ctx.param<std::string>("blob_centre") == "circle";
   marker_radius_ = ctx.param<double>("marker_radius");
   max_reprojection_px_ = ctx.param<double>("max_reprojection_px");
+  max_distance_from_believed_ = ctx.param<double>("max_distance_from_believed");
   no_colour_frames_error_ = ctx.param<int>("no_colour_frames_error");
   reset_after_lost_ = ctx.param<int>("reset_after_lost");
   const std::string marker_frame = ctx.param<std::string>("marker_frame");
@@ -176,10 +186,13 @@ bool MarkerTracker::looks_like_marker(const render::Camera& camera, const vision
          blob.circle_radius_px >= 0.3 * expected_px - 1.0;
 }
 
+Eigen::Vector3d MarkerTracker::believed_marker() const {
+  return eyes_believed_.link_poses()[static_cast<std::size_t>(marker_ref_.link)] *
+         marker_ref_.pose.translation();
+}
+
 bool MarkerTracker::marker_expected_in_view(const std::vector<render::Camera>& cameras) const {
-  const Eigen::Vector3d p =
-      eyes_believed_.link_poses()[static_cast<std::size_t>(marker_ref_.link)] *
-      marker_ref_.pose.translation();
+  const Eigen::Vector3d p = believed_marker();
   for (const render::Camera& c : cameras) {
     const auto uv = c.project(p);
     if (!uv || uv->x() < 0 || uv->y() < 0 || uv->x() > c.intrinsics.width - 1 ||
@@ -251,6 +264,8 @@ void MarkerTracker::step(NodeContext& ctx) {
   const vision::MarkerBlob* best_l = nullptr;
   const vision::MarkerBlob* best_r = nullptr;
   vision::Triangulation best;
+  const Eigen::Vector3d believed = believed_marker();
+  bool rejected_far = false;
   for (const vision::MarkerBlob& l : lb)
     for (const vision::MarkerBlob& r : rb) {
       const Eigen::Vector2d ul = use_circle_ ? l.circle_centre_px : l.centroid_px;
@@ -260,8 +275,14 @@ void MarkerTracker::step(NodeContext& ctx) {
       if (best_l && t.reprojection_error_px >= best.reprojection_error_px) continue;
       if (!looks_like_marker(cams[0], l, t.point) || !looks_like_marker(cams[1], r, t.point))
         continue;
+      if (max_distance_from_believed_ > 0 &&
+          (t.point - believed).norm() > max_distance_from_believed_) {
+        rejected_far = true;
+        continue;
+      }
       best_l = &l, best_r = &r, best = t;
     }
+  if (rejected_far && !best_l) ++far_rejections_;
   const auto eye = [](const std::vector<vision::MarkerBlob>& b, const vision::MarkerBlob* chosen) {
     const vision::MarkerBlob* shown = chosen ? chosen : (b.empty() ? nullptr : &b.front());
     if (!shown) return StereoPixels::Eye{};
@@ -317,6 +338,8 @@ void MarkerTracker::finish(NodeContext& ctx) {
                     expected_ ? static_cast<double>(expected_tracked_) / expected_ : 0.0);
   ctx.report_metric("reprojection_mean_px", tracked_ ? reprojection_sum_ / tracked_ : 0.0);
   ctx.report_metric("reprojection_max_px", reprojection_max_);
+  if (max_distance_from_believed_ > 0)
+    ctx.report_metric("far_from_believed_rejections", far_rejections_);
   if (truth_) {
     ctx.report_metric("position_rms_m",
                       position_count_ ? std::sqrt(position_sq_sum_ / position_count_) : 0.0);

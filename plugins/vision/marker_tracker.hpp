@@ -33,6 +33,8 @@ class MarkerTracker : public Plugin {
  private:
   bool looks_like_marker(const render::Camera& camera, const vision::MarkerBlob& blob,
                          const Eigen::Vector3d& point_root) const;
+  /// Where the believed kinematics (encoders + joint_offsets_deg) put marker_frame [m, root].
+  Eigen::Vector3d believed_marker() const;
   bool marker_expected_in_view(const std::vector<render::Camera>& cameras) const;
   void lose(double dt_s);
   void score_against_truth(
@@ -48,6 +50,7 @@ class MarkerTracker : public Plugin {
   bool use_circle_ = true;  // blob_centre: circle
   double marker_radius_ = 0.0;
   double max_reprojection_px_ = 0.0;
+  double max_distance_from_believed_ = 0.0;  // [m]; 0: off
   int no_colour_frames_error_ = 0;
   int reset_after_lost_ = 0;
   robot::FrameRef marker_ref_;  // where the marker is (marker_frame)
@@ -67,6 +70,7 @@ class MarkerTracker : public Plugin {
   int no_colour_ = 0;  // consecutive frames without any pixel in range while expected in view
   double no_colour_since_s_ = 0.0;
   std::int64_t frames_ = 0, tracked_ = 0, expected_ = 0, expected_tracked_ = 0;
+  std::int64_t far_rejections_ = 0;  // frames whose only marker-like pairs were far from belief
   double reprojection_sum_ = 0.0, reprojection_max_ = 0.0;
   // Against the truth (true_link_poses), over tracked frames.
   double position_sq_sum_ = 0.0, velocity_sq_sum_ = 0.0;

@@ -221,6 +221,42 @@ TEST(MarkerTracker, TriangulatesThroughTheBelievedHeadKinematics) {
   EXPECT_LT((s.position - expected).norm(), 0.002);
 }
 
+// The robot's belief of where its fingertip is (encoders + joint_offsets_deg) gates the fixes:
+// arm offsets of generated sizes move the believed marker away from the seen one; a fix is
+// kept while it lies within max_distance_from_believed of the belief and refused beyond it.
+TEST(MarkerTracker, FixesFarFromTheBelievedFingertipAreRefused) {
+  const Eigen::VectorXd q = joints(hand_before_eyes());
+  for (const double shoulder_deg : {-16.0, -8.0, -2.0, 2.0, 8.0, 16.0}) {
+    for (const double gate : {0.0, 0.06}) {
+      SCOPED_TRACE(::testing::Message() << "offset " << shoulder_deg << " deg, gate " << gate);
+      Harness h(graph("joint_offsets_deg: 'r_shoulder_pitch: " + std::to_string(shoulder_deg) +
+                      "', max_distance_from_believed: " + std::to_string(gate)));
+      const Eigen::Vector3d tip = set_posture(h, q);
+      Eigen::VectorXd believed_q = q;
+      believed_q[model().dof_index("r_shoulder_pitch")] += somasim::deg_to_rad(shoulder_deg);
+      const auto tip_ref = model().frame_ref("r_index_tip");
+      const Eigen::Vector3d believed =
+          link_poses(believed_q)[static_cast<std::size_t>(tip_ref.link)] *
+          tip_ref.pose.translation();
+      const double off = (believed - tip).norm();
+      h.step(2);
+      const auto& s = h.output<Stimulus>("track.stimulus");
+      const bool kept = gate == 0.0 || off <= gate - 0.002;
+      const bool refused = gate > 0.0 && off > gate + 0.002;
+      if (kept) {
+        ASSERT_TRUE(s.present) << off;
+        EXPECT_LT((s.position - tip).norm(), 0.002);
+      }
+      if (refused) EXPECT_FALSE(s.present) << off;
+      h.finish();
+      if (gate > 0.0)
+        EXPECT_EQ(h.metric("track", "far_from_believed_rejections"), refused ? 2 : 0) << off;
+      else
+        EXPECT_TRUE(h.metric("track", "far_from_believed_rejections").is_null());
+    }
+  }
+}
+
 // A cluttered background (rectangles of random colours from the seed) around the hand.
 TEST(MarkerTracker, TexturedBackground) {
   for (int seed : {1, 2, 3}) {
