@@ -18,6 +18,9 @@ namespace somasim::plugins {
 
 namespace {
 
+// The least clearance [m] of an object's path from the links it is not aimed at: where no path
+// keeps path_clearance, the presentation is drawn again with this one.
+constexpr double kLeastPathClearance = 0.005;
 // Taxels drawn, and paths tried for each, before a presentation is given up as impossible.
 constexpr int kTaxelDraws = 50;
 constexpr int kPathAttempts = 100;
@@ -86,9 +89,11 @@ PluginSpec ObjectThrower::spec() {
       .range(0.0, 0.2)
       .describe(
           "how far an object's path (the whole object) stays from every robot link but the "
-          "aimed one; a taxel no such path reaches is given up for another (unreachable_draws). "
-          "Raise it where the robot moves toward the object (reaching), so that the arm's own "
-          "motion does not bring a neighbouring link (the hand next to a wrist taxel) into the "
+          "aimed one; a taxel no such path reaches is given up for another (unreachable_draws), "
+          "and where no taxel can be reached so (a large object beside the hand) the "
+          "presentation is drawn again keeping 5 mm (presentations_reduced_clearance). Raise it "
+          "where the robot moves toward the object (reaching), so that the arm's own motion "
+          "does not bring a neighbouring link (the hand next to a wrist taxel) into the "
           "object's way");
   s.add_double("distance_min")
       .unit_is("m")
@@ -442,11 +447,12 @@ bool ObjectThrower::launch(NodeContext& ctx) {
   std::pair<Eigen::Vector3d, Eigen::Vector3d> path;  // of the last path accepted
   std::optional<std::string> unseen;                 // why the last path tried was not seen
   int out_of_view = 0;                               // paths given up as not seen
+  double clearance = std::max(path_clearance_, 0.0);
   const auto clear = [&](const Eigen::Vector3d& start, const Eigen::Vector3d& end) {
     if (!link_poses_) return true;
     if (!robot::point_clear_of_robot(*model_, link_poses_->poses, start, reach + 0.01) ||
         !robot::object_path_clear_of_robot(*model_, link_poses_->poses, cover, body.rotation, start,
-                                           end, path_clearance_, std::span(&aimed_link, 1)))
+                                           end, clearance, std::span(&aimed_link, 1)))
       return false;
     if (view_policy_ == ViewPolicy::kRequire) {
       unseen = view_->unseen(link_poses_->poses, motion, start, end, reach);
@@ -459,17 +465,25 @@ bool ObjectThrower::launch(NodeContext& ctx) {
     return true;
   };
   std::optional<PlannedObject> planned;
+  bool reduced = false;  // placed with the least clearance, the preferred one kept by no path
   for (int draw = 0; !planned; ++draw) {
+    if (draw == kTaxelDraws && clearance > kLeastPathClearance) {
+      clearance = kLeastPathClearance;
+      reduced = true;
+      draw = 0;
+    }
     if (draw == kTaxelDraws) {
       unplaced_ = fmt::format(
           "no path clear of the robot for a {} (motion '{}') aimed at '{}': {} taxels drawn, {} "
           "paths each (start {}-{} m from the skin within {:.0f} deg of its normal, the object "
-          "{:.3f} m clear of the other links{}); raise 'distance_min', lower 'cone_deg', "
-          "'size' or 'path_clearance', or change the posture",
+          "{} clear of the other links{}); raise 'distance_min', lower 'cone_deg' or 'size', "
+          "or change the posture",
           shape_name(shape), motion_name(motion), part, kTaxelDraws, kPathAttempts,
           motion == PresentationMotion::kReceding ? g.receding_start_min : g.distance_min,
           motion == PresentationMotion::kReceding ? g.receding_start_max : g.distance_max,
-          rad_to_deg(g.cone_rad), path_clearance_,
+          rad_to_deg(g.cone_rad),
+          reduced ? fmt::format("{:.3f} m, then {:.3f} m", path_clearance_, clearance)
+                  : fmt::format("{:.3f} m", clearance),
           out_of_view == 0
               ? std::string()
               : fmt::format(", seen coming by the cameras (view: require): {} clear paths were "
@@ -488,6 +502,7 @@ bool ObjectThrower::launch(NodeContext& ctx) {
   }
   const PlannedObject& plan = *planned;
   paths_out_of_view_ += out_of_view;
+  if (reduced) ++reduced_clearance_;
   PresentationSight sight = PresentationSight::kNotChecked;
   if (view_ && link_poses_)
     sight = view_->unseen(link_poses_->poses, motion, path.first, path.second, reach)
@@ -673,6 +688,8 @@ void ObjectThrower::step(NodeContext& ctx) {
 void ObjectThrower::finish(NodeContext& ctx) {
   ctx.report_metric("objects_presented", launched_);
   if (link_poses_) ctx.report_metric("presentations_postponed", postponed_);
+  if (link_poses_ && path_clearance_ > kLeastPathClearance)
+    ctx.report_metric("presentations_reduced_clearance", reduced_clearance_);
   if (withdraw_after_skin_contact_ >= 0 || withdraw_after_robot_contact_ >= 0)
     ctx.report_metric("objects_withdrawn", withdrawn_);
   if (robot_contacts_) robot_contacts_->report(ctx);

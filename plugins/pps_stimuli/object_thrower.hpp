@@ -77,6 +77,7 @@ class ObjectThrower : public Plugin {
   bool box_corner_ = false;
   CylinderAxis cylinder_axis_ = CylinderAxis::kAny;
   double path_clearance_ = 0.005;               // [m] of the path from links it is not aimed at
+  int reduced_clearance_ = 0;                   // presentations placed with the least clearance
   double withdraw_after_skin_contact_ = -1.0;   // [s]; < 0: objects fly their whole path
   double withdraw_at_s_ = 0.0;                  // when the current object goes (inf: not yet)
   double withdraw_after_robot_contact_ = -1.0;  // [s]; < 0: off

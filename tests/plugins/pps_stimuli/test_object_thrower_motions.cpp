@@ -259,8 +259,7 @@ TEST(ObjectThrowerMotions, APartNoPathCanReachIsABadPresentationNamingWhatWasTri
             "no path clear of the robot for a sphere (motion 'approach') aimed at 'left_forearm': "
             "50 taxels drawn, 100 paths each (start 0.2-0.3 m from the skin within 10 deg of its "
             "normal, the object 0.005 m clear of the other links); raise 'distance_min', lower "
-            "'cone_deg', 'size' or 'path_clearance', or change the posture (waited 1 s for a "
-            "clear path)");
+            "'cone_deg' or 'size', or change the posture (waited 1 s for a clear path)");
 }
 
 TEST(ObjectThrowerMotions, APresentationWaitsForThePostureToClearItsPath) {
