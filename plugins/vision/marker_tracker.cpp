@@ -65,9 +65,11 @@ PluginSpec MarkerTracker::spec() {
       .range(0.0, 10.0)
       .describe(
           "a triangulated blob pair farther than this from where the believed kinematics "
-          "(encoders + joint_offsets_deg) put marker_frame is not the marker - e.g. the other "
-          "hand's marker of the same colour while this one is hidden (metric "
-          "far_from_believed_rejections); 0 = no such check");
+          "(encoders + joint_offsets_deg) put marker_frame is not the marker - e.g. two blobs "
+          "of unlike parts of a half-hidden marker matched at a wrong depth, or something else "
+          "of its colour (metric far_from_believed_rejections); 0 = no such check. Give "
+          "joint_offsets_deg the robot's believed arm offsets too, so that the check uses what "
+          "the robot believes, not the true arm");
   s.add_string("blob_centre")
       .defaults(std::string("circle"))
       .one_of({"circle", "centroid"})
