@@ -52,6 +52,14 @@ ContactEvent touch(std::uint64_t id, double t, std::vector<int> taxels,
   return e;
 }
 
+// forearm() with its taxels believed `shift` [m] out along their normals.
+SkinPart forearm_believed_out(double shift) {
+  SkinPart part = forearm();
+  for (std::size_t k = 0; k < part.positions.size(); ++k)
+    part.positions[k] += shift * part.normals[k];
+  return part;
+}
+
 // Index in forearm() of the taxel the current presentation aims at.
 std::size_t aimed(Harness& h) {
   const int id = h.output<Presentation>("t.presentation").taxel_id;
@@ -92,9 +100,7 @@ TEST(ObjectThrowerPerception, TaxelsBelievedOutAlongTheirNormalsShowThatShift) {
   Harness h(thrower("approaches: 1, cone_deg: 0",
                     "contacts: harness.contacts, believed_taxels: harness.believed_taxels"));
   feed_world(h);
-  SkinPart shifted = forearm();
-  for (std::size_t k = 0; k < 3; ++k) shifted.positions[k] += 0.02 * shifted.normals[k];
-  h.input<SkinTaxels>("believed_taxels").parts = {shifted};
+  h.input<SkinTaxels>("believed_taxels").parts = {forearm_believed_out(0.02)};
   ASSERT_TRUE(h.step());
   const std::size_t k = aimed(h);
   feed_object(h, h.output<ObjectSpawns>("t.spawns").recent.back(), 0.05);
@@ -137,9 +143,7 @@ TEST(ObjectThrowerPerception, TheLearnersPerceivedRadiusEntersItsTrueOffset) {
                                   "harness.believed_taxels") +
                           (wired ? ", learner_stimulus: harness.learner" : "")));
     feed_world(h);
-    SkinPart shifted = forearm();
-    for (std::size_t k = 0; k < 3; ++k) shifted.positions[k] += 0.02 * shifted.normals[k];
-    h.input<SkinTaxels>("believed_taxels").parts = {shifted};
+    h.input<SkinTaxels>("believed_taxels").parts = {forearm_believed_out(0.02)};
     ASSERT_TRUE(h.step());
     const std::size_t k = aimed(h);
     const auto spawn = h.output<ObjectSpawns>("t.spawns").recent.back();
