@@ -19,7 +19,7 @@ namespace somasim::plugins {
 namespace {
 
 // The least clearance [m] of an object's path from the links it is not aimed at: where no path
-// keeps path_clearance, the presentation is drawn again with half of it, down to this one.
+// keeps path_clearance, the presentation is drawn again with this one.
 constexpr double kLeastPathClearance = 0.005;
 // Taxels drawn, and paths tried for each, before a presentation is given up as impossible.
 constexpr int kTaxelDraws = 50;
@@ -91,8 +91,7 @@ PluginSpec ObjectThrower::spec() {
           "how far an object's path (the whole object) stays from every robot link but the "
           "aimed one; a taxel no such path reaches is given up for another (unreachable_draws), "
           "and where no taxel can be reached so (a large object beside the hand) the "
-          "presentation is drawn again with half the clearance, down to 5 mm "
-          "(presentations_reduced_clearance). Raise it "
+          "presentation is drawn again keeping 5 mm (presentations_reduced_clearance). Raise it "
           "where the robot moves toward the object (reaching), so that the arm's own motion "
           "does not bring a neighbouring link (the hand next to a wrist taxel) into the "
           "object's way");
@@ -469,8 +468,7 @@ bool ObjectThrower::launch(NodeContext& ctx) {
   bool reduced = false;  // placed with the least clearance, the preferred one kept by no path
   for (int draw = 0; !planned; ++draw) {
     if (draw == kTaxelDraws && clearance > kLeastPathClearance) {
-      // No path keeps this clearance: try half of it, down to the least one.
-      clearance = std::max(kLeastPathClearance, clearance / 2);
+      clearance = kLeastPathClearance;
       reduced = true;
       draw = 0;
     }
@@ -484,9 +482,8 @@ bool ObjectThrower::launch(NodeContext& ctx) {
           motion == PresentationMotion::kReceding ? g.receding_start_min : g.distance_min,
           motion == PresentationMotion::kReceding ? g.receding_start_max : g.distance_max,
           rad_to_deg(g.cone_rad),
-          reduced
-              ? fmt::format("{:.3f} m, then halved down to {:.3f} m", path_clearance_, clearance)
-              : fmt::format("{:.3f} m", clearance),
+          reduced ? fmt::format("{:.3f} m, then {:.3f} m", path_clearance_, clearance)
+                  : fmt::format("{:.3f} m", clearance),
           out_of_view == 0
               ? std::string()
               : fmt::format(", seen coming by the cameras (view: require): {} clear paths were "
