@@ -77,7 +77,7 @@ PluginSpec ObjectThrower::spec() {
       .describe("half height of cylinders (their side faces the taxel)");
   s.add_string("cylinder_axis")
       .defaults(std::string("any"))
-      .one_of({"any", "across_part", "along_part"})
+      .one_of(cylinder_axis_names())
       .describe(
           "how a cylinder's axis lies across the aimed taxel's normal: any (a direction fixed by "
           "the normal alone), across_part (across the skin part's long axis, the direction of "
@@ -447,7 +447,7 @@ bool ObjectThrower::launch(NodeContext& ctx) {
   std::pair<Eigen::Vector3d, Eigen::Vector3d> path;  // of the last path accepted
   std::optional<std::string> unseen;                 // why the last path tried was not seen
   int out_of_view = 0;                               // paths given up as not seen
-  double clearance = std::max(path_clearance_, 0.0);
+  double clearance = path_clearance_;
   const auto clear = [&](const Eigen::Vector3d& start, const Eigen::Vector3d& end) {
     if (!link_poses_) return true;
     if (!robot::point_clear_of_robot(*model_, link_poses_->poses, start, reach + 0.01) ||
@@ -468,6 +468,7 @@ bool ObjectThrower::launch(NodeContext& ctx) {
   bool reduced = false;  // placed with the least clearance, the preferred one kept by no path
   for (int draw = 0; !planned; ++draw) {
     if (draw == kTaxelDraws && clearance > kLeastPathClearance) {
+      // No taxel is reached keeping path_clearance: draw them again keeping the least one.
       clearance = kLeastPathClearance;
       reduced = true;
       draw = 0;

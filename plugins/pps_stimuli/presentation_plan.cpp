@@ -62,11 +62,22 @@ const char* cylinder_axis_name(CylinderAxis axis) {
   }
 }
 
+namespace {
+constexpr CylinderAxis kCylinderAxes[] = {CylinderAxis::kAny, CylinderAxis::kAcrossPart,
+                                          CylinderAxis::kAlongPart};
+}  // namespace
+
 CylinderAxis parse_cylinder_axis(const std::string& name) {
-  for (CylinderAxis a : {CylinderAxis::kAny, CylinderAxis::kAcrossPart, CylinderAxis::kAlongPart})
+  for (CylinderAxis a : kCylinderAxes)
     if (name == cylinder_axis_name(a)) return a;
   throw std::invalid_argument("unknown cylinder axis '" + name +
                               "' (expected any, across_part or along_part)");
+}
+
+std::vector<std::string> cylinder_axis_names() {
+  std::vector<std::string> names;
+  for (CylinderAxis a : kCylinderAxes) names.emplace_back(cylinder_axis_name(a));
+  return names;
 }
 
 Eigen::Vector3d part_long_axis(const std::vector<Eigen::Vector3d>& taxel_positions) {
