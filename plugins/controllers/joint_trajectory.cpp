@@ -22,82 +22,82 @@ double from_joint_units(const robot::Joint& j, double value) {
 
 }  // namespace
 
-PluginSpec JointTrajectoryController::spec() {
-  PluginSpec s("joint_trajectory",
-               "Joint-space trajectories (linear or minimum-jerk) through YAML waypoints or to "
-               "targets on the `target` port; position commands with velocity feed-forward.");
-  robot::add_robot_param(s);
-  s.add_string_list("joints")
-      .defaults(std::vector<std::string>{})
-      .describe("controlled joints (e.g. [r_shoulder_pitch, r_shoulder_roll, r_elbow])");
-  s.add_list("targets_deg")
-      .unit_is("deg")
-      .defaults(std::vector<double>{})
-      .describe(
+template <class V>
+void JointTrajectoryController::Config::visit(V& v) {
+  v.block(robot);
+  v.field("joints", joints)
+      .doc("controlled joints (e.g. [r_shoulder_pitch, r_shoulder_roll, r_elbow])");
+  v.field("targets_deg", targets_deg)
+      .unit("deg")
+      .doc(
           "waypoint targets, waypoint-major: len(durations) rows of len(joints) values (prismatic "
           "joints: metres); each within the joint limits");
-  s.add_list("durations")
-      .unit_is("s")
-      .defaults(std::vector<double>{})
+  v.field("durations", durations)
+      .unit("s")
       .at_least(1e-3)
-      .describe("time to reach each waypoint from the previous one (the first: from the start)");
-  s.add_string("profile")
-      .defaults(std::string("minimum_jerk"))
-      .one_of(control::profile_names())
-      .describe("time profile of every segment: linear or minimum_jerk (zero end velocities)");
-  s.add_double("done_tolerance_deg")
-      .unit_is("deg")
-      .defaults(0.0)
+      .doc("time to reach each waypoint from the previous one (the first: from the start)");
+  v.field("profile", profile)
+      .doc("time profile of every segment: linear or minimum_jerk (zero end velocities)");
+  v.field("done_tolerance_deg", done_tolerance_deg)
+      .unit("deg")
       .range(0, 180)
-      .describe(
-          "> 0: `done` also waits until every measured joint is this close to the last waypoint");
-  s.input<JointState>("state", "measured joint state (the start of the trajectory)");
-  s.input<JointTarget>("target", "new joint-space goals (optional; a new id starts a motion)",
-                       /*optional=*/true);
-  s.output<JointCommand>("command",
-                         "position commands with velocity feed-forward on the controlled joints");
-  s.output<double>("done", "1 when the last waypoint (or target) is reached, else 0");
-  return s;
+      .doc("> 0: `done` also waits until every measured joint is this close to the last waypoint");
+}
+
+template <class V>
+void JointTrajectoryController::Ports::visit(V& v) {
+  v.port("state", state, "measured joint state (the start of the trajectory)");
+  v.port("target", target, "new joint-space goals (optional; a new id starts a motion)");
+  v.port("command", command,
+         "position commands with velocity feed-forward on the controlled joints");
+  v.port("done", done, "1 when the last waypoint (or target) is reached, else 0");
+}
+
+PluginSpec JointTrajectoryController::spec() {
+  return make_plugin_spec<Config, Ports>(
+      "joint_trajectory",
+      "Joint-space trajectories (linear or minimum-jerk) through YAML waypoints or to targets on "
+      "the `target` port; position commands with velocity feed-forward.");
 }
 
 void JointTrajectoryController::configure(NodeContext& ctx) {
+  config_ = read_config<Config>(ctx);
   model_ = robot::experiment_robot(ctx);
-  profile_ = control::parse_profile(ctx.param<std::string>("profile"));
-  tolerance_ = deg_to_rad(ctx.param<double>("done_tolerance_deg"));
+  profile_ = config_.profile;
+  tolerance_ = deg_to_rad(config_.done_tolerance_deg);
   read_waypoints(ctx);
-  state_ = &ctx.input<JointState>("state");
-  if (ctx.is_wired("target")) target_ = &ctx.input<JointTarget>("target");
-  command_ = &ctx.output<JointCommand>("command");
-  done_ = &ctx.output<double>("done");
+  bind_ports(ctx, ports_);
   const int n = model_->num_dofs();
-  command_->mode.assign(n, JointCommandMode::kNone);
-  command_->position.setZero(n);
-  command_->velocity.setZero(n);
-  *done_ = 0.0;
+  ports_.command->mode.assign(n, JointCommandMode::kNone);
+  ports_.command->position.setZero(n);
+  ports_.command->velocity.setZero(n);
+  *ports_.done = 0.0;
 }
 
-void JointTrajectoryController::read_waypoints(NodeContext& ctx) {
+void JointTrajectoryController::read_waypoints(const NodeContext& ctx) {
+  const Config& c = config_;
   std::set<int> seen;
-  for (const std::string& name : ctx.param<std::vector<std::string>>("joints")) {
+  for (const std::string& name : c.joints) {
     int dof = -1;
     try {
       dof = model_->dof_index(name);
     } catch (const InputError& e) {
-      ctx.param_error("joints", e.what());
+      config_error(ctx, c, c.joints, e.what());
     }
-    if (!seen.insert(dof).second) ctx.param_error("joints", "joint '" + name + "' is listed twice");
+    if (!seen.insert(dof).second)
+      config_error(ctx, c, c.joints, "joint '" + name + "' is listed twice");
     joint_dofs_.push_back(dof);
   }
-  const auto targets = ctx.param<std::vector<double>>("targets_deg");
-  const auto durations = ctx.param<std::vector<double>>("durations");
+  const auto& targets = c.targets_deg;
+  const auto& durations = c.durations;
   const std::size_t nj = joint_dofs_.size();
   if (!durations.empty() && nj == 0)
-    ctx.param_error("joints", "waypoints are given (durations) but no joints");
+    config_error(ctx, c, c.joints, "waypoints are given (durations) but no joints");
   if (targets.size() != durations.size() * nj)
-    ctx.param_error("targets_deg",
-                    "expected " + std::to_string(durations.size() * nj) + " values (" +
-                        std::to_string(durations.size()) + " waypoints x " + std::to_string(nj) +
-                        " joints, waypoint-major), got " + std::to_string(targets.size()));
+    config_error(ctx, c, c.targets_deg,
+                 "expected " + std::to_string(durations.size() * nj) + " values (" +
+                     std::to_string(durations.size()) + " waypoints x " + std::to_string(nj) +
+                     " joints, waypoint-major), got " + std::to_string(targets.size()));
   for (std::size_t w = 0; w < durations.size(); ++w) {
     control::JointTrajectory::Waypoint wp;
     wp.duration_s = durations[w];
@@ -108,11 +108,11 @@ void JointTrajectoryController::read_waypoints(NodeContext& ctx) {
       const double q = to_joint_units(j, targets[w * nj + k]);
       const double lo = model_->lower_limits()[d], hi = model_->upper_limits()[d];
       if (q < lo - 1e-9 || q > hi + 1e-9)
-        ctx.param_error("targets_deg",
-                        fmt::format("waypoint {}, joint '{}': {:g} is outside the joint limits "
-                                    "[{:g}, {:g}]",
-                                    w, j.name, targets[w * nj + k], from_joint_units(j, lo),
-                                    from_joint_units(j, hi)));
+        config_error(ctx, c, c.targets_deg,
+                     fmt::format("waypoint {}, joint '{}': {:g} is outside the joint limits "
+                                 "[{:g}, {:g}]",
+                                 w, j.name, targets[w * nj + k], from_joint_units(j, lo),
+                                 from_joint_units(j, hi)));
       wp.position[static_cast<Eigen::Index>(k)] = q;
     }
     waypoints_.push_back(std::move(wp));
@@ -120,7 +120,7 @@ void JointTrajectoryController::read_waypoints(NodeContext& ctx) {
 }
 
 void JointTrajectoryController::start_target(double t, const JointState& state) {
-  const JointTarget& target = *target_;
+  const JointTarget& target = *ports_.target;
   const auto n = static_cast<std::size_t>(model_->num_dofs());
   if (target.active.size() != n || static_cast<std::size_t>(target.position.size()) != n)
     throw RunError(
@@ -156,7 +156,7 @@ void JointTrajectoryController::start_target(double t, const JointState& state) 
 }
 
 void JointTrajectoryController::step(NodeContext& ctx) {
-  const JointState& state = *state_;
+  const JointState& state = *ports_.state;
   const double t = ctx.time_s();
   if (state.position.size() == 0) return;  // the world has not reported yet
   robot::check_joint_state(ctx, *model_, state.position, state.velocity);
@@ -171,7 +171,7 @@ void JointTrajectoryController::step(NodeContext& ctx) {
     reference_velocity_.resize(reference_.size());
     trajectory_.sample(t, reference_, reference_velocity_);
   }
-  if (target_ && target_->id != 0 && target_->id != last_target_id_) {
+  if (ports_.target.wired() && ports_.target->id != 0 && ports_.target->id != last_target_id_) {
     trajectory_.sample(t, reference_, reference_velocity_);  // the reference to start from
     start_target(t, state);
   }
@@ -180,7 +180,7 @@ void JointTrajectoryController::step(NodeContext& ctx) {
 
 void JointTrajectoryController::write_command(double t, const JointState& state) {
   trajectory_.sample(t, reference_, reference_velocity_);
-  JointCommand& c = *command_;
+  JointCommand& c = *ports_.command;
   std::fill(c.mode.begin(), c.mode.end(), JointCommandMode::kNone);
   bool reached = trajectory_.finished(t);
   for (std::size_t k = 0; k < active_dofs_.size(); ++k) {
@@ -192,13 +192,13 @@ void JointTrajectoryController::write_command(double t, const JointState& state)
     if (tolerance_ > 0.0 && std::abs(state.position[d] - reference_[i]) > tolerance_)
       reached = false;
   }
-  *done_ = reached ? 1.0 : 0.0;
+  *ports_.done = reached ? 1.0 : 0.0;
 }
 
 void JointTrajectoryController::finish(NodeContext& ctx) {
   ctx.report_metric("waypoints", static_cast<int>(waypoints_.size()));
   ctx.report_metric("targets_received", targets_received_);
-  ctx.report_metric("done", done_ && *done_ == 1.0);
+  ctx.report_metric("done", ports_.done.bound() && *ports_.done == 1.0);
 }
 
 }  // namespace somasim::plugins

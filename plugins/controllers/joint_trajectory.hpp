@@ -16,10 +16,13 @@
 #include <memory>
 #include <vector>
 
+#include "somasim/config.hpp"
 #include "somasim/control/joint_target.hpp"
 #include "somasim/control/trajectory.hpp"
 #include "somasim/plugin.hpp"
+#include "somasim/plugin_ports.hpp"
 #include "somasim/port_types.hpp"
+#include "somasim/robot/experiment_robot.hpp"
 #include "somasim/robot/ports.hpp"
 #include "somasim/robot/robot_model.hpp"
 
@@ -27,13 +30,32 @@ namespace somasim::plugins {
 
 class JointTrajectoryController : public Plugin {
  public:
+  struct Config {
+    robot::RobotParam robot;
+    std::vector<std::string> joints;
+    std::vector<double> targets_deg;  // [deg], prismatic joints [m]
+    std::vector<double> durations;    // [s]
+    control::Profile profile = control::Profile::kMinimumJerk;
+    double done_tolerance_deg = 0.0;  // [deg]
+    template <class V>
+    void visit(V& v);
+  };
+  struct Ports {
+    In<JointState> state;
+    OptionalIn<JointTarget> target;
+    Out<JointCommand> command;
+    Out<double> done;
+    template <class V>
+    void visit(V& v);
+  };
+
   static PluginSpec spec();
   void configure(NodeContext& ctx) override;
   void step(NodeContext& ctx) override;
   void finish(NodeContext& ctx) override;
 
  private:
-  void read_waypoints(NodeContext& ctx);
+  void read_waypoints(const NodeContext& ctx);
   void start_target(double t, const JointState& state);
   void write_command(double t, const JointState& state);
 
@@ -42,11 +64,8 @@ class JointTrajectoryController : public Plugin {
   double tolerance_ = 0.0;                                     // [rad]
   std::vector<int> joint_dofs_;                                // from `joints`
   std::vector<control::JointTrajectory::Waypoint> waypoints_;  // in joint_dofs_ order
-  // ports
-  const JointState* state_ = nullptr;
-  const JointTarget* target_ = nullptr;  // null when unwired
-  JointCommand* command_ = nullptr;
-  double* done_ = nullptr;
+  Config config_;
+  Ports ports_;
   // state
   bool started_ = false;
   std::uint64_t last_target_id_ = 0;

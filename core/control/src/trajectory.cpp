@@ -8,14 +8,10 @@
 namespace somasim::control {
 
 Profile parse_profile(const std::string& name) {
-  if (name == "linear") return Profile::kLinear;
-  if (name == "minimum_jerk") return Profile::kMinimumJerk;
+  if (const auto profile = parse_enum<Profile>(name)) return *profile;
   throw InputError("unknown trajectory profile '" + name +
-                   "'; expected 'linear' or 'minimum_jerk'" + did_you_mean(name, profile_names()));
-}
-
-std::vector<std::string> profile_names() {
-  return {"linear", "minimum_jerk"};
+                   "'; expected 'linear' or 'minimum_jerk'" +
+                   did_you_mean(name, enum_names<Profile>()));
 }
 
 ProfileSample sample_profile(Profile profile, double tau) {

@@ -11,6 +11,12 @@ ParamSpec& PluginSpec::add(const std::string& name, ParamType type) {
   return params_.back();
 }
 
+ParamSpec& PluginSpec::add_param(ParamSpec spec) {
+  SOMASIM_CHECK(find_param(spec.name) == nullptr, "parameter declared twice");
+  params_.push_back(std::move(spec));
+  return params_.back();
+}
+
 const ParamSpec* PluginSpec::find_param(const std::string& name) const {
   for (const auto& p : params_)
     if (p.name == name) return &p;

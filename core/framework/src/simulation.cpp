@@ -258,10 +258,36 @@ fs::path NodeContext::output_path(const std::string& file_name) {
 }
 
 fs::path NodeContext::output_path_param(const std::string& param) {
-  const std::string name = params().get<std::string>(param);
+  return claim_output_file(param, params().get<std::string>(param));
+}
+
+namespace {
+// Why `relative` (normalised, relative to the run folder) is one of the run's own files, or "".
+std::string run_file_problem(const std::string& relative, const Experiment& exp) {
+  static const char* const kRunFiles[] = {"metrics.json", "log.txt", "experiment.resolved.yaml",
+                                          "manifest.json", "figures"};
+  for (const char* f : kRunFiles)
+    if (relative == f) return "is one of the run folder's own files";
+  if (relative.rfind("figures/", 0) == 0) return "is inside the run's figures/ folder";
+  for (const RecordSpec& r : exp.records)
+    if (relative == r.node + "." + r.port + ".csv")
+      return "is the recorder file of '" + r.node + "." + r.port + "'";
+  return "";
+}
+}  // namespace
+
+fs::path NodeContext::claim_output_file(const std::string& param, const std::string& name) {
   if (const std::string why = containment_problem(name); !why.empty())
     param_error(param, "output file '" + name + "' " + why +
                            "; expected a file name relative to the run folder");
+  const std::string relative = fs::path(name).lexically_normal().generic_string();
+  if (const std::string why = run_file_problem(relative, rt_.sim.experiment()); !why.empty())
+    param_error(param, "output file '" + name + "' " + why + "; choose another name");
+  const std::string owner = "node '" + rt_.spec.name + "', key 'params." + param + "'";
+  const auto [it, inserted] = rt_.sim.claimed_outputs_.emplace(relative, owner);
+  if (!inserted && it->second != owner)
+    param_error(param, "output file '" + name + "' is written by " + it->second +
+                           " already; choose another name");
   return output_path(name);
 }
 

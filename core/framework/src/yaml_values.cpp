@@ -153,6 +153,11 @@ std::optional<ParamValue> to_string_list(const YAML::Node& node, const ParamSpec
     problem = fmt::format("expected {}, got {} words", expectation(spec), list.size());
     return std::nullopt;
   }
+  if (spec.max_list_size && list.size() > *spec.max_list_size) {
+    problem = fmt::format("expected {} of at most {} words, got {}", expectation(spec),
+                          *spec.max_list_size, list.size());
+    return std::nullopt;
+  }
   return list;
 }
 
@@ -192,6 +197,11 @@ std::optional<ParamValue> to_param_value(const YAML::Node& node, const ParamSpec
       problem = fmt::format("expected {}, got {} numbers", expectation(spec), list.size());
       return std::nullopt;
     }
+    if (spec.max_list_size && list.size() > *spec.max_list_size) {
+      problem = fmt::format("expected {} of at most {} numbers, got {}", expectation(spec),
+                            *spec.max_list_size, list.size());
+      return std::nullopt;
+    }
     return list;
   }
   if (spec.type == ParamType::String && spec.map_as_text && node.IsMap()) {
@@ -221,6 +231,13 @@ std::optional<ParamValue> to_param_value(const YAML::Node& node, const ParamSpec
       break;
     case ParamType::Int:
       if (auto i = parse_int(text)) {
+        if ((spec.int_min && *i < *spec.int_min) || (spec.int_max && *i > *spec.int_max)) {
+          problem = fmt::format("value {} does not fit the parameter's integer type; expected {} "
+                                "in [{}, {}]",
+                                text, expectation(spec), spec.int_min.value_or(INT64_MIN),
+                                spec.int_max.value_or(INT64_MAX));
+          return std::nullopt;
+        }
         if (!check_number(static_cast<double>(*i), spec, text, problem)) return std::nullopt;
         return *i;
       }

@@ -6,10 +6,7 @@
 namespace somasim::robot {
 
 ParamSpec& add_robot_param(PluginSpec& spec, const std::string& name) {
-  return spec.add_string(name)
-      .defaults(std::string())
-      .describe(
-          "the robot: a name from the experiment's 'robots:' section (empty: its only robot)");
+  return spec.add_string(name).defaults(std::string()).describe(kRobotParamDoc);
 }
 
 std::shared_ptr<const RobotModel> experiment_robot(NodeContext& ctx, const std::string& param) {

@@ -36,7 +36,11 @@ struct ParamSpec {
   std::optional<ParamValue> default_value;  ///< nullopt: the parameter is required
   std::optional<double> min, max;           ///< inclusive range for numbers (each list element)
   std::vector<std::string> choices;  ///< allowed values of a String (StringList element), if fixed
-  std::optional<std::size_t> list_size;  ///< required length of a list
+  std::optional<std::size_t> list_size;      ///< required length of a list
+  std::optional<std::size_t> max_list_size;  ///< longest list accepted
+  /// Integers: the range the member's type holds (set by config fields; not shown in docs,
+  /// where min/max give the meaningful range).
+  std::optional<std::int64_t> int_min, int_max;
   /// A String that is "name: value" text (e.g. joint angles): a flat YAML map is accepted too and
   /// read as the text "k1: v1, k2: v2" (so `--set 'P={a: 1, b: 2}'` works without inner quotes).
   bool map_as_text = false;

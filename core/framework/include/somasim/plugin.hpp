@@ -78,6 +78,11 @@ class NodeContext {
   /// configure()): InputError naming the node and the parameter if it would leave the run
   /// folder, so a bad name is found before the run, not when the file is written.
   std::filesystem::path output_path_param(const std::string& param);
+  /// The path in the run folder of output file `file_name`, named by parameter `param`, claimed
+  /// for it: InputError located at the parameter if the name leaves the run folder, is one of
+  /// the run's own files (metrics.json, log.txt, experiment.resolved.yaml, manifest.json, a
+  /// recorder CSV, figures/) or is claimed by another parameter of the run already.
+  std::filesystem::path claim_output_file(const std::string& param, const std::string& file_name);
   /// Resolves a path given in a parameter: relative paths are relative to the experiment file.
   std::filesystem::path resolve_input_path(const std::string& path) const;
 

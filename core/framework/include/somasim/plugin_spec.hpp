@@ -35,6 +35,8 @@ class PluginSpec {
   ParamSpec& add_string(const std::string& name) { return add(name, ParamType::String); }
   ParamSpec& add_list(const std::string& name) { return add(name, ParamType::DoubleList); }
   ParamSpec& add_string_list(const std::string& name) { return add(name, ParamType::StringList); }
+  /// Adds a whole declaration (config structs generate these, see somasim/config.hpp).
+  ParamSpec& add_param(ParamSpec spec);
 
   template <class T>
   PluginSpec& input(std::string name, std::string doc, bool optional = false) {

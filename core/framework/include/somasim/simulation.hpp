@@ -85,6 +85,8 @@ class Simulation {
   std::vector<HarnessPort> harness_ports_;
   std::vector<std::unique_ptr<PortRecorder>> recorders_;
   std::map<std::string, std::shared_ptr<const void>> run_shared_;  // NodeContext::run_shared
+  // Output files named by parameters: run-folder-relative file -> "node 'n', key 'k'".
+  std::map<std::string, std::string> claimed_outputs_;
   nlohmann::ordered_json metrics_ = nlohmann::ordered_json::object();
   std::int64_t tick_ = 0;
   std::int64_t total_ticks_ = 0;

@@ -4,10 +4,13 @@
 ///
 /// Units: positions [rad] (prismatic joints [m]), velocities [rad/s], times [s]. A trajectory
 /// covers any subset of the robot's joints; its vectors are in the caller's joint order.
+#include <span>
 #include <string>
 #include <vector>
 
 #include <Eigen/Core>
+
+#include "somasim/name_table.hpp"
 
 namespace somasim::control {
 
@@ -17,10 +20,15 @@ namespace somasim::control {
 ///    acceleration at both ends of every segment.
 enum class Profile { kLinear, kMinimumJerk };
 
-/// "linear" or "minimum_jerk" (InputError otherwise).
+inline constexpr NamedValue<Profile> kProfileNames[] = {{Profile::kLinear, "linear"},
+                                                        {Profile::kMinimumJerk, "minimum_jerk"}};
+/// The profiles' names: "linear", "minimum_jerk".
+constexpr std::span<const NamedValue<Profile>> name_table(Profile) {
+  return kProfileNames;
+}
+
+/// The profile named `name` (InputError otherwise, with a suggestion).
 Profile parse_profile(const std::string& name);
-/// The names accepted by parse_profile.
-std::vector<std::string> profile_names();
 
 /// Normalised progress s ∈ [0, 1] and its derivative ds/dτ at τ (clamped to [0, 1]).
 struct ProfileSample {

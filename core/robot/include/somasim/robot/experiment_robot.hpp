@@ -13,6 +13,20 @@
 
 namespace somasim::robot {
 
+/// What the `robot` parameter means (its documentation).
+inline constexpr const char* kRobotParamDoc =
+    "the robot: a name from the experiment's 'robots:' section (empty: its only robot)";
+
+/// The `robot` parameter as a config block (somasim/config.hpp): `v.block(robot)` declares it,
+/// experiment_robot(ctx) loads the model it names.
+struct RobotParam {
+  std::string name;  ///< "" picks the experiment's only robot
+  template <class V>
+  void visit(V& v) {
+    v.field("robot", name).doc(kRobotParamDoc);
+  }
+};
+
 /// Declares the string parameter `name` (default "robot") that names the robot a plugin uses.
 ParamSpec& add_robot_param(PluginSpec& spec, const std::string& name = "robot");
 
