@@ -2,36 +2,39 @@
 
 namespace somasim::plugins {
 
-PluginSpec JointCommandMux::spec() {
-  PluginSpec s("joint_command_mux",
-               "Merges up to four controllers' joint commands (in0..in3) into one.");
-  s.add_string("conflict")
-      .defaults(std::string("last_wins"))
-      .one_of({"last_wins", "error"})
-      .describe(
+template <class V>
+void JointCommandMux::Config::visit(V& v) {
+  v.field("conflict", conflict)
+      .doc(
           "two inputs commanding the same joint: last_wins (the higher-numbered input wins) or "
           "error (the run stops)");
+}
+
+template <class V>
+void JointCommandMux::Ports::visit(V& v) {
   for (int i = 0; i < kInputs; ++i)
-    s.input<JointCommand>("in" + std::to_string(i),
-                          "joint commands of a controller (optional; later inputs win)",
-                          /*optional=*/true);
-  s.output<JointCommand>("command", "the merged commands");
-  return s;
+    v.port("in" + std::to_string(i), in[static_cast<std::size_t>(i)],
+           "joint commands of a controller (optional; later inputs win)");
+  v.port("command", command, "the merged commands");
+}
+
+PluginSpec JointCommandMux::spec() {
+  return make_plugin_spec<Config, Ports>(
+      "joint_command_mux", "Merges up to four controllers' joint commands (in0..in3) into one.");
 }
 
 void JointCommandMux::configure(NodeContext& ctx) {
-  conflict_ = ctx.param<std::string>("conflict") == "error" ? control::MergeConflict::kError
-                                                            : control::MergeConflict::kLastWins;
+  config_ = read_config<Config>(ctx);
+  bind_ports(ctx, ports_);
   for (int i = 0; i < kInputs; ++i) {
-    const std::string port = "in" + std::to_string(i);
-    inputs_.push_back(ctx.is_wired(port) ? &ctx.input<JointCommand>(port) : nullptr);
-    names_.push_back(port);
+    inputs_.push_back(ports_.in[static_cast<std::size_t>(i)].get());
+    names_.push_back("in" + std::to_string(i));
   }
-  output_ = &ctx.output<JointCommand>("command");
 }
 
 void JointCommandMux::step(NodeContext& ctx) {
-  const std::string problem = control::merge_joint_commands(inputs_, conflict_, *output_, names_);
+  const std::string problem =
+      control::merge_joint_commands(inputs_, config_.conflict, *ports_.command, names_);
   if (!problem.empty()) throw RunError(ctx.node_name() + ": " + problem);
 }
 

@@ -6,23 +6,36 @@
 // (empty) are ignored; dofs nobody commands get mode kNone.
 #include <array>
 
+#include "somasim/config.hpp"
 #include "somasim/control/joint_command_merge.hpp"
 #include "somasim/plugin.hpp"
+#include "somasim/plugin_ports.hpp"
 
 namespace somasim::plugins {
 
 class JointCommandMux : public Plugin {
  public:
   static constexpr int kInputs = 4;
+  struct Config {
+    control::MergeConflict conflict = control::MergeConflict::kLastWins;
+    template <class V>
+    void visit(V& v);
+  };
+  struct Ports {
+    std::array<OptionalIn<JointCommand>, kInputs> in;  // in0..in3
+    Out<JointCommand> command;
+    template <class V>
+    void visit(V& v);
+  };
   static PluginSpec spec();
   void configure(NodeContext& ctx) override;
   void step(NodeContext& ctx) override;
 
  private:
-  control::MergeConflict conflict_ = control::MergeConflict::kLastWins;
+  Config config_;
+  Ports ports_;
   std::vector<const JointCommand*> inputs_;  // null where unwired
   std::vector<std::string> names_;
-  JointCommand* output_ = nullptr;
 };
 
 }  // namespace somasim::plugins

@@ -9,81 +9,81 @@
 
 namespace somasim::plugins {
 
-PluginSpec BelievedKinematics::spec() {
-  PluginSpec s("believed_kinematics",
-               "What the robot believes of its own body: the true joint values plus injected "
-               "offsets and encoder noise, the link poses and skin taxel poses they give "
-               "(forward kinematics of the robot model).");
-  robot::add_robot_param(s);
-  s.add_string("joint_offsets_deg")
-      .accepts_map_as_text()
-      .defaults(std::string(""))
-      .describe(
+template <class V>
+void BelievedKinematics::Config::visit(V& v) {
+  v.block(robot);
+  v.field("joint_offsets_deg", joint_offsets_deg)
+      .map_as_text()
+      .doc(
           "believed-kinematics error, 'joint: value, ...' [deg] (prismatic: [m]) added to the "
           "true joint values");
-  s.add_double("encoder_noise_deg")
-      .unit_is("deg")
-      .defaults(0.0)
+  v.field("encoder_noise_deg", encoder_noise_deg)
+      .unit("deg")
       .range(0, 90)
-      .describe("Gaussian encoder noise (σ per revolute joint, drawn every tick)");
-  s.input<JointState>("state", "true joint values (e.g. bullet_world.joint_state)");
-  s.input<SkinTaxels>("taxels",
-                      "true skin taxel poses (e.g. skin.taxels); their link-frame fields are used",
-                      /*optional=*/true);
-  s.output<JointState>("state",
-                       "believed joint values: true + offsets + noise; velocities as measured");
-  s.output<LinkPoses>("link_poses", "link poses by the believed kinematics (root <- link)");
-  s.output<SkinTaxels>("taxels",
-                       "the skin taxels posed by the believed kinematics (root frame; link-frame "
-                       "fields copied)");
-  return s;
+      .doc("Gaussian encoder noise (σ per revolute joint, drawn every tick)");
+}
+
+template <class V>
+void BelievedKinematics::Ports::visit(V& v) {
+  v.port("state", true_state, "true joint values (e.g. bullet_world.joint_state)");
+  v.port("taxels", true_taxels,
+         "true skin taxel poses (e.g. skin.taxels); their link-frame fields are used");
+  v.port("state", state, "believed joint values: true + offsets + noise; velocities as measured");
+  v.port("link_poses", link_poses, "link poses by the believed kinematics (root <- link)");
+  v.port("taxels", taxels,
+         "the skin taxels posed by the believed kinematics (root frame; link-frame fields copied)");
+}
+
+PluginSpec BelievedKinematics::spec() {
+  return make_plugin_spec<Config, Ports>(
+      "believed_kinematics",
+      "What the robot believes of its own body: the true joint values plus injected offsets and "
+      "encoder noise, the link poses and skin taxel poses they give (forward kinematics of the "
+      "robot model).");
 }
 
 void BelievedKinematics::configure(NodeContext& ctx) {
+  const auto config = read_config<Config>(ctx);
   model_ = robot::experiment_robot(ctx);
   try {
-    offsets_ = robot::parse_joint_offsets(*model_, ctx.param<std::string>("joint_offsets_deg"));
+    offsets_ = robot::parse_joint_offsets(*model_, config.joint_offsets_deg);
   } catch (const InputError& e) {
-    ctx.param_error("joint_offsets_deg", e.what());
+    config_error(ctx, config, config.joint_offsets_deg, e.what());
   }
-  const double sigma = deg_to_rad(ctx.param<double>("encoder_noise_deg"));
+  const double sigma = deg_to_rad(config.encoder_noise_deg);
   for (int d = 0; d < model_->num_dofs(); ++d)
     noise_sigma_.push_back(
         model_->joint(model_->dof_joint(d)).type == robot::JointType::Revolute ? sigma : 0.0);
   data_ = std::make_unique<robot::RobotData>(*model_);
-  true_state_ = &ctx.input<JointState>("state");
-  true_taxels_ = ctx.is_wired("taxels") ? &ctx.input<SkinTaxels>("taxels") : nullptr;
-  state_ = &ctx.output<JointState>("state");
-  link_poses_ = &ctx.output<LinkPoses>("link_poses");
-  taxels_ = &ctx.output<SkinTaxels>("taxels");
+  bind_ports(ctx, ports_);
 }
 
 void BelievedKinematics::step(NodeContext& ctx) {
-  const Eigen::VectorXd& q = true_state_->position;
+  const Eigen::VectorXd& q = ports_.true_state->position;
   if (q.size() == 0) return;  // nothing measured yet: nothing believed yet
   const int n = model_->num_dofs();
   if (q.size() != n)
     throw RunError("input 'state': expected " + std::to_string(n) + " joint values (robot '" +
                    model_->name() + "'), got " + std::to_string(q.size()));
-  state_->position = q + offsets_;
+  ports_.state->position = q + offsets_;
   std::normal_distribution<double> gauss(0.0, 1.0);
   for (int d = 0; d < n; ++d)
     if (noise_sigma_[static_cast<std::size_t>(d)] > 0.0)
-      state_->position[d] += noise_sigma_[static_cast<std::size_t>(d)] * gauss(ctx.rng());
-  state_->velocity = true_state_->velocity;
-  robot::forward_kinematics(*model_, *data_, state_->position);
-  link_poses_->poses = data_->link_poses;
-  if (true_taxels_) pose_taxels();
+      ports_.state->position[d] += noise_sigma_[static_cast<std::size_t>(d)] * gauss(ctx.rng());
+  ports_.state->velocity = ports_.true_state->velocity;
+  robot::forward_kinematics(*model_, *data_, ports_.state->position);
+  ports_.link_poses->poses = data_->link_poses;
+  if (ports_.true_taxels) pose_taxels();
 }
 
 void BelievedKinematics::pose_taxels() {
-  const auto& parts = true_taxels_->parts;
-  taxels_->parts.resize(parts.size());
+  const auto& parts = ports_.true_taxels->parts;
+  ports_.taxels->parts.resize(parts.size());
   part_links_.resize(parts.size(), -1);
   part_link_names_.resize(parts.size());
   for (std::size_t i = 0; i < parts.size(); ++i) {
     const SkinPart& in = parts[i];
-    SkinPart& out = taxels_->parts[i];
+    SkinPart& out = ports_.taxels->parts[i];
     if (part_links_[i] < 0 || part_link_names_[i] != in.link) {
       const int link = model_->find_link(in.link);
       if (link < 0)

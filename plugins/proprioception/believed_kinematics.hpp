@@ -12,7 +12,10 @@
 #include <memory>
 #include <vector>
 
+#include "somasim/config.hpp"
 #include "somasim/plugin.hpp"
+#include "somasim/plugin_ports.hpp"
+#include "somasim/robot/experiment_robot.hpp"
 #include "somasim/robot/kinematics.hpp"
 #include "somasim/robot/ports.hpp"
 #include "somasim/robot/robot_model.hpp"
@@ -22,6 +25,22 @@ namespace somasim::plugins {
 
 class BelievedKinematics : public Plugin {
  public:
+  struct Config {
+    robot::RobotParam robot;
+    std::string joint_offsets_deg;   // "joint: value, ..." [deg] (prismatic [m])
+    double encoder_noise_deg = 0.0;  // [deg]
+    template <class V>
+    void visit(V& v);
+  };
+  struct Ports {
+    In<JointState> true_state;
+    OptionalIn<SkinTaxels> true_taxels;
+    Out<JointState> state;
+    Out<LinkPoses> link_poses;
+    Out<SkinTaxels> taxels;
+    template <class V>
+    void visit(V& v);
+  };
   static PluginSpec spec();
   void configure(NodeContext& ctx) override;
   void step(NodeContext& ctx) override;
@@ -35,11 +54,7 @@ class BelievedKinematics : public Plugin {
   std::vector<double> noise_sigma_;           // per dof [rad] (0 for prismatic joints)
   std::vector<int> part_links_;               // link index per taxels part (cached by name)
   std::vector<std::string> part_link_names_;  // the names they were resolved from
-  const JointState* true_state_ = nullptr;
-  const SkinTaxels* true_taxels_ = nullptr;  // optional
-  JointState* state_ = nullptr;
-  LinkPoses* link_poses_ = nullptr;
-  SkinTaxels* taxels_ = nullptr;
+  Ports ports_;
 };
 
 }  // namespace somasim::plugins

@@ -96,7 +96,7 @@ TEST_F(Cli, PluginsReportsRejectedLibraries) {
                        "rejected " +
                        kOldApiLib +
                        ": built for plugin interface 'somasim-plugin-api/0', this somasim needs "
-                       "'somasim-plugin-api/4' (rebuild the plugin)\n");
+                       "'somasim-plugin-api/5' (rebuild the plugin)\n");
 }
 
 TEST_F(Cli, DescribeShowsParamsAndPorts) {

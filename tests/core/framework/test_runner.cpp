@@ -88,7 +88,7 @@ TEST(Runner, RunFolderHasEveryOutput) {
   EXPECT_TRUE(m["wall_time_s"].is_number());
   EXPECT_TRUE(m["real_time_factor"].is_number());
   EXPECT_EQ(m["versions"]["somasim"], "0.1.0");
-  EXPECT_EQ(m["versions"]["plugin_interface"], "somasim-plugin-api/4");
+  EXPECT_EQ(m["versions"]["plugin_interface"], "somasim-plugin-api/5");
   EXPECT_TRUE(m["versions"]["compiler"].is_string());
   // Metric names reported by one node stay plain; clashes are qualified by the node.
   EXPECT_EQ(m["c.steps"], 5);

@@ -43,6 +43,7 @@ template <class T>
 class OptionalIn {
  public:
   bool wired() const { return value_ != nullptr; }
+  explicit operator bool() const { return wired(); }
   const T* get() const { return value_; }  ///< nullptr when unwired
   const T& operator*() const { return *value_; }
   const T* operator->() const { return value_; }

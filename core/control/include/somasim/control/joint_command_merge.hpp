@@ -1,8 +1,11 @@
 #pragma once
 /// @file
 /// Merging the JointCommands of several controllers into one (joint_command_mux).
+#include <span>
+
 #include <string>
 #include <vector>
+#include "somasim/name_table.hpp"
 
 #include "somasim/robot/ports.hpp"
 
@@ -13,6 +16,12 @@ enum class MergeConflict {
   kLastWins,  ///< the later input in the list wins
   kError,     ///< merge_joint_commands() reports the conflict
 };
+inline constexpr NamedValue<MergeConflict> kMergeConflictNames[] = {
+    {MergeConflict::kLastWins, "last_wins"}, {MergeConflict::kError, "error"}};
+/// The conflict policies' names: "last_wins", "error".
+constexpr std::span<const NamedValue<MergeConflict>> name_table(MergeConflict) {
+  return kMergeConflictNames;
+}
 
 /// Merges `inputs` in order into `out` (resized to the inputs' dof count). Null inputs and
 /// inputs with no dofs (a controller that has not run yet) are skipped; a dof no input commands
