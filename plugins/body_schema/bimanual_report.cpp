@@ -19,59 +19,56 @@ void put_mean_sd(NodeContext& ctx, const std::string& key, const std::vector<dou
 
 }  // namespace
 
-PluginSpec BimanualReport::spec() {
-  PluginSpec s("bimanual_report",
-               "Positioning error of a bimanual reach (fingertips touching, palms a given "
-               "distance apart) from the world's true link poses, at the end of the open and of "
-               "the closed loop of every movement.");
-  robot::add_robot_param(s);
-  s.add_string_list("fingertips")
-      .defaults(std::vector<std::string>{"r_index_tip", "l_index_tip"})
-      .size(2)
-      .describe("the two frames that should touch");
-  s.add_string_list("palms")
-      .defaults(std::vector<std::string>{"r_palm", "l_palm"})
-      .size(2)
-      .describe("the two palm frames");
-  s.add_double("palm_distance")
-      .defaults(0.12)
-      .unit_is("m")
+template <class V>
+void BimanualReport::Config::visit(V& v) {
+  v.block(robot);
+  v.field("fingertips", fingertips).size(2).doc("the two frames that should touch");
+  v.field("palms", palms).size(2).doc("the two palm frames");
+  v.field("palm_distance", palm_distance)
+      .unit("m")
       .at_least(0.0)
-      .describe("desired distance between the palm frames' origins");
-  s.add_int("open_loop_frames")
-      .defaults(std::int64_t{120})
-      .at_least(1)
-      .describe("as the reach controllers'");
-  s.add_int("closed_loop_frames")
-      .defaults(std::int64_t{50})
-      .at_least(0)
-      .describe("as the reach controllers'");
-  s.input<LinkPoses>("true_link_poses", "the world's link poses");
-  s.input<ReachPhase>("phase", "one of the (synchronous) reach controllers' phase");
-  return s;
+      .doc("desired distance between the palm frames' origins");
+  v.field("open_loop_frames", open_loop_frames).at_least(1).doc("as the reach controllers'");
+  v.field("closed_loop_frames", closed_loop_frames).at_least(0).doc("as the reach controllers'");
+}
+
+template <class V>
+void BimanualReport::Ports::visit(V& v) {
+  v.port("true_link_poses", true_link_poses, "the world's link poses");
+  v.port("phase", phase, "one of the (synchronous) reach controllers' phase");
+}
+
+PluginSpec BimanualReport::spec() {
+  return make_plugin_spec<Config, Ports>(
+      "bimanual_report",
+      "Positioning error of a bimanual reach (fingertips touching, palms a given "
+      "distance apart) from the world's true link poses, at the end of the open and of "
+      "the closed loop of every movement.");
 }
 
 void BimanualReport::configure(NodeContext& ctx) {
+  config_ = read_config<Config>(ctx);
+  bind_ports(ctx, ports_);
   model_ = robot::experiment_robot(ctx);
-  const auto tips = ctx.param<std::vector<std::string>>("fingertips");
-  const auto palms = ctx.param<std::vector<std::string>>("palms");
+  const auto tips = config_.fingertips;
+  const auto palms = config_.palms;
   for (int k = 0; k < 2; ++k) {
     try {
       tips_[k] = model_->frame_ref(tips[static_cast<std::size_t>(k)]);
     } catch (const InputError& e) {
-      ctx.param_error("fingertips", e.what());
+      config_error(ctx, config_, config_.fingertips, e.what());
     }
     try {
       palms_[k] = model_->frame_ref(palms[static_cast<std::size_t>(k)]);
     } catch (const InputError& e) {
-      ctx.param_error("palms", e.what());
+      config_error(ctx, config_, config_.palms, e.what());
     }
   }
-  palm_distance_ = ctx.param<double>("palm_distance");
-  open_frames_ = ctx.param<int>("open_loop_frames");
-  closed_frames_ = ctx.param<int>("closed_loop_frames");
-  poses_ = &ctx.input<LinkPoses>("true_link_poses");
-  phase_ = &ctx.input<ReachPhase>("phase");
+  palm_distance_ = config_.palm_distance;
+  open_frames_ = config_.open_loop_frames;
+  closed_frames_ = config_.closed_loop_frames;
+  poses_ = &ports_.true_link_poses.get();
+  phase_ = &ports_.phase.get();
 }
 
 void BimanualReport::step(NodeContext&) {

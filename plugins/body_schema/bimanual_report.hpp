@@ -8,7 +8,10 @@
 #include <vector>
 
 #include "somasim/body_schema/ports.hpp"
+#include "somasim/config.hpp"
 #include "somasim/plugin.hpp"
+#include "somasim/plugin_ports.hpp"
+#include "somasim/robot/experiment_robot.hpp"
 #include "somasim/robot/ports.hpp"
 #include "somasim/robot/robot_model.hpp"
 
@@ -16,12 +19,30 @@ namespace somasim::plugins {
 
 class BimanualReport : public Plugin {
  public:
+  struct Config {
+    robot::RobotParam robot;
+    std::vector<std::string> fingertips{"r_index_tip", "l_index_tip"};
+    std::vector<std::string> palms{"r_palm", "l_palm"};
+    double palm_distance = 0.12;  // [m]
+    int open_loop_frames = 120;
+    int closed_loop_frames = 50;
+    template <class V>
+    void visit(V& v);
+  };
+  struct Ports {
+    In<LinkPoses> true_link_poses;
+    In<ReachPhase> phase;
+    template <class V>
+    void visit(V& v);
+  };
   static PluginSpec spec();
   void configure(NodeContext& ctx) override;
   void step(NodeContext& ctx) override;
   void finish(NodeContext& ctx) override;
 
  private:
+  Config config_;
+  Ports ports_;
   std::shared_ptr<const robot::RobotModel> model_;
   robot::FrameRef tips_[2], palms_[2];
   double palm_distance_ = 0.12;

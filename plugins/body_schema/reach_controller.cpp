@@ -24,105 +24,106 @@ Eigen::Isometry3d pose_from(const std::vector<double>& v, std::size_t i) {
 
 }  // namespace
 
-PluginSpec ReachController::spec() {
-  PluginSpec s("reach_controller",
-               "Reaching with an adapted body schema (Vicente et al. 2016): per movement, a start "
-               "posture, an open loop (linear joint trajectory to the nominal IK solution of the "
-               "desired palm pose, in the left-eye frame) and a closed loop (position-based "
-               "visual servoing q' = -gain J+(θ + β̂) e); errors against the truth, figures.");
-  robot::add_robot_param(s);
-  s.add_string("camera").defaults(std::string("left_eye")).describe("the eye frame of the targets");
-  s.add_string("palm_frame").defaults(std::string("r_palm")).describe("the controlled frame");
-  s.add_string("arm_base")
-      .defaults(std::string("chest"))
-      .describe("link the arm chain starts from: the joints between it and the palm move");
-  s.add_list("targets")
-      .defaults(std::vector<double>{})
-      .describe(
+template <class V>
+void ReachController::Config::visit(V& v) {
+  v.block(robot);
+  v.field("camera", camera).doc("the eye frame of the targets");
+  v.field("palm_frame", palm_frame).doc("the controlled frame");
+  v.field("arm_base", arm_base)
+      .doc("link the arm chain starts from: the joints between it and the palm move");
+  v.field("targets", targets)
+      .doc(
           "desired palm poses in the eye frame, 6 numbers each: x y z [m], rotation "
           "vector rx ry rz [deg]");
-  s.add_int("starts_per_target")
-      .defaults(std::int64_t{10})
+  v.field("starts_per_target", starts_per_target)
       .range(1, 1000)
-      .describe("start postures per target (drawn from the node's random stream)");
-  s.add_int("repetitions").defaults(std::int64_t{3}).range(1, 1000).describe("of each movement");
-  s.add_list("start_distance")
+      .doc("start postures per target (drawn from the node's random stream)");
+  v.field("repetitions", repetitions).range(1, 1000).doc("of each movement");
+  v.field("start_distance", start_distance)
       .size(2)
-      .unit_is("m")
-      .defaults(std::vector<double>{0.06, 0.12})
-      .describe("distance of the start palm position from the target's, uniform in [lo, hi]");
-  s.add_double("start_rotation_deg")
-      .defaults(15.0)
+      .unit("m")
+      .doc("distance of the start palm position from the target's, uniform in [lo, hi]");
+  v.field("start_rotation_deg", start_rotation_deg)
       .range(0.0, 90.0)
-      .describe("largest rotation of the start palm orientation from the target's");
-  s.add_int("to_start_frames")
-      .defaults(std::int64_t{20})
+      .doc("largest rotation of the start palm orientation from the target's");
+  v.field("to_start_frames", to_start_frames)
       .range(2, 100000)
-      .describe("frames to move to a start posture and settle (not observed)");
-  s.add_int("open_loop_frames").defaults(std::int64_t{120}).range(1, 100000).describe("");
-  s.add_int("closed_loop_frames").defaults(std::int64_t{50}).range(0, 100000).describe("");
-  s.add_double("gain").defaults(5.0).unit_is("1/s").at_least(0.0).describe("λ of the servo");
-  s.add_bool("adaptation")
-      .defaults(true)
-      .describe("closed loop with K(θ + β̂) (true) or the nominal model K(θ) (false)");
-  s.add_string("csv")
-      .defaults(std::string("reach_frames.csv"))
-      .describe("per-frame errors in the run folder ('' = none)");
-  s.input<JointState>("joint_state", "encoder readings θ");
-  s.input<BodySchemaEstimate>("estimate", "the body_schema_filter's estimate (wire delayed)", true);
-  s.input<LinkPoses>("true_link_poses", "the world's link poses (the truth, for the errors)", true);
-  s.output<JointCommand>("command", "position targets of the arm joints (encoder values)");
-  s.output<ReachPhase>("phase", "movement, stage and frame (wire to the filter's phase)");
-  return s;
+      .doc("frames to move to a start posture and settle (not observed)");
+  v.field("open_loop_frames", open_loop_frames).range(1, 100000).doc("");
+  v.field("closed_loop_frames", closed_loop_frames).range(0, 100000).doc("");
+  v.field("gain", gain).unit("1/s").at_least(0.0).doc("λ of the servo");
+  v.field("adaptation", adaptation)
+      .doc("closed loop with K(θ + β̂) (true) or the nominal model K(θ) (false)");
+  v.field("csv", csv).doc("per-frame errors in the run folder ('' = none)");
+}
+
+template <class V>
+void ReachController::Ports::visit(V& v) {
+  v.port("joint_state", joint_state, "encoder readings θ");
+  v.port("estimate", estimate, "the body_schema_filter's estimate (wire delayed)");
+  v.port("true_link_poses", true_link_poses, "the world's link poses (the truth, for the errors)");
+  v.port("command", command, "position targets of the arm joints (encoder values)");
+  v.port("phase", phase, "movement, stage and frame (wire to the filter's phase)");
+}
+
+PluginSpec ReachController::spec() {
+  return make_plugin_spec<Config, Ports>(
+      "reach_controller",
+      "Reaching with an adapted body schema (Vicente et al. 2016): per movement, a start "
+      "posture, an open loop (linear joint trajectory to the nominal IK solution of the "
+      "desired palm pose, in the left-eye frame) and a closed loop (position-based "
+      "visual servoing q' = -gain J+(θ + β̂) e); errors against the truth, figures.");
 }
 
 void ReachController::configure(NodeContext& ctx) {
+  config_ = read_config<Config>(ctx);
+  bind_ports(ctx, ports_);
   model_ = robot::experiment_robot(ctx);
   try {
-    eye_hand_ = std::make_unique<body_schema::EyeHand>(model_, ctx.param<std::string>("camera"),
-                                                       ctx.param<std::string>("palm_frame"),
-                                                       ctx.param<std::string>("arm_base"));
+    eye_hand_ = std::make_unique<body_schema::EyeHand>(model_, config_.camera, config_.palm_frame,
+                                                       config_.arm_base);
   } catch (const InputError& e) {
-    ctx.param_error("palm_frame", e.what());
+    config_error(ctx, config_, config_.palm_frame, e.what());
   }
-  const auto targets = ctx.param<std::vector<double>>("targets");
+  const auto targets = config_.targets;
   if (targets.empty() || targets.size() % 6 != 0)
-    ctx.param_error("targets", fmt::format("expected 6 numbers per target (x y z [m], rx ry rz "
-                                           "[deg]), got {} numbers",
-                                           targets.size()));
+    config_error(ctx, config_, config_.targets,
+                 fmt::format("expected 6 numbers per target (x y z [m], rx ry rz "
+                             "[deg]), got {} numbers",
+                             targets.size()));
   for (std::size_t i = 0; i < targets.size(); i += 6)
     targets_.push_back({pose_from(targets, i), {}, {}});
-  starts_per_target_ = ctx.param<int>("starts_per_target");
-  repetitions_ = ctx.param<int>("repetitions");
-  start_distance_ = ctx.param<std::vector<double>>("start_distance");
+  starts_per_target_ = config_.starts_per_target;
+  repetitions_ = config_.repetitions;
+  start_distance_ = config_.start_distance;
   if (!(start_distance_[0] >= 0 && start_distance_[0] <= start_distance_[1]))
-    ctx.param_error("start_distance", "expected 0 <= lo <= hi");
-  start_rotation_deg_ = ctx.param<double>("start_rotation_deg");
-  to_start_frames_ = ctx.param<int>("to_start_frames");
-  open_frames_ = ctx.param<int>("open_loop_frames");
-  closed_frames_ = ctx.param<int>("closed_loop_frames");
-  gain_ = ctx.param<double>("gain");
-  adapt_ = ctx.param<bool>("adaptation");
-  csv_name_ = ctx.param<std::string>("csv");
-  if (!csv_name_.empty()) csv_path_ = ctx.output_path_param("csv");
+    config_error(ctx, config_, config_.start_distance, "expected 0 <= lo <= hi");
+  start_rotation_deg_ = config_.start_rotation_deg;
+  to_start_frames_ = config_.to_start_frames;
+  open_frames_ = config_.open_loop_frames;
+  closed_frames_ = config_.closed_loop_frames;
+  gain_ = config_.gain;
+  adapt_ = config_.adaptation;
+  csv_name_ = config_.csv.name;
+  if (!csv_name_.empty()) csv_path_ = config_.csv.path;
   movements_ = static_cast<int>(targets_.size()) * starts_per_target_ * repetitions_;
 
-  joint_state_ = &ctx.input<JointState>("joint_state");
-  if (ctx.is_wired("estimate")) estimate_ = &ctx.input<BodySchemaEstimate>("estimate");
-  if (ctx.is_wired("true_link_poses")) true_poses_ = &ctx.input<LinkPoses>("true_link_poses");
-  command_ = &ctx.output<JointCommand>("command");
+  joint_state_ = &ports_.joint_state.get();
+  estimate_ = ports_.estimate.get();
+  true_poses_ = ports_.true_link_poses.get();
+  command_ = &ports_.command.get();
   command_->mode.assign(static_cast<std::size_t>(model_->num_dofs()), JointCommandMode::kNone);
   command_->position = Eigen::VectorXd::Zero(model_->num_dofs());
   command_->velocity = Eigen::VectorXd::Zero(model_->num_dofs());
-  phase_ = &ctx.output<ReachPhase>("phase");
+  phase_ = &ports_.phase.get();
   report_ = std::make_unique<ReachReport>(open_frames_, closed_frames_);
 }
 
 Eigen::VectorXd ReachController::draw_start(NodeContext& ctx, const Target& target, int index) {
   std::normal_distribution<double> gauss;
   std::uniform_real_distribution<double> uniform;
-  const robot::Camera& cam = model_->cameras()[static_cast<std::size_t>(
-      model_->find_camera(ctx.param<std::string>("camera")))];
+  const robot::Camera& cam =
+      model_->cameras()[static_cast<std::size_t>(model_->find_camera(config_.camera))];
   for (int attempt = 0; attempt < 200; ++attempt) {
     const Eigen::Vector3d dir =
         Eigen::Vector3d(gauss(ctx.rng()), gauss(ctx.rng()), gauss(ctx.rng())).normalized();
@@ -161,7 +162,7 @@ void ReachController::plan_targets(NodeContext& ctx, const Eigen::VectorXd& q0) 
       throw InputError(fmt::format(
           "reach_controller: target {} ({:.3f}, {:.3f}, {:.3f}) m in the {} frame is outside "
           "the arm's reach: the closest palm pose found is {:.1f} mm and {:.1f} deg away",
-          t, p.x(), p.y(), p.z(), ctx.param<std::string>("camera"), r.position_error * 1e3,
+          t, p.x(), p.y(), p.z(), config_.camera, r.position_error * 1e3,
           r.orientation_error / kDegToRad));
     }
   }

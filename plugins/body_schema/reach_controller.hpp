@@ -10,19 +10,52 @@
 #include "reach_report.hpp"
 #include "somasim/body_schema/eye_hand.hpp"
 #include "somasim/body_schema/ports.hpp"
+#include "somasim/config.hpp"
 #include "somasim/plugin.hpp"
+#include "somasim/plugin_ports.hpp"
+#include "somasim/robot/experiment_robot.hpp"
 #include "somasim/robot/ports.hpp"
 
 namespace somasim::plugins {
 
 class ReachController : public Plugin {
  public:
+  struct Config {
+    robot::RobotParam robot;
+    std::string camera = "left_eye";
+    std::string palm_frame = "r_palm";
+    std::string arm_base = "chest";
+    std::vector<double> targets;
+    int starts_per_target = 10;
+    int repetitions = 3;
+    std::vector<double> start_distance{0.06, 0.12};  // [m]
+    double start_rotation_deg = 15.0;
+    int to_start_frames = 20;
+    int open_loop_frames = 120;
+    int closed_loop_frames = 50;
+    double gain = 5.0;  // [1/s]
+    bool adaptation = true;
+    OutputFile csv{"reach_frames.csv"};
+    template <class V>
+    void visit(V& v);
+  };
+  struct Ports {
+    In<JointState> joint_state;
+    OptionalIn<BodySchemaEstimate> estimate;
+    OptionalIn<LinkPoses> true_link_poses;
+    Out<JointCommand> command;
+    Out<ReachPhase> phase;
+    template <class V>
+    void visit(V& v);
+  };
   static PluginSpec spec();
   void configure(NodeContext& ctx) override;
   void step(NodeContext& ctx) override;
   void finish(NodeContext& ctx) override;
 
  private:
+  Config config_;
+  Ports ports_;
   struct Target {
     Eigen::Isometry3d pose_eye;           // desired palm pose, left-eye frame
     Eigen::VectorXd posture;              // nominal IK solution (encoder values, all dofs)

@@ -11,125 +11,122 @@ namespace {
 constexpr double kDeg = kRadPerDeg;
 }
 
-PluginSpec CartesianVelocity::spec() {
-  PluginSpec s("cartesian_velocity",
-               "Moves a point of any link of a chain at a commanded Cartesian velocity: damped "
-               "pseudo-inverse of the point's Jacobian, joint- and velocity-limit aware.");
-  robot::add_robot_param(s);
-  s.add_string("chain")
-      .defaults(std::string())
-      .describe(
+template <class V>
+void CartesianVelocity::Config::visit(V& v) {
+  v.block(robot);
+  v.field("chain", chain)
+      .doc(
           "a named chain of the robot (e.g. right_arm); or leave empty and give `tip` (and "
           "`base`)");
-  s.add_string("base")
-      .defaults(std::string())
-      .describe("with `tip`: the chain's base link (empty: the root)");
-  s.add_string("tip")
-      .defaults(std::string())
-      .describe("with `base`: the chain's tip frame or link (instead of `chain`)");
-  s.add_string("link")
-      .defaults(std::string())
-      .describe(
+  v.field("base", base).doc("with `tip`: the chain's base link (empty: the root)");
+  v.field("tip", tip).doc("with `base`: the chain's tip frame or link (instead of `chain`)");
+  v.field("link", link)
+      .doc(
           "the link the controlled point is fixed to; must be in the chain (empty: the tip's "
           "link)");
-  s.add_list("point")
-      .unit_is("m")
-      .size(3)
-      .defaults(std::vector<double>{0, 0, 0})
-      .describe("the controlled point in the link frame");
-  s.add_double("damping").unit_is("m").defaults(0.02).range(0, 1).describe(
-      "largest damping λ of the pseudo-inverse (reached at a singularity)");
-  s.add_double("singular_threshold")
-      .unit_is("m")
-      .defaults(0.04)
+  v.field("point", point).unit("m").size(3).doc("the controlled point in the link frame");
+  v.field("damping", damping)
+      .unit("m")
+      .range(0, 1)
+      .doc("largest damping λ of the pseudo-inverse (reached at a singularity)");
+  v.field("singular_threshold", singular_threshold)
+      .unit("m")
       .range(0, 10)
-      .describe("damping ramps in when the Jacobian's smallest singular value falls below this");
-  s.add_list("max_joint_velocity_deg")
-      .unit_is("deg/s")
-      .defaults(std::vector<double>{60.0})
+      .doc("damping ramps in when the Jacobian's smallest singular value falls below this");
+  v.field("max_joint_velocity_deg", max_joint_velocity_deg)
+      .unit("deg/s")
       .at_least(0)
-      .describe(
+      .doc(
           "joint speed limits: one value for all chain joints or one per joint (base to tip); "
           "the whole solution is scaled down to respect them (direction kept)");
-  s.add_double("limit_margin_deg")
-      .unit_is("deg")
-      .defaults(2.0)
+  v.field("limit_margin_deg", limit_margin_deg)
+      .unit("deg")
       .range(0, 90)
-      .describe("joints stop this far from their limits (clamped within the next period)");
-  s.add_bool("hold_orientation")
-      .defaults(false)
-      .describe(
-          "also keep the link's orientation (captured at the first step); else position only");
-  s.add_double("orientation_gain")
-      .unit_is("1/s")
-      .defaults(2.0)
+      .doc("joints stop this far from their limits (clamped within the next period)");
+  v.field("hold_orientation", hold_orientation)
+      .doc("also keep the link's orientation (captured at the first step); else position only");
+  v.field("orientation_gain", orientation_gain)
+      .unit("1/s")
       .range(0, 1000)
-      .describe("with hold_orientation: angular velocity per radian of orientation error");
-  s.input<JointState>("state", "measured joint state");
-  s.input<Eigen::Vector3d>("velocity", "desired velocity of the point [m/s], root frame");
-  s.output<JointCommand>("command", "velocity commands on the chain dofs (kNone elsewhere)");
-  s.output<Eigen::Vector3d>("point", "the controlled point [m], root frame");
-  s.output<Eigen::Vector3d>("point_velocity",
-                            "point velocity the command produces, J q̇ [m/s], root frame");
-  s.output<double>("limited", "1 when a joint or velocity limit changed the command, else 0");
-  return s;
+      .doc("with hold_orientation: angular velocity per radian of orientation error");
+}
+
+template <class V>
+void CartesianVelocity::Ports::visit(V& v) {
+  v.port("state", state, "measured joint state");
+  v.port("velocity", velocity, "desired velocity of the point [m/s], root frame");
+  v.port("command", command, "velocity commands on the chain dofs (kNone elsewhere)");
+  v.port("point", point, "the controlled point [m], root frame");
+  v.port("point_velocity", point_velocity,
+         "point velocity the command produces, J q̇ [m/s], root frame");
+  v.port("limited", limited, "1 when a joint or velocity limit changed the command, else 0");
+}
+
+PluginSpec CartesianVelocity::spec() {
+  return make_plugin_spec<Config, Ports>(
+      "cartesian_velocity",
+      "Moves a point of any link of a chain at a commanded Cartesian velocity: damped "
+      "pseudo-inverse of the point's Jacobian, joint- and velocity-limit aware.");
 }
 
 void CartesianVelocity::configure(NodeContext& ctx) {
+  config_ = read_config<Config>(ctx);
+  bind_ports(ctx, ports_);
   auto model = robot::experiment_robot(ctx);
-  const auto chain_name = ctx.param<std::string>("chain");
-  const auto tip = ctx.param<std::string>("tip");
-  const auto base = ctx.param<std::string>("base");
+  const auto chain_name = config_.chain;
+  const auto tip = config_.tip;
+  const auto base = config_.base;
   if (chain_name.empty() && tip.empty())
-    ctx.param_error("chain",
-                    "expected a chain: give `chain` (a named chain of the robot) or `tip` "
-                    "(and optionally `base`)");
+    config_error(ctx, config_, config_.chain,
+                 "expected a chain: give `chain` (a named chain of the robot) or `tip` "
+                 "(and optionally `base`)");
   if (!chain_name.empty() && !tip.empty())
-    ctx.param_error("tip", "give either `chain` or `tip` (and `base`), not both");
+    config_error(ctx, config_, config_.tip, "give either `chain` or `tip` (and `base`), not both");
   if (!chain_name.empty() && !base.empty())
-    ctx.param_error("base", "`base` goes with `tip`, not with `chain`");
+    config_error(ctx, config_, config_.base, "`base` goes with `tip`, not with `chain`");
   control::ChainSelection chain;
   try {
     chain = chain_name.empty() ? control::select_chain(*model, tip, base)
                                : control::select_chain(*model, chain_name);
   } catch (const InputError& e) {
-    ctx.param_error(chain_name.empty() ? "tip" : "chain", e.what());
+    if (chain_name.empty()) config_error(ctx, config_, config_.tip, e.what());
+    config_error(ctx, config_, config_.chain, e.what());
   }
 
   control::CartesianVelocityOptions options;
-  options.damping = ctx.param<double>("damping");
-  options.singular_threshold = ctx.param<double>("singular_threshold");
-  const auto max_deg = ctx.param<std::vector<double>>("max_joint_velocity_deg");
+  options.damping = config_.damping;
+  options.singular_threshold = config_.singular_threshold;
+  const auto max_deg = config_.max_joint_velocity_deg;
   options.max_joint_velocity =
       Eigen::Map<const Eigen::VectorXd>(max_deg.data(), static_cast<Eigen::Index>(max_deg.size())) *
       kDeg;
-  options.limit_margin = ctx.param<double>("limit_margin_deg") * kDeg;
-  options.hold_orientation = ctx.param<bool>("hold_orientation");
-  options.orientation_gain = ctx.param<double>("orientation_gain");
+  options.limit_margin = config_.limit_margin_deg * kDeg;
+  options.hold_orientation = config_.hold_orientation;
+  options.orientation_gain = config_.orientation_gain;
   try {
     controller_ = std::make_unique<control::CartesianVelocityController>(model, std::move(chain),
                                                                          std::move(options));
   } catch (const InputError& e) {
-    ctx.param_error("max_joint_velocity_deg", e.what());
+    config_error(ctx, config_, config_.max_joint_velocity_deg, e.what());
   }
 
-  const auto link = ctx.param<std::string>("link");
-  const auto p = ctx.param<std::vector<double>>("point");
+  const auto link = config_.link;
+  const auto p = config_.point;
   try {
     if (link.empty())
       controller_->set_point(controller_->link(), {p[0], p[1], p[2]});
     else
       controller_->set_point(link, {p[0], p[1], p[2]});
   } catch (const InputError& e) {
-    ctx.param_error("link", e.what());
+    config_error(ctx, config_, config_.link, e.what());
   }
 
-  state_ = &ctx.input<JointState>("state");
-  velocity_ = &ctx.input<Eigen::Vector3d>("velocity");
-  command_ = &ctx.output<JointCommand>("command");
-  point_ = &ctx.output<Eigen::Vector3d>("point");
-  point_velocity_ = &ctx.output<Eigen::Vector3d>("point_velocity");
-  limited_ = &ctx.output<double>("limited");
+  state_ = &ports_.state.get();
+  velocity_ = &ports_.velocity.get();
+  command_ = &ports_.command.get();
+  point_ = &ports_.point.get();
+  point_velocity_ = &ports_.point_velocity.get();
+  limited_ = &ports_.limited.get();
   const int n = model->num_dofs();
   command_->mode.assign(n, JointCommandMode::kNone);
   command_->position.setZero(n);

@@ -33,85 +33,86 @@ std::string velocity_port(int i) {
 
 }  // namespace
 
-PluginSpec PpsEvaluator::spec() {
-  PluginSpec s("pps_evaluator",
-               "Scores PPS avoidance / reaching against the ground truth: per presented object, "
-               "whether the aimed skin part's activations crossed the threshold, the true "
-               "object-to-skin distances at the trigger and at the closest, skin and object "
-               "contacts; rates, distance summaries, a CSV row per presentation and figures.");
-  s.add_double("threshold")
-      .defaults(0.4)
+template <class V>
+void PpsEvaluator::Config::visit(V& v) {
+  v.field("threshold", threshold)
       .range(0, 1)
-      .describe("activation threshold of a trigger (the controllers' threshold)");
-  s.add_string_list("velocity_parts")
-      .defaults(std::vector<std::string>{})
-      .describe(
+      .doc("activation threshold of a trigger (the controllers' threshold)");
+  v.field("velocity_parts", velocity_parts)
+      .doc(
           "space-separated skin parts, the i-th is the part whose controller's velocity is "
           "wired to velocity_i (e.g. 'left_forearm right_palm'); '-' skips an input");
-  s.add_list("figure_presentations")
-      .defaults(std::vector<double>{1, 2, 3, 4})
+  v.field("figure_presentations", figure_presentations)
       .at_least(1)
-      .describe("ids of the presentations drawn as Fig 10/11-style figures");
-  s.add_int("figure_taxels")
-      .defaults(std::int64_t{3})
+      .doc("ids of the presentations drawn as Fig 10/11-style figures");
+  v.field("figure_taxels", figure_taxels)
       .range(1, 20)
-      .describe("the most activated taxels drawn per figure");
-  s.add_string("csv")
-      .defaults(std::string("presentations.csv"))
-      .describe("per-presentation table written into the run folder ('' = none)");
-  s.input<Presentation>("presentation", "the object presented now (e.g. object_thrower)");
-  s.input<ObjectStates>("objects", "object states from the world (ground truth)");
-  s.input<SkinTaxels>("taxels", "true taxel poses (root frame), e.g. skin.taxels");
-  s.input<ContactEvents>("contacts", "skin contact events");
-  s.input<TaxelValues>("activations",
-                       "PPS activations, labelled 'part/id' (one or several parts); "
-                       "unlabelled: the values of the aimed part only");
-  s.input<Contacts>("world_contacts", "the world's contacts: object-robot contact anywhere",
-                    /*optional=*/true);
-  s.input<ObjectSpawns>("spawns",
-                        "the stimulus source's spawn requests: object shapes and sizes for "
-                        "exact distances (unwired: bounding spheres, a lower bound)",
-                        /*optional=*/true);
+      .doc("the most activated taxels drawn per figure");
+  v.field("csv", csv).doc("per-presentation table written into the run folder ('' = none)");
+}
+
+template <class V>
+void PpsEvaluator::Ports::visit(V& v) {
+  v.port("presentation", presentation, "the object presented now (e.g. object_thrower)");
+  v.port("objects", objects, "object states from the world (ground truth)");
+  v.port("taxels", taxels, "true taxel poses (root frame), e.g. skin.taxels");
+  v.port("contacts", contacts, "skin contact events");
+  v.port("activations", activations,
+         "PPS activations, labelled 'part/id' (one or several parts); "
+         "unlabelled: the values of the aimed part only");
+  v.port("world_contacts", world_contacts, "the world's contacts: object-robot contact anywhere");
+  v.port("spawns", spawns,
+         "the stimulus source's spawn requests: object shapes and sizes for "
+         "exact distances (unwired: bounding spheres, a lower bound)");
   for (int i = 0; i < kVelocityInputs; ++i)
-    s.input<Eigen::Vector3d>(velocity_port(i),
-                             "commanded velocity of a controller [m/s] (see velocity_parts)",
-                             /*optional=*/true);
-  return s;
+    v.port(velocity_port(i), velocity[static_cast<std::size_t>(i)],
+           "commanded velocity of a controller [m/s] (see velocity_parts)");
+}
+
+PluginSpec PpsEvaluator::spec() {
+  return make_plugin_spec<Config, Ports>(
+      "pps_evaluator",
+      "Scores PPS avoidance / reaching against the ground truth: per presented object, "
+      "whether the aimed skin part's activations crossed the threshold, the true "
+      "object-to-skin distances at the trigger and at the closest, skin and object "
+      "contacts; rates, distance summaries, a CSV row per presentation and figures.");
 }
 
 void PpsEvaluator::configure(NodeContext& ctx) {
-  threshold_ = ctx.param<double>("threshold");
-  figure_ids_ = ctx.param<std::vector<double>>("figure_presentations");
-  figure_taxels_ = ctx.param<int>("figure_taxels");
-  csv_name_ = ctx.param<std::string>("csv");
-  if (!csv_name_.empty()) csv_path_ = ctx.output_path_param("csv");
-  for (const std::string& p : ctx.param<std::vector<std::string>>("velocity_parts"))
-    velocity_parts_.push_back(p == "-" ? "" : p);
+  config_ = read_config<Config>(ctx);
+  bind_ports(ctx, ports_);
+  threshold_ = config_.threshold;
+  figure_ids_ = config_.figure_presentations;
+  figure_taxels_ = config_.figure_taxels;
+  csv_name_ = config_.csv.name;
+  if (!csv_name_.empty()) csv_path_ = config_.csv.path;
+  for (const std::string& p : config_.velocity_parts) velocity_parts_.push_back(p == "-" ? "" : p);
   if (velocity_parts_.size() > static_cast<std::size_t>(kVelocityInputs))
-    ctx.param_error("velocity_parts",
-                    fmt::format("{} parts named, but there are only {} velocity "
-                                "inputs (velocity_1 .. velocity_{})",
-                                velocity_parts_.size(), kVelocityInputs, kVelocityInputs));
+    config_error(ctx, config_, config_.velocity_parts,
+                 fmt::format("{} parts named, but there are only {} velocity "
+                             "inputs (velocity_1 .. velocity_{})",
+                             velocity_parts_.size(), kVelocityInputs, kVelocityInputs));
   velocity_parts_.resize(kVelocityInputs);
   for (int i = 0; i < kVelocityInputs; ++i) {
-    const bool wired = ctx.is_wired(velocity_port(i));
+    const auto& velocity = ports_.velocity[static_cast<std::size_t>(i)];
+    const bool wired = velocity.wired();
     const auto& part = velocity_parts_[static_cast<std::size_t>(i)];
     if (wired && part.empty())
-      ctx.param_error("velocity_parts",
-                      "input '" + velocity_port(i) + "' is wired, but no part is named for it");
+      config_error(ctx, config_, config_.velocity_parts,
+                   "input '" + velocity_port(i) + "' is wired, but no part is named for it");
     if (!wired && !part.empty())
-      ctx.param_error("velocity_parts", "part '" + part + "' is named for input '" +
-                                            velocity_port(i) + "', which is not wired");
-    velocities_.push_back(wired ? &ctx.input<Eigen::Vector3d>(velocity_port(i)) : nullptr);
+      config_error(
+          ctx, config_, config_.velocity_parts,
+          "part '" + part + "' is named for input '" + velocity_port(i) + "', which is not wired");
+    velocities_.push_back(velocity.get());
   }
-  presentation_ = &ctx.input<Presentation>("presentation");
-  objects_ = &ctx.input<ObjectStates>("objects");
-  taxels_ = &ctx.input<SkinTaxels>("taxels");
-  contacts_ = &ctx.input<ContactEvents>("contacts");
-  activations_ = &ctx.input<TaxelValues>("activations");
-  world_contacts_ =
-      ctx.is_wired("world_contacts") ? &ctx.input<Contacts>("world_contacts") : nullptr;
-  spawns_ = ctx.is_wired("spawns") ? &ctx.input<ObjectSpawns>("spawns") : nullptr;
+  presentation_ = &ports_.presentation.get();
+  objects_ = &ports_.objects.get();
+  taxels_ = &ports_.taxels.get();
+  contacts_ = &ports_.contacts.get();
+  activations_ = &ports_.activations.get();
+  world_contacts_ = ports_.world_contacts.get();
+  spawns_ = ports_.spawns.get();
 }
 
 const SkinPart* PpsEvaluator::find_part(NodeContext& ctx, const std::string& name) const {

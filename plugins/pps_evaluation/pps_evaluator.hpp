@@ -16,9 +16,13 @@
 #include <string>
 #include <vector>
 
+#include <array>
+
 #include "presentation_record.hpp"
 #include "presentation_trace.hpp"
+#include "somasim/config.hpp"
 #include "somasim/plugin.hpp"
+#include "somasim/plugin_ports.hpp"
 #include "somasim/port_types.hpp"
 #include "somasim/pps/part_activations.hpp"
 #include "somasim/pps/ports.hpp"
@@ -31,12 +35,35 @@ namespace somasim::plugins {
 class PpsEvaluator : public Plugin {
  public:
   static constexpr int kVelocityInputs = 4;  ///< velocity_1 .. velocity_4
+  struct Config {
+    double threshold = 0.4;
+    std::vector<std::string> velocity_parts;
+    std::vector<double> figure_presentations{1, 2, 3, 4};
+    int figure_taxels = 3;
+    OutputFile csv{"presentations.csv"};
+    template <class V>
+    void visit(V& v);
+  };
+  struct Ports {
+    In<Presentation> presentation;
+    In<ObjectStates> objects;
+    In<SkinTaxels> taxels;
+    In<ContactEvents> contacts;
+    In<TaxelValues> activations;
+    OptionalIn<Contacts> world_contacts;
+    OptionalIn<ObjectSpawns> spawns;
+    std::array<OptionalIn<Eigen::Vector3d>, kVelocityInputs> velocity;  // velocity_1 ..
+    template <class V>
+    void visit(V& v);
+  };
   static PluginSpec spec();
   void configure(NodeContext& ctx) override;
   void step(NodeContext& ctx) override;
   void finish(NodeContext& ctx) override;
 
  private:
+  Config config_;
+  Ports ports_;
   void follow_presentation(NodeContext& ctx);
   void observe(NodeContext& ctx, PresentationRecord& r);
   void attribute_contacts();

@@ -21,118 +21,115 @@ std::string join(const std::vector<std::string>& names) {
 
 }  // namespace
 
-PluginSpec GazeController::spec() {
-  PluginSpec s("gaze_controller",
-               "Neck and eyes follow a stimulus: the gaze joints that put it on both optical "
-               "axes (believed kinematics: encoders + joint_offsets_deg), reached at a bounded "
-               "joint speed with position commands within the joint limits. A target out of "
-               "reach leaves joints at their limits, logged once per episode and counted "
-               "(metrics out_of_reach_steps, max_gaze_offset_deg). Without a target for hold_s "
-               "the gaze goes idle: it holds, looks at the middle of the believed skin parts "
-               "(fixation) or at each of them in turn (scan), from the believed taxels only.");
-  robot::add_robot_param(s);
-  s.add_string_list("cameras")
-      .size(2)
-      .defaults(std::vector<std::string>{"left_eye", "right_eye"})
-      .describe("the two cameras whose optical axes meet at the target");
-  s.add_string_list("neck_joints")
-      .defaults(std::vector<std::string>{"neck_pitch", "neck_yaw"})
-      .describe("joints that point the head (the coarse part of the gaze)");
-  s.add_string_list("eye_joints")
-      .defaults(std::vector<std::string>{"eyes_tilt", "l_eye_pan", "r_eye_pan"})
-      .describe("joints that point the eyes (pulled weakly toward 0)");
-  s.add_string("joint_offsets_deg")
-      .accepts_map_as_text()
-      .defaults(std::string(""))
-      .describe("believed-kinematics error, 'joint: value, ...' [deg] added to the encoders");
-  s.add_double("max_speed_deg_s")
-      .unit_is("deg/s")
-      .defaults(60.0)
+template <class V>
+void GazeController::Config::visit(V& v) {
+  v.block(robot);
+  v.field("cameras", cameras).size(2).doc("the two cameras whose optical axes meet at the target");
+  v.field("neck_joints", neck_joints)
+      .doc("joints that point the head (the coarse part of the gaze)");
+  v.field("eye_joints", eye_joints).doc("joints that point the eyes (pulled weakly toward 0)");
+  v.field("joint_offsets_deg", joint_offsets_deg)
+      .map_as_text()
+      .doc("believed-kinematics error, 'joint: value, ...' [deg] added to the encoders");
+  v.field("max_speed_deg_s", max_speed_deg_s)
+      .unit("deg/s")
       .range(1.0, 1000.0)
-      .describe("largest commanded speed of a gaze joint");
-  s.add_double("eye_centring")
-      .defaults(0.05)
+      .doc("largest commanded speed of a gaze joint");
+  v.field("eye_centring", eye_centring)
       .range(0.0, 10.0)
-      .describe("weight of the eyes' pull toward 0 in the gaze solve");
-  s.add_double("reach_tolerance_deg")
-      .unit_is("deg")
-      .defaults(0.5)
+      .doc("weight of the eyes' pull toward 0 in the gaze solve");
+  v.field("reach_tolerance_deg", reach_tolerance_deg)
+      .unit("deg")
       .range(0.0, 90.0)
-      .describe("a target further than this from an optical axis at the solution is out of reach");
-  s.add_string("idle")
-      .defaults(std::string("hold"))
+      .doc("a target further than this from an optical axis at the solution is out of reach");
+  v.field("idle", idle)
       .one_of({"hold", "fixation", "scan"})
-      .describe(
+      .doc(
           "without a target: hold the gaze where it is; fixation: look at the mean of the "
           "believed centroids of idle_parts (between them); scan: look at each part's believed "
           "centroid in turn for dwell_s. Fixation and scan need the taxels input");
-  s.add_string_list("idle_parts")
-      .defaults(std::vector<std::string>{})
-      .describe("skin parts of the taxels input that the idle fixation / scan looks at");
-  s.add_double("hold_s")
-      .unit_is("s")
-      .defaults(0.5)
+  v.field("idle_parts", idle_parts)
+      .doc("skin parts of the taxels input that the idle fixation / scan looks at");
+  v.field("hold_s", hold_s)
+      .unit("s")
       .range(0.0, 100.0)
-      .describe("the gaze stays on the last target for this long before it goes idle");
-  s.add_double("dwell_s")
-      .unit_is("s")
-      .defaults(2.0)
+      .doc("the gaze stays on the last target for this long before it goes idle");
+  v.field("dwell_s", dwell_s)
+      .unit("s")
       .range(0.05, 100.0)
-      .describe("idle scan: time on each part before the next");
-  s.input<pps::Stimulus>("target", "what to look at (root frame), e.g. marker_tracker.stimulus");
-  s.input<SkinTaxels>("taxels",
-                      "the believed skin taxels (e.g. believed.taxels): where the idle fixation "
-                      "/ scan looks",
-                      /*optional=*/true);
-  s.input<JointState>("joint_state", "encoder values (e.g. world.joint_state)");
-  s.output<JointCommand>("command",
-                         "position commands of the gaze joints (encoder values); the other "
-                         "joints kNone (merge with a joint_command_mux)");
-  return s;
+      .doc("idle scan: time on each part before the next");
+}
+
+template <class V>
+void GazeController::Ports::visit(V& v) {
+  v.port("target", target, "what to look at (root frame), e.g. marker_tracker.stimulus");
+  v.port("taxels", taxels,
+         "the believed skin taxels (e.g. believed.taxels): where the idle fixation "
+         "/ scan looks");
+  v.port("joint_state", joint_state, "encoder values (e.g. world.joint_state)");
+  v.port("command", command,
+         "position commands of the gaze joints (encoder values); the other "
+         "joints kNone (merge with a joint_command_mux)");
+}
+
+PluginSpec GazeController::spec() {
+  return make_plugin_spec<Config, Ports>(
+      "gaze_controller",
+      "Neck and eyes follow a stimulus: the gaze joints that put it on both optical "
+      "axes (believed kinematics: encoders + joint_offsets_deg), reached at a bounded "
+      "joint speed with position commands within the joint limits. A target out of "
+      "reach leaves joints at their limits, logged once per episode and counted "
+      "(metrics out_of_reach_steps, max_gaze_offset_deg). Without a target for hold_s "
+      "the gaze goes idle: it holds, looks at the middle of the believed skin parts "
+      "(fixation) or at each of them in turn (scan), from the believed taxels only.");
 }
 
 void GazeController::configure(NodeContext& ctx) {
+  config_ = read_config<Config>(ctx);
+  bind_ports(ctx, ports_);
   model_ = robot::experiment_robot(ctx);
   vision::GazeOptions options;
-  options.cameras = ctx.param<std::vector<std::string>>("cameras");
-  options.neck_joints = ctx.param<std::vector<std::string>>("neck_joints");
-  options.eye_joints = ctx.param<std::vector<std::string>>("eye_joints");
-  options.eye_centring = ctx.param<double>("eye_centring");
-  for (const char* key : {"neck_joints", "eye_joints"})
-    for (const std::string& joint : ctx.param<std::vector<std::string>>(key)) {
+  options.cameras = config_.cameras;
+  options.neck_joints = config_.neck_joints;
+  options.eye_joints = config_.eye_joints;
+  options.eye_centring = config_.eye_centring;
+  for (const auto* joints : {&config_.neck_joints, &config_.eye_joints})
+    for (const std::string& joint : *joints) {
       try {
         model_->dof_index(joint);
       } catch (const InputError& e) {
-        ctx.param_error(key, fmt::format("gaze: {}", e.what()));
+        config_error(ctx, config_, *joints, fmt::format("gaze: {}", e.what()));
       }
     }
   try {
     solver_ = std::make_unique<vision::GazeSolver>(model_, options);
   } catch (const InputError& e) {
-    ctx.param_error("cameras", e.what());  // the joints are checked above
+    config_error(ctx, config_, config_.cameras, e.what());  // the joints are checked above
   }
   try {
-    offsets_ = robot::parse_joint_offsets(*model_, ctx.param<std::string>("joint_offsets_deg"));
+    offsets_ = robot::parse_joint_offsets(*model_, config_.joint_offsets_deg);
   } catch (const InputError& e) {
-    ctx.param_error("joint_offsets_deg", e.what());
+    config_error(ctx, config_, config_.joint_offsets_deg, e.what());
   }
-  const std::string idle = ctx.param<std::string>("idle");
+  const std::string idle = config_.idle;
   idle_ = idle == "fixation" ? Idle::kFixation : idle == "scan" ? Idle::kScan : Idle::kHold;
-  idle_parts_ = ctx.param<std::vector<std::string>>("idle_parts");
-  hold_s_ = ctx.param<double>("hold_s");
-  dwell_s_ = ctx.param<double>("dwell_s");
+  idle_parts_ = config_.idle_parts;
+  hold_s_ = config_.hold_s;
+  dwell_s_ = config_.dwell_s;
   if (idle_ != Idle::kHold && idle_parts_.empty())
-    ctx.param_error("idle_parts", fmt::format("idle '{}' needs at least one skin part", idle));
-  if (idle_ != Idle::kHold && !ctx.is_wired("taxels"))
-    ctx.param_error("idle", fmt::format("idle '{}' needs the input 'taxels' (the believed skin, "
-                                        "e.g. believed.taxels) wired",
-                                        idle));
-  taxels_ = ctx.is_wired("taxels") ? &ctx.input<SkinTaxels>("taxels") : nullptr;
-  max_speed_ = deg_to_rad(ctx.param<double>("max_speed_deg_s"));
-  reach_tolerance_ = deg_to_rad(ctx.param<double>("reach_tolerance_deg"));
-  target_ = &ctx.input<pps::Stimulus>("target");
-  joints_ = &ctx.input<JointState>("joint_state");
-  command_ = &ctx.output<JointCommand>("command");
+    config_error(ctx, config_, config_.idle_parts,
+                 fmt::format("idle '{}' needs at least one skin part", idle));
+  if (idle_ != Idle::kHold && !ports_.taxels.wired())
+    config_error(ctx, config_, config_.idle,
+                 fmt::format("idle '{}' needs the input 'taxels' (the believed skin, "
+                             "e.g. believed.taxels) wired",
+                             idle));
+  taxels_ = ports_.taxels.get();
+  max_speed_ = deg_to_rad(config_.max_speed_deg_s);
+  reach_tolerance_ = deg_to_rad(config_.reach_tolerance_deg);
+  target_ = &ports_.target.get();
+  joints_ = &ports_.joint_state.get();
+  command_ = &ports_.command.get();
   const int n = model_->num_dofs();
   command_->mode.assign(static_cast<std::size_t>(n), JointCommandMode::kNone);
   command_->position.setZero(n);

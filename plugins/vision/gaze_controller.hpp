@@ -12,8 +12,11 @@
 
 #include <Eigen/Core>
 
+#include "somasim/config.hpp"
 #include "somasim/plugin.hpp"
+#include "somasim/plugin_ports.hpp"
 #include "somasim/pps/ports.hpp"
+#include "somasim/robot/experiment_robot.hpp"
 #include "somasim/robot/ports.hpp"
 #include "somasim/skin/ports.hpp"
 #include "somasim/vision/gaze.hpp"
@@ -22,12 +25,38 @@ namespace somasim::plugins {
 
 class GazeController : public Plugin {
  public:
+  struct Config {
+    robot::RobotParam robot;
+    std::vector<std::string> cameras{"left_eye", "right_eye"};
+    std::vector<std::string> neck_joints{"neck_pitch", "neck_yaw"};
+    std::vector<std::string> eye_joints{"eyes_tilt", "l_eye_pan", "r_eye_pan"};
+    std::string joint_offsets_deg;
+    double max_speed_deg_s = 60.0;  // [deg/s]
+    double eye_centring = 0.05;
+    double reach_tolerance_deg = 0.5;  // [deg]
+    std::string idle = "hold";
+    std::vector<std::string> idle_parts;
+    double hold_s = 0.5;   // [s]
+    double dwell_s = 2.0;  // [s]
+    template <class V>
+    void visit(V& v);
+  };
+  struct Ports {
+    In<pps::Stimulus> target;
+    OptionalIn<SkinTaxels> taxels;
+    In<JointState> joint_state;
+    Out<JointCommand> command;
+    template <class V>
+    void visit(V& v);
+  };
   static PluginSpec spec();
   void configure(NodeContext& ctx) override;
   void step(NodeContext& ctx) override;
   void finish(NodeContext& ctx) override;
 
  private:
+  Config config_;
+  Ports ports_;
   enum class Idle : std::uint8_t { kHold, kFixation, kScan };
   /// The believed centroid [m, root] of each idle part's taxels; false when a part is missing.
   bool part_centroids(std::vector<Eigen::Vector3d>& out) const;

@@ -21,8 +21,93 @@ std::string hsv_text(const cv::Vec3b& v) {
 
 }  // namespace
 
+template <class V>
+void MarkerTracker::Config::visit(V& v) {
+  v.block(robot);
+  v.block(eyes);
+  v.field("hsv_low", hsv_low)
+      .size(3)
+      .range(0, 255)
+      .doc(
+          "lower HSV bound of the marker's colour (OpenCV: H 0-179, S and V 0-255; default "
+          "green); H above hsv_high's H wraps around 180 (red)");
+  v.field("hsv_high", hsv_high).size(3).range(0, 255).doc("upper HSV bound");
+  v.field("min_area_px", min_area_px)
+      .at_least(1)
+      .doc("smallest blob [px] taken for the marker in an image");
+  v.field("marker_radius", marker_radius)
+      .unit("m")
+      .range(1e-4, 1.0)
+      .doc("radius of the output stimulus [m] (the marker sphere of the robot description)");
+  v.field("marker_frame", marker_frame)
+      .doc(
+          "frame (or link) of the robot model at the marker: where the believed kinematics "
+          "expect it, to tell a wrong colour range from a hidden marker");
+  v.field("max_distance_from_believed", max_distance_from_believed)
+      .unit("m")
+      .range(0.0, 10.0)
+      .doc(
+          "a triangulated blob pair farther than this from where the believed kinematics "
+          "(encoders + joint_offsets_deg) put marker_frame is not the marker - e.g. two blobs "
+          "of unlike parts of a half-hidden marker matched at a wrong depth, or something else "
+          "of its colour (metric far_from_believed_rejections); 0 = no such check. Give "
+          "joint_offsets_deg the robot's believed arm offsets too, so that the check uses what "
+          "the robot believes, not the true arm");
+  v.field("blob_centre", blob_centre)
+      .one_of({"circle", "centroid"})
+      .doc(
+          "the marker's pixel position in an image: the centre of the blob's enclosing circle "
+          "(right for a round marker up to half hidden, e.g. behind its finger) or the blob's "
+          "centroid");
+  v.field("max_reprojection_px", max_reprojection_px)
+      .unit("px")
+      .at_least(0.01)
+      .doc(
+          "a triangulation whose RMS reprojection error exceeds this is rejected (the eyes saw "
+          "different blobs)");
+  v.field("no_colour_frames_error", no_colour_frames_error)
+      .at_least(0)
+      .doc(
+          "run error after this many consecutive frames with no pixel in the colour range in "
+          "either image while the marker is believed in view of both eyes; 0 = never");
+  v.field("reset_after_lost", reset_after_lost)
+      .at_least(1)
+      .doc("frames without a fix after which the Kalman filter starts afresh");
+  v.field("motion_model", motion_model)
+      .one_of({"constant_velocity", "constant_acceleration"})
+      .doc("the Kalman filter's motion model");
+  v.field("process_noise", process_noise)
+      .at_least(1e-9)
+      .doc(
+          "spectral density of the white acceleration [m²/s³] (constant_velocity) or jerk "
+          "[m²/s⁵] (constant_acceleration) that drives the model");
+  v.field("measurement_sigma", measurement_sigma)
+      .unit("m")
+      .at_least(1e-6)
+      .doc("σ of a triangulated position per axis [m]");
+}
+
+template <class V>
+void MarkerTracker::Ports::visit(V& v) {
+  v.port("left_eye_rgb", left_eye_rgb, "rgb8 image of the first camera (e.g. cam.left_eye_rgb)");
+  v.port("right_eye_rgb", right_eye_rgb,
+         "rgb8 image of the second camera (e.g. cam.right_eye_rgb)");
+  v.port("joint_state", joint_state,
+         "encoder values: the head and eye joints pose the cameras (e.g. "
+         "world.joint_state)");
+  v.port("true_link_poses", true_link_poses,
+         "optional ground truth (e.g. world.link_poses): the true marker_frame gives "
+         "the metrics position_rms_m and velocity_rms_m_s");
+  v.port("stimulus", stimulus,
+         "the marker in the root frame: Kalman position [m] and velocity [m/s], radius "
+         "marker_radius; present only in frames with a triangulated fix");
+  v.port("marker_pixels", marker_pixels,
+         "the marker's blob in each image: found, centroid (u, v) [px], area "
+         "[px] (somasim/vision/ports.hpp)");
+}
+
 PluginSpec MarkerTracker::spec() {
-  PluginSpec s(
+  return make_plugin_spec<Config, Ports>(
       "marker_tracker",
       "A coloured marker (default: the iCub's green right index fingertip) seen by two eyes: the "
       "largest blob in an HSV range in each image, stereo triangulation through the believed "
@@ -31,150 +116,58 @@ PluginSpec MarkerTracker::spec() {
       "while the believed kinematics put the marker in view of both eyes for "
       "no_colour_frames_error frames is a run error; a marker that is hidden or too small is "
       "reported as present = false (metric tracked_share).");
-  robot::add_robot_param(s);
-  BelievedEyes::declare_params(s);
-  s.add_list("hsv_low")
-      .size(3)
-      .range(0, 255)
-      .defaults(std::vector<double>{45, 80, 40})
-      .describe(
-          "lower HSV bound of the marker's colour (OpenCV: H 0-179, S and V 0-255; default "
-          "green); H above hsv_high's H wraps around 180 (red)");
-  s.add_list("hsv_high")
-      .size(3)
-      .range(0, 255)
-      .defaults(std::vector<double>{75, 255, 255})
-      .describe("upper HSV bound");
-  s.add_int("min_area_px")
-      .defaults(std::int64_t{6})
-      .at_least(1)
-      .describe("smallest blob [px] taken for the marker in an image");
-  s.add_double("marker_radius")
-      .unit_is("m")
-      .defaults(0.007)
-      .range(1e-4, 1.0)
-      .describe("radius of the output stimulus [m] (the marker sphere of the robot description)");
-  s.add_string("marker_frame")
-      .defaults(std::string("r_index_tip"))
-      .describe(
-          "frame (or link) of the robot model at the marker: where the believed kinematics "
-          "expect it, to tell a wrong colour range from a hidden marker");
-  s.add_double("max_distance_from_believed")
-      .unit_is("m")
-      .defaults(0.06)
-      .range(0.0, 10.0)
-      .describe(
-          "a triangulated blob pair farther than this from where the believed kinematics "
-          "(encoders + joint_offsets_deg) put marker_frame is not the marker - e.g. two blobs "
-          "of unlike parts of a half-hidden marker matched at a wrong depth, or something else "
-          "of its colour (metric far_from_believed_rejections); 0 = no such check. Give "
-          "joint_offsets_deg the robot's believed arm offsets too, so that the check uses what "
-          "the robot believes, not the true arm");
-  s.add_string("blob_centre")
-      .defaults(std::string("circle"))
-      .one_of({"circle", "centroid"})
-      .describe(
-          "the marker's pixel position in an image: the centre of the blob's enclosing circle "
-          "(right for a round marker up to half hidden, e.g. behind its finger) or the blob's "
-          "centroid");
-  s.add_double("max_reprojection_px")
-      .unit_is("px")
-      .defaults(3.0)
-      .at_least(0.01)
-      .describe(
-          "a triangulation whose RMS reprojection error exceeds this is rejected (the eyes saw "
-          "different blobs)");
-  s.add_int("no_colour_frames_error")
-      .defaults(std::int64_t{10})
-      .at_least(0)
-      .describe(
-          "run error after this many consecutive frames with no pixel in the colour range in "
-          "either image while the marker is believed in view of both eyes; 0 = never");
-  s.add_int("reset_after_lost")
-      .defaults(std::int64_t{5})
-      .at_least(1)
-      .describe("frames without a fix after which the Kalman filter starts afresh");
-  s.add_string("motion_model")
-      .defaults(std::string("constant_velocity"))
-      .one_of({"constant_velocity", "constant_acceleration"})
-      .describe("the Kalman filter's motion model");
-  s.add_double("process_noise")
-      .defaults(1.0)
-      .at_least(1e-9)
-      .describe(
-          "spectral density of the white acceleration [m²/s³] (constant_velocity) or jerk "
-          "[m²/s⁵] (constant_acceleration) that drives the model");
-  s.add_double("measurement_sigma")
-      .unit_is("m")
-      .defaults(0.003)
-      .at_least(1e-6)
-      .describe("σ of a triangulated position per axis [m]");
-  s.input<Image>("left_eye_rgb", "rgb8 image of the first camera (e.g. cam.left_eye_rgb)");
-  s.input<Image>("right_eye_rgb", "rgb8 image of the second camera (e.g. cam.right_eye_rgb)");
-  s.input<JointState>("joint_state",
-                      "encoder values: the head and eye joints pose the cameras (e.g. "
-                      "world.joint_state)");
-  s.input<LinkPoses>("true_link_poses",
-                     "optional ground truth (e.g. world.link_poses): the true marker_frame gives "
-                     "the metrics position_rms_m and velocity_rms_m_s",
-                     /*optional=*/true);
-  s.output<pps::Stimulus>(
-      "stimulus",
-      "the marker in the root frame: Kalman position [m] and velocity [m/s], radius "
-      "marker_radius; present only in frames with a triangulated fix");
-  s.output<StereoPixels>("marker_pixels",
-                         "the marker's blob in each image: found, centroid (u, v) [px], area "
-                         "[px] (somasim/vision/ports.hpp)");
-  return s;
 }
 
 void MarkerTracker::configure(NodeContext& ctx) {
+  config_ = read_config<Config>(ctx);
+  bind_ports(ctx, ports_);
   model_ = robot::experiment_robot(ctx);
-  eyes_believed_.configure(ctx, model_);
-  const auto low = ctx.param<std::vector<double>>("hsv_low");
-  const auto high = ctx.param<std::vector<double>>("hsv_high");
+  eyes_believed_.configure(ctx, config_.eyes, model_);
+  const auto low = config_.hsv_low;
+  const auto high = config_.hsv_high;
   if (low[0] > 179)
-    ctx.param_error("hsv_low",
-                    fmt::format("hue {} is above 179 (OpenCV's hue is degrees / 2)", low[0]));
+    config_error(ctx, config_, config_.hsv_low,
+                 fmt::format("hue {} is above 179 (OpenCV's hue is degrees / 2)", low[0]));
   if (high[0] > 179)
-    ctx.param_error("hsv_high",
-                    fmt::format("hue {} is above 179 (OpenCV's hue is degrees / 2)", high[0]));
+    config_error(ctx, config_, config_.hsv_high,
+                 fmt::format("hue {} is above 179 (OpenCV's hue is degrees / 2)", high[0]));
   for (int i = 0; i < 3; ++i) {
     range_.low[i] = static_cast<unsigned char>(std::lround(low[static_cast<std::size_t>(i)]));
     range_.high[i] = static_cast<unsigned char>(std::lround(high[static_cast<std::size_t>(i)]));
   }
   for (int i = 1; i < 3; ++i)
     if (range_.low[i] > range_.high[i])
-      ctx.param_error("hsv_low",
-                      fmt::format("{} {} is above hsv_high's {}", i == 1 ? "saturation" : "value",
-                                  range_.low[i], range_.high[i]));
+      config_error(ctx, config_, config_.hsv_low,
+                   fmt::format("{} {} is above hsv_high's {}", i == 1 ? "saturation" : "value",
+                               range_.low[i], range_.high[i]));
   range_text_ =
       fmt::format("hsv_low {} .. hsv_high {}", hsv_text(range_.low), hsv_text(range_.high));
-  min_area_px_ = ctx.param<int>("min_area_px");
-  use_circle_ = ctx.param<std::string>("blob_centre") == "circle";
-  marker_radius_ = ctx.param<double>("marker_radius");
-  max_reprojection_px_ = ctx.param<double>("max_reprojection_px");
-  max_distance_from_believed_ = ctx.param<double>("max_distance_from_believed");
-  no_colour_frames_error_ = ctx.param<int>("no_colour_frames_error");
-  reset_after_lost_ = ctx.param<int>("reset_after_lost");
-  const std::string marker_frame = ctx.param<std::string>("marker_frame");
+  min_area_px_ = config_.min_area_px;
+  use_circle_ = config_.blob_centre == "circle";
+  marker_radius_ = config_.marker_radius;
+  max_reprojection_px_ = config_.max_reprojection_px;
+  max_distance_from_believed_ = config_.max_distance_from_believed;
+  no_colour_frames_error_ = config_.no_colour_frames_error;
+  reset_after_lost_ = config_.reset_after_lost;
+  const std::string marker_frame = config_.marker_frame;
   if (model_->find_frame(marker_frame) < 0 && model_->find_link(marker_frame) < 0)
-    ctx.param_error("marker_frame", fmt::format("'{}' is neither a frame nor a link of robot '{}'",
-                                                marker_frame, model_->name()));
+    config_error(ctx, config_, config_.marker_frame,
+                 fmt::format("'{}' is neither a frame nor a link of robot '{}'", marker_frame,
+                             model_->name()));
   marker_ref_ = model_->frame_ref(marker_frame);
-  kalman_options_.model = ctx.param<std::string>("motion_model") == "constant_acceleration"
+  kalman_options_.model = config_.motion_model == "constant_acceleration"
                               ? vision::MotionModel::kConstantAcceleration
                               : vision::MotionModel::kConstantVelocity;
-  kalman_options_.process_noise = ctx.param<double>("process_noise");
-  kalman_options_.measurement_sigma_m = ctx.param<double>("measurement_sigma");
+  kalman_options_.process_noise = config_.process_noise;
+  kalman_options_.measurement_sigma_m = config_.measurement_sigma;
   kalman_ = vision::KalmanTracker(kalman_options_);
 
-  left_ = &ctx.input<Image>("left_eye_rgb");
-  right_ = &ctx.input<Image>("right_eye_rgb");
-  joints_ = &ctx.input<JointState>("joint_state");
-  truth_ = ctx.is_wired("true_link_poses") ? &ctx.input<LinkPoses>("true_link_poses") : nullptr;
-  stimulus_ = &ctx.output<pps::Stimulus>("stimulus");
-  pixels_ = &ctx.output<StereoPixels>("marker_pixels");
+  left_ = &ports_.left_eye_rgb.get();
+  right_ = &ports_.right_eye_rgb.get();
+  joints_ = &ports_.joint_state.get();
+  truth_ = ports_.true_link_poses.get();
+  stimulus_ = &ports_.stimulus.get();
+  pixels_ = &ports_.marker_pixels.get();
   stimulus_->radius = marker_radius_;
 }
 
@@ -256,7 +249,7 @@ void MarkerTracker::step(NodeContext& ctx) {
           "(since t = {:.3f} s), while the believed kinematics put the marker ('{}') in view "
           "of both: is the range the marker's colour (OpenCV HSV: H 0-179, S and V 0-255)?",
           eyes_believed_.names()[0], eyes_believed_.names()[1], range_text_, no_colour_,
-          no_colour_since_s_, ctx.param<std::string>("marker_frame")));
+          no_colour_since_s_, config_.marker_frame));
   } else {
     no_colour_ = 0;
   }

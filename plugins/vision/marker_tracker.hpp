@@ -10,10 +10,13 @@
 
 #include "believed_eyes.hpp"
 #include "lag_estimate.hpp"
+#include "somasim/config.hpp"
 #include "somasim/plugin.hpp"
+#include "somasim/plugin_ports.hpp"
 #include "somasim/pps/ports.hpp"
 #include "somasim/render/camera.hpp"
 #include "somasim/render/ports.hpp"
+#include "somasim/robot/experiment_robot.hpp"
 #include "somasim/robot/kinematics.hpp"
 #include "somasim/robot/ports.hpp"
 #include "somasim/robot/robot_model.hpp"
@@ -25,12 +28,43 @@ namespace somasim::plugins {
 
 class MarkerTracker : public Plugin {
  public:
+  struct Config {
+    robot::RobotParam robot;
+    BelievedEyes::Config eyes;
+    std::vector<double> hsv_low{45, 80, 40};
+    std::vector<double> hsv_high{75, 255, 255};
+    int min_area_px = 6;
+    double marker_radius = 0.007;  // [m]
+    std::string marker_frame = "r_index_tip";
+    double max_distance_from_believed = 0.06;  // [m]
+    std::string blob_centre = "circle";
+    double max_reprojection_px = 3.0;  // [px]
+    int no_colour_frames_error = 10;
+    int reset_after_lost = 5;
+    std::string motion_model = "constant_velocity";
+    double process_noise = 1.0;
+    double measurement_sigma = 0.003;  // [m]
+    template <class V>
+    void visit(V& v);
+  };
+  struct Ports {
+    In<Image> left_eye_rgb;
+    In<Image> right_eye_rgb;
+    In<JointState> joint_state;
+    OptionalIn<LinkPoses> true_link_poses;
+    Out<pps::Stimulus> stimulus;
+    Out<StereoPixels> marker_pixels;
+    template <class V>
+    void visit(V& v);
+  };
   static PluginSpec spec();
   void configure(NodeContext& ctx) override;
   void step(NodeContext& ctx) override;
   void finish(NodeContext& ctx) override;
 
  private:
+  Config config_;
+  Ports ports_;
   bool looks_like_marker(const render::Camera& camera, const vision::MarkerBlob& blob,
                          const Eigen::Vector3d& point_root) const;
   /// Where the believed kinematics (encoders + joint_offsets_deg) put marker_frame [m, root].

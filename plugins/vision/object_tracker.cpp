@@ -44,8 +44,152 @@ std::vector<cv::Vec3b> rendered_colours(const robot::RobotModel& model) {
 
 }  // namespace
 
+template <class V>
+void ObjectTracker::Config::visit(V& v) {
+  v.block(robot);
+  v.block(eyes);
+  v.field("min_flow_px", min_flow_px)
+      .unit("px")
+      .range(0.01, 100)
+      .doc("optical-flow magnitude per frame that counts as motion");
+  v.field("min_motion_px", min_motion_px)
+      .at_least(1)
+      .doc("smallest moving blob [px] that acquires an object");
+  v.field("max_motion_fraction", max_motion_fraction)
+      .range(0.001, 1.0)
+      .doc(
+          "a moving blob larger than this fraction of the image acquires nothing (the whole "
+          "scene jumped, e.g. the first posture or an uncompensated head turn)");
+  v.field("still_frames_lost", still_frames_lost)
+      .at_least(1)
+      .doc(
+          "a track that has not moved by still_px (centre or radius, beyond the camera's own "
+          "rotation) for this many frames is dropped: the moving object was lost and the "
+          "colour tracker locked on to static clutter of its colour");
+  v.field("still_px", still_px)
+      .unit("px")
+      .at_least(0.01)
+      .doc("how far a track must move to count as moving (see still_frames_lost)");
+  v.field("max_background_ratio", max_background_ratio)
+      .at_least(0.01)
+      .doc(
+          "an acquisition is refused when the acquired colours cover more pixels elsewhere in "
+          "the image than on the moving blob, times this (colours of the backdrop or robot)");
+  v.field("refuse_own_colours", refuse_own_colours)
+      .doc(
+          "refuse acquisitions whose colour mode is one of the robot's own rendered colours "
+          "(its links' and coloured visuals', from the robot model): the robot's own moving "
+          "hand is not an object (metric own_colour_refusals)");
+  v.field("compensate_ego_motion", compensate_ego_motion)
+      .doc(
+          "warp the previous image by the rotation of the (believed) camera between the frames "
+          "before the flow, so that a turning head is not taken for a moving object");
+  v.field("min_saturation", min_saturation)
+      .range(0, 255)
+      .doc("pixels less saturated carry no colour (OpenCV HSV, 0-255)");
+  v.field("min_value", min_value)
+      .range(0, 255)
+      .doc("darker pixels carry no colour (OpenCV HSV, 0-255)");
+  v.field("min_object_px", min_object_px)
+      .at_least(1)
+      .doc("fewest object pixels for an acquisition or a tracked image");
+  v.field("lost_fraction", lost_fraction)
+      .range(0.01, 0.99)
+      .doc(
+          "a track is lost when its object pixels fall below this fraction of their running "
+          "mean (the back-projection mass collapsed)");
+  v.field("max_reprojection_px", max_reprojection_px)
+      .unit("px")
+      .at_least(0.01)
+      .doc(
+          "a triangulation whose RMS reprojection error exceeds this is no fix (the eyes track "
+          "different things)");
+  v.field("max_jump_m", max_jump_m)
+      .unit("m")
+      .range(0.001, 100)
+      .doc(
+          "a fix farther than this from where the Kalman filter predicts the object tracked in "
+          "the previous frame is something else the colour trackers slid onto (the object was "
+          "removed or hidden): both are dropped and re-acquired by motion (metric jump_drops)");
+  v.field("max_distance_m", max_distance_m)
+      .unit("m")
+      .range(0.05, 100.0)
+      .doc(
+          "a triangulated object farther than this from the middle of the two eyes is no fix and "
+          "both tracks are dropped (metric far_drops): the peripersonal space is near, and a "
+          "distant piece of the backdrop taken for an object while the head turned (parallax) "
+          "would otherwise hold the gaze");
+  v.field("max_colour_distance", max_colour_distance)
+      .range(0.0, 1.0)
+      .doc(
+          "the two eyes' colour models (Bhattacharyya distance of their hue-saturation "
+          "histograms, 0 = the same, 1 = disjoint) must be closer than this for a fix; farther "
+          "apart, the eyes follow different things and the frame counts as inconsistent");
+  v.field("inconsistent_frames_lost", inconsistent_frames_lost)
+      .at_least(1)
+      .doc(
+          "after this many consecutive frames whose two tracks do not triangulate, both tracks "
+          "are dropped and the object re-acquired by motion");
+  v.field("unfixed_frames_lost", unfixed_frames_lost)
+      .at_least(1)
+      .doc(
+          "an eye's track that gave no stereo fix for this many consecutive frames (the other "
+          "eye sees nothing, or something unlike it, or it is cut by the border) is dropped "
+          "and the eye re-acquires by motion: a track left on clutter when the object went "
+          "cannot keep the eye from acquiring the next object (metric unfixed_drops)");
+  v.field("reset_after_lost", reset_after_lost)
+      .at_least(1)
+      .doc("frames without a fix after which the Kalman filter starts afresh");
+  v.field("radius_min", radius_min)
+      .unit("m")
+      .range(1e-4, 1.0)
+      .doc("the output radius (from area and depth) is clamped to [radius_min, radius_max]");
+  v.field("radius_max", radius_max)
+      .unit("m")
+      .range(1e-4, 10.0)
+      .doc("upper clamp of the output radius");
+  v.field("predict_windows", predict_windows)
+      .doc(
+          "before each CamShift step, move each eye's search window by the image motion the "
+          "Kalman filter predicts for the object (its velocity over the frame interval, "
+          "projected): an object that moves farther in a frame than its window is wide (about "
+          "1 m/s at 0.45 m and 20 Hz for a 1.2 cm ball) is met instead of lost; at 0.05-0.30 "
+          "m/s it changed no avoidance metric");
+  v.field("motion_model", motion_model)
+      .one_of({"constant_velocity", "constant_acceleration"})
+      .doc("the Kalman filter's motion model (the paper's: a higher-order one)");
+  v.field("process_noise", process_noise)
+      .at_least(1e-9)
+      .doc(
+          "spectral density of the white acceleration [m²/s³] (constant_velocity) or jerk "
+          "[m²/s⁵] (constant_acceleration) that drives the model");
+  v.field("measurement_sigma", measurement_sigma)
+      .unit("m")
+      .at_least(1e-6)
+      .doc("σ of a triangulated position per axis [m]");
+}
+
+template <class V>
+void ObjectTracker::Ports::visit(V& v) {
+  v.port("left_eye_rgb", left_eye_rgb, "rgb8 image of the first camera (e.g. cam.left_eye_rgb)");
+  v.port("right_eye_rgb", right_eye_rgb,
+         "rgb8 image of the second camera (e.g. cam.right_eye_rgb)");
+  v.port("joint_state", joint_state,
+         "encoder values: the head and eye joints pose the cameras (e.g. "
+         "world.joint_state)");
+  v.port("truth", truth,
+         "optional ground truth (e.g. object_thrower.truth): metrics position_rms_m, "
+         "velocity_rms_m_s, latency_s, tracked shares");
+  v.port("stimulus", stimulus,
+         "the object in the root frame: Kalman position [m] and velocity [m/s], radius from the "
+         "tracked area and depth [m]; present only in frames with a triangulated fix");
+  v.port("object_pixels", object_pixels,
+         "the tracked object in each image: found, centre (u, v) [px], area "
+         "[px] (somasim/vision/ports.hpp)");
+}
+
 PluginSpec ObjectTracker::spec() {
-  PluginSpec s(
+  return make_plugin_spec<Config, Ports>(
       "object_tracker",
       "A moving object seen by two eyes (the PPS study's Fig 13 pipeline): motion detection by "
       "dense optical flow acquires it in each image, a CamShift tracker of its hue-saturation "
@@ -55,216 +199,54 @@ PluginSpec ObjectTracker::spec() {
       "track whose colour collapses (the object left, was removed or hidden) is lost and the "
       "object re-acquired by motion. With a wired truth: tracking errors, latency and the share "
       "of frames tracked.");
-  robot::add_robot_param(s);
-  BelievedEyes::declare_params(s);
-  s.add_double("min_flow_px")
-      .unit_is("px")
-      .defaults(0.5)
-      .range(0.01, 100)
-      .describe("optical-flow magnitude per frame that counts as motion");
-  s.add_int("min_motion_px")
-      .defaults(std::int64_t{20})
-      .at_least(1)
-      .describe("smallest moving blob [px] that acquires an object");
-  s.add_double("max_motion_fraction")
-      .defaults(0.3)
-      .range(0.001, 1.0)
-      .describe(
-          "a moving blob larger than this fraction of the image acquires nothing (the whole "
-          "scene jumped, e.g. the first posture or an uncompensated head turn)");
-  s.add_int("still_frames_lost")
-      .defaults(std::int64_t{20})
-      .at_least(1)
-      .describe(
-          "a track that has not moved by still_px (centre or radius, beyond the camera's own "
-          "rotation) for this many frames is dropped: the moving object was lost and the "
-          "colour tracker locked on to static clutter of its colour");
-  s.add_double("still_px")
-      .unit_is("px")
-      .defaults(1.5)
-      .at_least(0.01)
-      .describe("how far a track must move to count as moving (see still_frames_lost)");
-  s.add_double("max_background_ratio")
-      .defaults(1.0)
-      .at_least(0.01)
-      .describe(
-          "an acquisition is refused when the acquired colours cover more pixels elsewhere in "
-          "the image than on the moving blob, times this (colours of the backdrop or robot)");
-  s.add_bool("refuse_own_colours")
-      .defaults(true)
-      .describe(
-          "refuse acquisitions whose colour mode is one of the robot's own rendered colours "
-          "(its links' and coloured visuals', from the robot model): the robot's own moving "
-          "hand is not an object (metric own_colour_refusals)");
-  s.add_bool("compensate_ego_motion")
-      .defaults(true)
-      .describe(
-          "warp the previous image by the rotation of the (believed) camera between the frames "
-          "before the flow, so that a turning head is not taken for a moving object");
-  s.add_int("min_saturation")
-      .defaults(std::int64_t{60})
-      .range(0, 255)
-      .describe("pixels less saturated carry no colour (OpenCV HSV, 0-255)");
-  s.add_int("min_value")
-      .defaults(std::int64_t{30})
-      .range(0, 255)
-      .describe("darker pixels carry no colour (OpenCV HSV, 0-255)");
-  s.add_int("min_object_px")
-      .defaults(std::int64_t{12})
-      .at_least(1)
-      .describe("fewest object pixels for an acquisition or a tracked image");
-  s.add_double("lost_fraction")
-      .defaults(0.3)
-      .range(0.01, 0.99)
-      .describe(
-          "a track is lost when its object pixels fall below this fraction of their running "
-          "mean (the back-projection mass collapsed)");
-  s.add_double("max_reprojection_px")
-      .unit_is("px")
-      .defaults(4.0)
-      .at_least(0.01)
-      .describe(
-          "a triangulation whose RMS reprojection error exceeds this is no fix (the eyes track "
-          "different things)");
-  s.add_double("max_jump_m")
-      .unit_is("m")
-      .defaults(0.08)
-      .range(0.001, 100)
-      .describe(
-          "a fix farther than this from where the Kalman filter predicts the object tracked in "
-          "the previous frame is something else the colour trackers slid onto (the object was "
-          "removed or hidden): both are dropped and re-acquired by motion (metric jump_drops)");
-  s.add_double("max_distance_m")
-      .unit_is("m")
-      .defaults(0.8)
-      .range(0.05, 100.0)
-      .describe(
-          "a triangulated object farther than this from the middle of the two eyes is no fix and "
-          "both tracks are dropped (metric far_drops): the peripersonal space is near, and a "
-          "distant piece of the backdrop taken for an object while the head turned (parallax) "
-          "would otherwise hold the gaze");
-  s.add_double("max_colour_distance")
-      .defaults(0.6)
-      .range(0.0, 1.0)
-      .describe(
-          "the two eyes' colour models (Bhattacharyya distance of their hue-saturation "
-          "histograms, 0 = the same, 1 = disjoint) must be closer than this for a fix; farther "
-          "apart, the eyes follow different things and the frame counts as inconsistent");
-  s.add_int("inconsistent_frames_lost")
-      .defaults(std::int64_t{2})
-      .at_least(1)
-      .describe(
-          "after this many consecutive frames whose two tracks do not triangulate, both tracks "
-          "are dropped and the object re-acquired by motion");
-  s.add_int("unfixed_frames_lost")
-      .defaults(std::int64_t{10})
-      .at_least(1)
-      .describe(
-          "an eye's track that gave no stereo fix for this many consecutive frames (the other "
-          "eye sees nothing, or something unlike it, or it is cut by the border) is dropped "
-          "and the eye re-acquires by motion: a track left on clutter when the object went "
-          "cannot keep the eye from acquiring the next object (metric unfixed_drops)");
-  s.add_int("reset_after_lost")
-      .defaults(std::int64_t{3})
-      .at_least(1)
-      .describe("frames without a fix after which the Kalman filter starts afresh");
-  s.add_double("radius_min")
-      .unit_is("m")
-      .defaults(0.005)
-      .range(1e-4, 1.0)
-      .describe("the output radius (from area and depth) is clamped to [radius_min, radius_max]");
-  s.add_double("radius_max")
-      .unit_is("m")
-      .defaults(0.2)
-      .range(1e-4, 10.0)
-      .describe("upper clamp of the output radius");
-  s.add_bool("predict_windows")
-      .defaults(false)
-      .describe(
-          "before each CamShift step, move each eye's search window by the image motion the "
-          "Kalman filter predicts for the object (its velocity over the frame interval, "
-          "projected): an object that moves farther in a frame than its window is wide (about "
-          "1 m/s at 0.45 m and 20 Hz for a 1.2 cm ball) is met instead of lost; at 0.05-0.30 "
-          "m/s it changed no avoidance metric");
-  s.add_string("motion_model")
-      .defaults(std::string("constant_acceleration"))
-      .one_of({"constant_velocity", "constant_acceleration"})
-      .describe("the Kalman filter's motion model (the paper's: a higher-order one)");
-  s.add_double("process_noise")
-      .defaults(1.0)
-      .at_least(1e-9)
-      .describe(
-          "spectral density of the white acceleration [m²/s³] (constant_velocity) or jerk "
-          "[m²/s⁵] (constant_acceleration) that drives the model");
-  s.add_double("measurement_sigma")
-      .unit_is("m")
-      .defaults(0.005)
-      .at_least(1e-6)
-      .describe("σ of a triangulated position per axis [m]");
-  s.input<Image>("left_eye_rgb", "rgb8 image of the first camera (e.g. cam.left_eye_rgb)");
-  s.input<Image>("right_eye_rgb", "rgb8 image of the second camera (e.g. cam.right_eye_rgb)");
-  s.input<JointState>("joint_state",
-                      "encoder values: the head and eye joints pose the cameras (e.g. "
-                      "world.joint_state)");
-  s.input<pps::Stimulus>(
-      "truth",
-      "optional ground truth (e.g. object_thrower.truth): metrics position_rms_m, "
-      "velocity_rms_m_s, latency_s, tracked shares",
-      /*optional=*/true);
-  s.output<pps::Stimulus>(
-      "stimulus",
-      "the object in the root frame: Kalman position [m] and velocity [m/s], radius from the "
-      "tracked area and depth [m]; present only in frames with a triangulated fix");
-  s.output<StereoPixels>("object_pixels",
-                         "the tracked object in each image: found, centre (u, v) [px], area "
-                         "[px] (somasim/vision/ports.hpp)");
-  return s;
 }
 
 void ObjectTracker::configure(NodeContext& ctx) {
+  config_ = read_config<Config>(ctx);
+  bind_ports(ctx, ports_);
   model_ = robot::experiment_robot(ctx);
-  eyes_believed_.configure(ctx, model_);
-  motion_.min_flow_px = ctx.param<double>("min_flow_px");
-  motion_.min_area_px = ctx.param<int>("min_motion_px");
-  compensate_ego_motion_ = ctx.param<bool>("compensate_ego_motion");
-  max_motion_fraction_ = ctx.param<double>("max_motion_fraction");
-  still_frames_lost_ = ctx.param<int>("still_frames_lost");
-  still_px_ = ctx.param<double>("still_px");
+  eyes_believed_.configure(ctx, config_.eyes, model_);
+  motion_.min_flow_px = config_.min_flow_px;
+  motion_.min_area_px = config_.min_motion_px;
+  compensate_ego_motion_ = config_.compensate_ego_motion;
+  max_motion_fraction_ = config_.max_motion_fraction;
+  still_frames_lost_ = config_.still_frames_lost;
+  still_px_ = config_.still_px;
   vision::ColourTrackerOptions colour;
-  colour.min_saturation = ctx.param<int>("min_saturation");
-  colour.min_value = ctx.param<int>("min_value");
-  colour.min_object_px = ctx.param<int>("min_object_px");
-  colour.lost_fraction = ctx.param<double>("lost_fraction");
-  colour.max_background_ratio = ctx.param<double>("max_background_ratio");
-  if (ctx.param<bool>("refuse_own_colours")) colour.own_colours = rendered_colours(*model_);
+  colour.min_saturation = config_.min_saturation;
+  colour.min_value = config_.min_value;
+  colour.min_object_px = config_.min_object_px;
+  colour.lost_fraction = config_.lost_fraction;
+  colour.max_background_ratio = config_.max_background_ratio;
+  if (config_.refuse_own_colours) colour.own_colours = rendered_colours(*model_);
   for (Eye& eye : eyes_) eye.tracker = vision::ColourTracker(colour);
-  max_reprojection_px_ = ctx.param<double>("max_reprojection_px");
-  inconsistent_frames_lost_ = ctx.param<int>("inconsistent_frames_lost");
-  unfixed_frames_lost_ = ctx.param<int>("unfixed_frames_lost");
-  max_distance_ = ctx.param<double>("max_distance_m");
-  max_jump_ = ctx.param<double>("max_jump_m");
-  max_colour_distance_ = ctx.param<double>("max_colour_distance");
-  reset_after_lost_ = ctx.param<int>("reset_after_lost");
-  predict_windows_ = ctx.param<bool>("predict_windows");
-  radius_min_ = ctx.param<double>("radius_min");
-  radius_max_ = ctx.param<double>("radius_max");
+  max_reprojection_px_ = config_.max_reprojection_px;
+  inconsistent_frames_lost_ = config_.inconsistent_frames_lost;
+  unfixed_frames_lost_ = config_.unfixed_frames_lost;
+  max_distance_ = config_.max_distance_m;
+  max_jump_ = config_.max_jump_m;
+  max_colour_distance_ = config_.max_colour_distance;
+  reset_after_lost_ = config_.reset_after_lost;
+  predict_windows_ = config_.predict_windows;
+  radius_min_ = config_.radius_min;
+  radius_max_ = config_.radius_max;
   if (radius_max_ < radius_min_)
-    ctx.param_error("radius_max",
-                    fmt::format("{} is below radius_min {}", radius_max_, radius_min_));
+    config_error(ctx, config_, config_.radius_max,
+                 fmt::format("{} is below radius_min {}", radius_max_, radius_min_));
   vision::KalmanOptions kalman;
-  kalman.model = ctx.param<std::string>("motion_model") == "constant_acceleration"
+  kalman.model = config_.motion_model == "constant_acceleration"
                      ? vision::MotionModel::kConstantAcceleration
                      : vision::MotionModel::kConstantVelocity;
-  kalman.process_noise = ctx.param<double>("process_noise");
-  kalman.measurement_sigma_m = ctx.param<double>("measurement_sigma");
+  kalman.process_noise = config_.process_noise;
+  kalman.measurement_sigma_m = config_.measurement_sigma;
   kalman_ = vision::KalmanTracker(kalman);
 
-  left_ = &ctx.input<Image>("left_eye_rgb");
-  right_ = &ctx.input<Image>("right_eye_rgb");
-  joints_ = &ctx.input<JointState>("joint_state");
-  truth_ = ctx.is_wired("truth") ? &ctx.input<pps::Stimulus>("truth") : nullptr;
-  stimulus_ = &ctx.output<pps::Stimulus>("stimulus");
-  pixels_ = &ctx.output<StereoPixels>("object_pixels");
+  left_ = &ports_.left_eye_rgb.get();
+  right_ = &ports_.right_eye_rgb.get();
+  joints_ = &ports_.joint_state.get();
+  truth_ = ports_.truth.get();
+  stimulus_ = &ports_.stimulus.get();
+  pixels_ = &ports_.object_pixels.get();
 }
 
 void ObjectTracker::track_eye(Eye& eye, const Image& image, const render::Camera& camera,

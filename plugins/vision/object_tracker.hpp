@@ -21,10 +21,13 @@
 
 #include "believed_eyes.hpp"
 #include "lag_estimate.hpp"
+#include "somasim/config.hpp"
 #include "somasim/plugin.hpp"
+#include "somasim/plugin_ports.hpp"
 #include "somasim/pps/ports.hpp"
 #include "somasim/render/camera.hpp"
 #include "somasim/render/ports.hpp"
+#include "somasim/robot/experiment_robot.hpp"
 #include "somasim/robot/kinematics.hpp"
 #include "somasim/robot/ports.hpp"
 #include "somasim/robot/robot_model.hpp"
@@ -37,12 +40,55 @@ namespace somasim::plugins {
 
 class ObjectTracker : public Plugin {
  public:
+  struct Config {
+    robot::RobotParam robot;
+    BelievedEyes::Config eyes;
+    double min_flow_px = 0.5;  // [px]
+    int min_motion_px = 20;
+    double max_motion_fraction = 0.3;
+    int still_frames_lost = 20;
+    double still_px = 1.5;  // [px]
+    double max_background_ratio = 1.0;
+    bool refuse_own_colours = true;
+    bool compensate_ego_motion = true;
+    int min_saturation = 60;
+    int min_value = 30;
+    int min_object_px = 12;
+    double lost_fraction = 0.3;
+    double max_reprojection_px = 4.0;  // [px]
+    double max_jump_m = 0.08;          // [m]
+    double max_distance_m = 0.8;       // [m]
+    double max_colour_distance = 0.6;
+    int inconsistent_frames_lost = 2;
+    int unfixed_frames_lost = 10;
+    int reset_after_lost = 3;
+    double radius_min = 0.005;  // [m]
+    double radius_max = 0.2;    // [m]
+    bool predict_windows = false;
+    std::string motion_model = "constant_acceleration";
+    double process_noise = 1.0;
+    double measurement_sigma = 0.005;  // [m]
+    template <class V>
+    void visit(V& v);
+  };
+  struct Ports {
+    In<Image> left_eye_rgb;
+    In<Image> right_eye_rgb;
+    In<JointState> joint_state;
+    OptionalIn<pps::Stimulus> truth;
+    Out<pps::Stimulus> stimulus;
+    Out<StereoPixels> object_pixels;
+    template <class V>
+    void visit(V& v);
+  };
   static PluginSpec spec();
   void configure(NodeContext& ctx) override;
   void step(NodeContext& ctx) override;
   void finish(NodeContext& ctx) override;
 
  private:
+  Config config_;
+  Ports ports_;
   struct Eye {
     vision::ColourTracker tracker;
     cv::Mat previous;                   // the last image (for the flow)
