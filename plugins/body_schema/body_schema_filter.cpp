@@ -20,262 +20,238 @@ namespace somasim::plugins {
 namespace {
 
 constexpr double kRadToDeg = 180.0 / std::numbers::pi;
-const std::vector<std::string> kRightArm = {"r_shoulder_pitch", "r_shoulder_roll", "r_shoulder_yaw",
-                                            "r_elbow",          "r_wrist_prosup",  "r_wrist_pitch",
-                                            "r_wrist_yaw"};
 
 }  // namespace
 
-PluginSpec BodySchemaFilter::spec() {
-  PluginSpec s("body_schema_filter",
-               "Online body-schema adaptation (Vicente et al. 2016): a particle filter over the "
-               "arm's joint offsets scores rendered hypotheses of the hand ('mental images') "
-               "against the eye images (colour silhouettes or edges) and estimates the offsets "
-               "and the palm pose in the left-eye frame.");
-  robot::add_robot_param(s);
-  s.add_string("chain")
-      .defaults(std::string("right_arm"))
-      .describe("the arm's chain in the robot model");
-  s.add_string_list("joints").defaults(kRightArm).describe(
-      "joints whose offsets are estimated (all in `chain`), one particle row each");
-  s.add_string_list("links")
-      .defaults(std::vector<std::string>{"r_hand"})
-      .describe("links drawn as hypotheses (their collision geometry: the internal model)");
-  s.add_string("palm_frame")
-      .defaults(std::string("r_palm"))
-      .describe("frame whose pose is estimated");
-  s.add_string_list("cameras")
-      .defaults(std::vector<std::string>{"left_eye", "right_eye"})
-      .describe(
+template <class V>
+void BodySchemaFilter::Config::visit(V& v) {
+  v.block(robot);
+  v.field("chain", chain).doc("the arm's chain in the robot model");
+  v.field("joints", joints)
+      .doc("joints whose offsets are estimated (all in `chain`), one particle row each");
+  v.field("links", links)
+      .doc("links drawn as hypotheses (their collision geometry: the internal model)");
+  v.field("palm_frame", palm_frame).doc("frame whose pose is estimated");
+  v.field("cameras", cameras)
+      .doc(
           "1 or 2 cameras, fed by the inputs left_eye_rgb and right_eye_rgb; the first "
           "is the frame of the estimated palm pose");
-  s.add_int("particles").defaults(std::int64_t{200}).at_least(1).describe("M");
-  s.add_string("schedule")
-      .defaults(std::string("paper"))
+  v.field("particles", particles).at_least(1).doc("M");
+  v.field("schedule", schedule)
       .one_of(body_schema::noise_schedule_names())
-      .describe("noise schedule preset (somasim/body_schema/noise_schedule.hpp)");
-  s.add_double("sigma_floor_deg")
-      .defaults(0.0)
+      .doc("noise schedule preset (somasim/body_schema/noise_schedule.hpp)");
+  v.field("sigma_floor_deg", sigma_floor_deg)
       .at_least(0.0)
-      .unit_is("deg")
-      .describe(
+      .unit("deg")
+      .doc(
           "floor of σ_s instead of the schedule's (0: the preset's, e.g. 0.08 for paper); a "
           "higher floor keeps the particles moving (measured with 0.5: estimates noisier, and "
           "filters locked onto a wrong mode did not leave it; see plugins/body_schema/README.md)");
-  s.add_double("jump_fraction")
-      .defaults(0.0)
+  v.field("jump_fraction", jump_fraction)
       .range(0.0, 1.0)
-      .describe(
+      .doc(
           "share of particles that take a wider step N(0, max(σ_s, jump_sigma_deg)²) at each "
           "prediction (mixture proposal against early lock-in onto a wrong mode; not in the "
           "paper, 0 = off; see plugins/body_schema/README.md)");
-  s.add_double("jump_sigma_deg")
-      .defaults(1.5)
+  v.field("jump_sigma_deg", jump_sigma_deg)
       .at_least(0.0)
-      .unit_is("deg")
-      .describe("σ of a jump (with jump_fraction > 0)");
-  s.add_double("kde_sigma_deg").defaults(1.0).unit_is("deg").describe("σ_KDE of the estimate");
-  s.add_double("kde_alpha").defaults(500.0).at_least(0.0).describe("α of the estimate's KDE");
-  s.add_string("likelihood")
-      .defaults(std::string("silhouette"))
+      .unit("deg")
+      .doc("σ of a jump (with jump_fraction > 0)");
+  v.field("kde_sigma_deg", kde_sigma_deg).unit("deg").doc("σ_KDE of the estimate");
+  v.field("kde_alpha", kde_alpha).at_least(0.0).doc("α of the estimate's KDE");
+  v.field("likelihood", likelihood)
       .one_of({"silhouette", "edges"})
-      .describe(
+      .doc(
           "silhouette: Jaccard index of colour-segmented and rendered hand masks; edges: "
           "mean distance-transform value under the rendered contours");
-  s.add_string("silhouette_form")
-      .defaults(std::string("jaccard"))
+  v.field("silhouette_form", silhouette_form)
       .one_of({"jaccard", "power"})
-      .describe("L = J (paper) or L = J^silhouette_power, per camera, multiplied over cameras");
-  s.add_double("silhouette_power").defaults(1.0).at_least(0.0).describe("k of L = J^k");
-  s.add_double("edge_lambda")
-      .defaults(0.01)
-      .unit_is("1/px")
+      .doc("L = J (paper) or L = J^silhouette_power, per camera, multiplied over cameras");
+  v.field("silhouette_power", silhouette_power).at_least(0.0).doc("k of L = J^k");
+  v.field("edge_lambda", edge_lambda)
+      .unit("1/px")
       .at_least(0.0)
-      .describe("λ of L = exp(−λ d̄): 0.01 in the paper's text, 25/255 = 0.098 in its code");
-  s.add_double("edge_orientation_weight")
-      .defaults(0.0)
-      .unit_is("px")
+      .doc("λ of L = exp(−λ d̄): 0.01 in the paper's text, 25/255 = 0.098 in its code");
+  v.field("edge_orientation_weight", edge_orientation_weight)
+      .unit("px")
       .range(0.0, 255.0)
-      .describe(
+      .doc(
           "edges: oriented chamfer - each contour pixel also costs this much times the angle "
           "between its normal and the nearest observed edge's normal over 90 deg (a "
           "perpendicular edge counts as this many pixels farther); 0: the paper's plain "
           "chamfer distance");
-  s.add_list("canny").size(2).defaults(std::vector<double>{65, 195}).describe("Canny thresholds");
-  s.add_list("hand_hsv_low")
+  v.field("canny", canny).size(2).doc("Canny thresholds");
+  v.field("hand_hsv_low", hand_hsv_low)
       .size(3)
-      .defaults(std::vector<double>{0, 40, 60})
-      .describe("hand colour segmentation: lower HSV bound (OpenCV: H 0-179, S and V 0-255)");
-  s.add_list("hand_hsv_high")
-      .size(3)
-      .defaults(std::vector<double>{30, 255, 255})
-      .describe("upper HSV bound");
-  s.add_int("proxy_resolution")
-      .defaults(std::int64_t{8})
+      .doc("hand colour segmentation: lower HSV bound (OpenCV: H 0-179, S and V 0-255)");
+  v.field("hand_hsv_high", hand_hsv_high).size(3).doc("upper HSV bound");
+  v.field("proxy_resolution", proxy_resolution)
       .range(3, 256)
-      .describe("segments around the hypotheses' curved primitives (low-poly internal model)");
-  s.add_int("margin_px").defaults(std::int64_t{8}).range(0, 1000).describe("ROI margin [px]");
-  s.add_int("contour_width").defaults(std::int64_t{1}).range(1, 2).describe("edges: [px]");
-  s.add_string("distribute")
-      .defaults(std::string("none"))
+      .doc("segments around the hypotheses' curved primitives (low-poly internal model)");
+  v.field("margin_px", margin_px).range(0, 1000).doc("ROI margin [px]");
+  v.field("contour_width", contour_width).range(1, 2).doc("edges: [px]");
+  v.field("distribute", distribute)
       .one_of({"none", "mpi"})
-      .describe(
+      .doc(
           "mpi: under `mpirun -n K somasim run`, every rank renders and scores its share of the "
           "particles (of every compared filter too) and the likelihoods are gathered, outputs "
           "byte-identical to one process (README 'MPI'); without an MPI launch one process scores "
           "them all. none: every rank scores all particles");
-  s.add_int("render_threads").defaults(std::int64_t{2}).range(1, 64).describe("render workers");
-  s.add_string("backend")
-      .defaults(std::string("osmesa"))
+  v.field("render_threads", render_threads).range(1, 64).doc("render workers");
+  v.field("backend", backend)
       .one_of({"osmesa", "egl"})
-      .describe("OpenGL back end of the hypothesis renderer");
-  s.add_double("image_noise")
-      .defaults(0.0)
+      .doc("OpenGL back end of the hypothesis renderer");
+  v.field("image_noise", image_noise)
       .at_least(0.0)
-      .describe(
-          "σ of Gaussian noise added to every RGB channel before the observation [grey levels]");
-  s.add_string("on_no_match")
-      .defaults(std::string("reinflate"))
+      .doc("σ of Gaussian noise added to every RGB channel before the observation [grey levels]");
+  v.field("on_no_match", on_no_match)
       .one_of({"reinflate", "stop"})
-      .describe(
+      .doc(
           "when every particle's likelihood is 0: keep the particles and multiply σ_s by "
           "reinflate_factor, or stop the run");
-  s.add_double("reinflate_factor").defaults(2.0).at_least(1.0).describe("see on_no_match");
-  s.add_list("compare_particles")
-      .defaults(std::vector<double>{})
-      .describe(
+  v.field("reinflate_factor", reinflate_factor).at_least(1.0).doc("see on_no_match");
+  v.field("compare_particles", compare_particles)
+      .doc(
           "sizes M of further filters run on the same images for the particle study "
           "(metrics particles_<M>_*, figures/body_schema_particles.png); [] = none");
-  s.add_int("evaluate_frame")
-      .defaults(std::int64_t{120})
+  v.field("evaluate_frame", evaluate_frame)
       .at_least(0)
-      .describe(
+      .doc(
           "phase frame at which each filter's estimation error is recorded for the "
           "particles_<M>_* metrics (needs phase and true_link_poses)");
-  s.add_string("true_offsets_deg")
-      .accepts_map_as_text()
-      .defaults(std::string(""))
-      .describe("the truth ('joint: deg, ...'), for the CSV's offset errors; empty = unknown");
-  s.add_string("csv")
-      .defaults(std::string("body_schema_filter.csv"))
-      .describe("per-frame CSV in the run folder ('' = none)");
-  s.input<JointState>("joint_state", "encoder readings θ (world.joint_state)");
-  s.input<Image>("left_eye_rgb", "rgb8 image of the first camera");
-  s.input<Image>("right_eye_rgb", "rgb8 image of the second camera", true);
-  s.input<ReachPhase>("phase",
-                      "the reach_controller's phase: observe in the open and closed loop, restart "
-                      "with every movement; unwired = observe every step",
-                      true);
-  s.input<LinkPoses>("true_link_poses", "the world's link poses, for the CSV's pose errors", true);
-  s.output<BodySchemaEstimate>("estimate", "β̂ and the estimated palm pose (left-eye frame)");
-  return s;
+  v.field("true_offsets_deg", true_offsets_deg)
+      .map_as_text()
+      .doc("the truth ('joint: deg, ...'), for the CSV's offset errors; empty = unknown");
+  v.field("csv", csv).doc("per-frame CSV in the run folder ('' = none)");
+}
+
+template <class V>
+void BodySchemaFilter::Ports::visit(V& v) {
+  v.port("joint_state", joint_state, "encoder readings θ (world.joint_state)");
+  v.port("left_eye_rgb", left_eye_rgb, "rgb8 image of the first camera");
+  v.port("right_eye_rgb", right_eye_rgb, "rgb8 image of the second camera");
+  v.port("phase", phase,
+         "the reach_controller's phase: observe in the open and closed loop, restart "
+         "with every movement; unwired = observe every step");
+  v.port("true_link_poses", true_link_poses, "the world's link poses, for the CSV's pose errors");
+  v.port("estimate", estimate, "β̂ and the estimated palm pose (left-eye frame)");
+}
+
+PluginSpec BodySchemaFilter::spec() {
+  return make_plugin_spec<Config, Ports>(
+      "body_schema_filter",
+      "Online body-schema adaptation (Vicente et al. 2016): a particle filter over the "
+      "arm's joint offsets scores rendered hypotheses of the hand ('mental images') "
+      "against the eye images (colour silhouettes or edges) and estimates the offsets "
+      "and the palm pose in the left-eye frame.");
 }
 
 void BodySchemaFilter::configure_joints(NodeContext& ctx) {
-  const std::string chain_name = ctx.param<std::string>("chain");
+  const std::string chain_name = config_.chain;
   const robot::ChainInfo* chain = model_->find_chain(chain_name);
   if (chain == nullptr)
-    ctx.param_error("chain",
-                    fmt::format("no chain '{}' in robot '{}'", chain_name, model_->name()));
-  joint_names_ = ctx.param<std::vector<std::string>>("joints");
-  if (joint_names_.empty()) ctx.param_error("joints", "expected at least one joint");
+    config_error(ctx, config_, config_.chain,
+                 fmt::format("no chain '{}' in robot '{}'", chain_name, model_->name()));
+  joint_names_ = config_.joints;
+  if (joint_names_.empty())
+    config_error(ctx, config_, config_.joints, "expected at least one joint");
   for (const std::string& j : joint_names_) {
     if (std::find(chain->joints.begin(), chain->joints.end(), j) == chain->joints.end())
-      ctx.param_error("joints", fmt::format("joint '{}' is not in the arm chain '{}' (joints: {})",
-                                            j, chain_name, fmt::join(chain->joints, ", ")));
+      config_error(ctx, config_, config_.joints,
+                   fmt::format("joint '{}' is not in the arm chain '{}' (joints: {})", j,
+                               chain_name, fmt::join(chain->joints, ", ")));
     offset_dofs_.push_back(model_->dof_index(j));
   }
   try {
-    model_->frame_ref(ctx.param<std::string>("palm_frame"));
+    model_->frame_ref(config_.palm_frame);
   } catch (const InputError& e) {
-    ctx.param_error("palm_frame", e.what());
+    config_error(ctx, config_, config_.palm_frame, e.what());
   }
-  const std::string truth = ctx.param<std::string>("true_offsets_deg");
+  const std::string truth = config_.true_offsets_deg;
   if (!truth.empty()) {
     try {
       true_offsets_ = robot::parse_joint_offsets(*model_, truth);
     } catch (const InputError& e) {
-      ctx.param_error("true_offsets_deg", e.what());
+      config_error(ctx, config_, config_.true_offsets_deg, e.what());
     }
   }
 }
 
 void BodySchemaFilter::configure_scorer(NodeContext& ctx) {
-  link_names_ = ctx.param<std::vector<std::string>>("links");
+  link_names_ = config_.links;
   body_schema::ArmHypothesisModel arm;
   try {
-    arm =
-        body_schema::arm_hypothesis_model(*model_, link_names_, ctx.param<int>("proxy_resolution"));
+    arm = body_schema::arm_hypothesis_model(*model_, link_names_, config_.proxy_resolution);
   } catch (const InputError& e) {
-    ctx.param_error("links", e.what());
+    config_error(ctx, config_, config_.links, e.what());
   }
   body_schema::ScorerOptions options;
-  options.kind = body_schema::likelihood_kind_from_name(ctx.param<std::string>("likelihood"));
-  options.form = body_schema::silhouette_form_from_name(ctx.param<std::string>("silhouette_form"));
-  options.power = ctx.param<double>("silhouette_power");
-  options.edge_lambda = ctx.param<double>("edge_lambda");
-  options.edge_orientation_weight = ctx.param<double>("edge_orientation_weight");
-  options.margin_px = ctx.param<int>("margin_px");
-  options.contour_width = ctx.param<int>("contour_width");
+  options.kind = body_schema::likelihood_kind_from_name(config_.likelihood);
+  options.form = body_schema::silhouette_form_from_name(config_.silhouette_form);
+  options.power = config_.silhouette_power;
+  options.edge_lambda = config_.edge_lambda;
+  options.edge_orientation_weight = config_.edge_orientation_weight;
+  options.margin_px = config_.margin_px;
+  options.contour_width = config_.contour_width;
   scorer_ = std::make_unique<body_schema::HypothesisScorer>(
-      model_, arm, offset_dofs_, ctx.param<int>("render_threads"), options,
-      render::parse_render_backend(ctx.param<std::string>("backend")));
+      model_, arm, offset_dofs_, config_.render_threads, options,
+      render::parse_render_backend(config_.backend));
 }
 
 void BodySchemaFilter::configure(NodeContext& ctx) {
+  config_ = read_config<Config>(ctx);
+  bind_ports(ctx, ports_);
   model_ = robot::experiment_robot(ctx);
   configure_joints(ctx);
-  cameras_ = ctx.param<std::vector<std::string>>("cameras");
+  cameras_ = config_.cameras;
   if (cameras_.empty() || cameras_.size() > 2)
-    ctx.param_error("cameras",
-                    fmt::format("expected 1 or 2 camera names, got {}", cameras_.size()));
+    config_error(ctx, config_, config_.cameras,
+                 fmt::format("expected 1 or 2 camera names, got {}", cameras_.size()));
   for (const std::string& c : cameras_)
     if (model_->find_camera(c) < 0)
-      ctx.param_error("cameras",
-                      fmt::format("camera '{}' is not in robot '{}'", c, model_->name()));
-  if (cameras_.size() == 2 && !ctx.is_wired("right_eye_rgb"))
-    ctx.param_error("cameras", "two cameras need the input right_eye_rgb wired");
+      config_error(ctx, config_, config_.cameras,
+                   fmt::format("camera '{}' is not in robot '{}'", c, model_->name()));
+  if (cameras_.size() == 2 && !ports_.right_eye_rgb.wired())
+    config_error(ctx, config_, config_.cameras, "two cameras need the input right_eye_rgb wired");
 
-  body_schema::KdeOptions kde{ctx.param<double>("kde_sigma_deg"), ctx.param<double>("kde_alpha")};
-  if (!(kde.sigma_deg > 0.0)) ctx.param_error("kde_sigma_deg", "expected a value > 0");
-  body_schema::NoiseSchedule schedule =
-      body_schema::noise_schedule_preset(ctx.param<std::string>("schedule"));
-  if (const double floor = ctx.param<double>("sigma_floor_deg"); floor > 0.0) {
+  body_schema::KdeOptions kde{config_.kde_sigma_deg, config_.kde_alpha};
+  if (!(kde.sigma_deg > 0.0))
+    config_error(ctx, config_, config_.kde_sigma_deg, "expected a value > 0");
+  body_schema::NoiseSchedule schedule = body_schema::noise_schedule_preset(config_.schedule);
+  if (const double floor = config_.sigma_floor_deg; floor > 0.0) {
     if (floor > schedule.max_sigma_deg)
-      ctx.param_error("sigma_floor_deg",
-                      fmt::format("{} deg is above the schedule's ceiling of {} deg", floor,
-                                  schedule.max_sigma_deg));
+      config_error(ctx, config_, config_.sigma_floor_deg,
+                   fmt::format("{} deg is above the schedule's ceiling of {} deg", floor,
+                               schedule.max_sigma_deg));
     schedule.min_sigma_deg = floor;
   }
-  schedule.jump_fraction = ctx.param<double>("jump_fraction");
-  schedule.jump_sigma_deg = ctx.param<double>("jump_sigma_deg");
+  schedule.jump_fraction = config_.jump_fraction;
+  schedule.jump_sigma_deg = config_.jump_sigma_deg;
   filter_ = std::make_unique<body_schema::OffsetParticleFilter>(
-      static_cast<int>(offset_dofs_.size()), ctx.param<int>("particles"), schedule, ctx.rng()(),
-      kde);
+      static_cast<int>(offset_dofs_.size()), config_.particles, schedule, ctx.rng()(), kde);
 
-  const auto low = ctx.param<std::vector<double>>("hand_hsv_low");
-  const auto high = ctx.param<std::vector<double>>("hand_hsv_high");
+  const auto low = config_.hand_hsv_low;
+  const auto high = config_.hand_hsv_high;
   hand_colour_.low = cv::Scalar(low[0], low[1], low[2]);
   hand_colour_.high = cv::Scalar(high[0], high[1], high[2]);
-  const auto canny = ctx.param<std::vector<double>>("canny");
+  const auto canny = config_.canny;
   canny_low_ = canny[0];
   canny_high_ = canny[1];
-  image_noise_ = ctx.param<double>("image_noise");
-  stop_when_lost_ = ctx.param<std::string>("on_no_match") == "stop";
-  reinflate_factor_ = ctx.param<double>("reinflate_factor");
-  csv_name_ = ctx.param<std::string>("csv");
-  if (!csv_name_.empty()) csv_path_ = ctx.output_path_param("csv");
+  image_noise_ = config_.image_noise;
+  stop_when_lost_ = config_.on_no_match == "stop";
+  reinflate_factor_ = config_.reinflate_factor;
+  csv_name_ = config_.csv.name;
+  if (!csv_name_.empty()) csv_path_ = config_.csv.path;
 
   configure_scorer(ctx);
-  const robot::ChainInfo* chain = model_->find_chain(ctx.param<std::string>("chain"));
-  eye_hand_ = std::make_unique<body_schema::EyeHand>(model_, cameras_[0],
-                                                     ctx.param<std::string>("palm_frame"),
+  const robot::ChainInfo* chain = model_->find_chain(config_.chain);
+  eye_hand_ = std::make_unique<body_schema::EyeHand>(model_, cameras_[0], config_.palm_frame,
                                                      model_->link(chain->base_link).name);
   std::vector<int> sizes;
-  for (double m : ctx.param<std::vector<double>>("compare_particles")) {
+  for (double m : config_.compare_particles) {
     if (!(m >= 1.0) || m != std::floor(m) || m > 1.0e6)
-      ctx.param_error("compare_particles",
-                      fmt::format("expected whole numbers of particles >= 1, got {}", m));
+      config_error(ctx, config_, config_.compare_particles,
+                   fmt::format("expected whole numbers of particles >= 1, got {}", m));
     sizes.push_back(static_cast<int>(m));
   }
   if (!sizes.empty())
@@ -284,14 +260,14 @@ void BodySchemaFilter::configure(NodeContext& ctx) {
                                              kde, ctx.rng()(), reinflate_factor_);
   main_record_.particles = filter_->size();
   configure_ranks(ctx, sizes);
-  evaluate_frame_ = ctx.param<int>("evaluate_frame");
+  evaluate_frame_ = config_.evaluate_frame;
 
-  joint_state_ = &ctx.input<JointState>("joint_state");
-  images_.push_back(&ctx.input<Image>("left_eye_rgb"));
-  if (cameras_.size() == 2) images_.push_back(&ctx.input<Image>("right_eye_rgb"));
-  if (ctx.is_wired("phase")) phase_ = &ctx.input<ReachPhase>("phase");
-  if (ctx.is_wired("true_link_poses")) true_poses_ = &ctx.input<LinkPoses>("true_link_poses");
-  estimate_ = &ctx.output<BodySchemaEstimate>("estimate");
+  joint_state_ = &ports_.joint_state.get();
+  images_.push_back(&ports_.left_eye_rgb.get());
+  if (cameras_.size() == 2) images_.push_back(ports_.right_eye_rgb.get());
+  phase_ = ports_.phase.get();
+  true_poses_ = ports_.true_link_poses.get();
+  estimate_ = &ports_.estimate.get();
   estimate_->offsets = Eigen::VectorXd::Zero(model_->num_dofs());
 
   columns_ = {"time [s]", "movement", "frame"};
@@ -305,11 +281,11 @@ void BodySchemaFilter::configure(NodeContext& ctx) {
       columns_.emplace_back(c);
   ctx.log().info("body_schema_filter: M = {}, {} joints, links {}, {} likelihood, schedule {}",
                  filter_->size(), joint_names_.size(), fmt::join(link_names_, " "),
-                 ctx.param<std::string>("likelihood"), ctx.param<std::string>("schedule"));
+                 config_.likelihood, config_.schedule);
 }
 
 void BodySchemaFilter::configure_ranks(NodeContext& ctx, const std::vector<int>& compared_sizes) {
-  distribute_ = ctx.param<std::string>("distribute") == "mpi";
+  distribute_ = config_.distribute == "mpi";
   if (!ParticleRanks::mpi_running()) return;
   if (!distribute_) {
     ctx.log().info(
@@ -319,15 +295,16 @@ void BodySchemaFilter::configure_ranks(NodeContext& ctx, const std::vector<int>&
     return;
   }
   ranks_ = std::make_unique<ParticleRanks>();  // collective: every rank configures alike
-  auto check = [&](const char* key, int particles) {
+  auto check = [&](const auto& key, int particles) {
     if (ranks_->size() > particles)
-      ctx.param_error(key, fmt::format("distribute: mpi over {} ranks needs at least one particle "
-                                       "per rank, but this filter has {} particles (launch at "
-                                       "most {} ranks, or use more particles)",
-                                       ranks_->size(), particles, particles));
+      config_error(ctx, config_, key,
+                   fmt::format("distribute: mpi over {} ranks needs at least one particle "
+                               "per rank, but this filter has {} particles (launch at "
+                               "most {} ranks, or use more particles)",
+                               ranks_->size(), particles, particles));
   };
-  check("particles", filter_->size());
-  for (int m : compared_sizes) check("compare_particles", m);
+  check(config_.particles, filter_->size());
+  for (int m : compared_sizes) check(config_.compare_particles, m);
   const ParticleShare mine = ranks_->share(filter_->size());
   ctx.log().info(
       "body_schema_filter: distribute: mpi over {} ranks; rank {} scores particles {} "

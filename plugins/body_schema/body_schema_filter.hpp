@@ -14,8 +14,11 @@
 #include "somasim/body_schema/oriented_edges.hpp"
 #include "somasim/body_schema/particle_filter.hpp"
 #include "somasim/body_schema/ports.hpp"
+#include "somasim/config.hpp"
 #include "somasim/plugin.hpp"
+#include "somasim/plugin_ports.hpp"
 #include "somasim/render/ports.hpp"
+#include "somasim/robot/experiment_robot.hpp"
 #include "somasim/robot/ports.hpp"
 #include "somasim/robot/robot_model.hpp"
 
@@ -23,12 +26,64 @@ namespace somasim::plugins {
 
 class BodySchemaFilter : public Plugin {
  public:
+  struct Config {
+    robot::RobotParam robot;
+    std::string chain = "right_arm";
+    std::vector<std::string> joints{"r_shoulder_pitch", "r_shoulder_roll", "r_shoulder_yaw",
+                                    "r_elbow",          "r_wrist_prosup",  "r_wrist_pitch",
+                                    "r_wrist_yaw"};
+    std::vector<std::string> links{"r_hand"};
+    std::string palm_frame = "r_palm";
+    std::vector<std::string> cameras{"left_eye", "right_eye"};
+    int particles = 200;
+    std::string schedule = "paper";
+    double sigma_floor_deg = 0.0;  // [deg]
+    double jump_fraction = 0.0;
+    double jump_sigma_deg = 1.5;  // [deg]
+    double kde_sigma_deg = 1.0;   // [deg]
+    double kde_alpha = 500.0;
+    std::string likelihood = "silhouette";
+    std::string silhouette_form = "jaccard";
+    double silhouette_power = 1.0;
+    double edge_lambda = 0.01;             // [1/px]
+    double edge_orientation_weight = 0.0;  // [px]
+    std::vector<double> canny{65, 195};
+    std::vector<double> hand_hsv_low{0, 40, 60};
+    std::vector<double> hand_hsv_high{30, 255, 255};
+    int proxy_resolution = 8;
+    int margin_px = 8;
+    int contour_width = 1;
+    std::string distribute = "none";
+    int render_threads = 2;
+    std::string backend = "osmesa";
+    double image_noise = 0.0;
+    std::string on_no_match = "reinflate";
+    double reinflate_factor = 2.0;
+    std::vector<double> compare_particles;
+    int evaluate_frame = 120;
+    std::string true_offsets_deg;
+    OutputFile csv{"body_schema_filter.csv", {}};
+    template <class V>
+    void visit(V& v);
+  };
+  struct Ports {
+    In<JointState> joint_state;
+    In<Image> left_eye_rgb;
+    OptionalIn<Image> right_eye_rgb;
+    OptionalIn<ReachPhase> phase;
+    OptionalIn<LinkPoses> true_link_poses;
+    Out<BodySchemaEstimate> estimate;
+    template <class V>
+    void visit(V& v);
+  };
   static PluginSpec spec();
   void configure(NodeContext& ctx) override;
   void step(NodeContext& ctx) override;
   void finish(NodeContext& ctx) override;
 
  private:
+  Config config_;
+  Ports ports_;
   void configure_joints(NodeContext& ctx);
   void configure_scorer(NodeContext& ctx);
   void configure_ranks(NodeContext& ctx, const std::vector<int>& compared_sizes);

@@ -35,7 +35,7 @@ class ReachController : public Plugin {
     int closed_loop_frames = 50;
     double gain = 5.0;  // [1/s]
     bool adaptation = true;
-    OutputFile csv{"reach_frames.csv"};
+    OutputFile csv{"reach_frames.csv", {}};
     template <class V>
     void visit(V& v);
   };

@@ -13,196 +13,173 @@
 
 namespace somasim::bullet_world {
 
-PluginSpec BulletWorld::spec() {
-  PluginSpec s("bullet_world",
-               "Physics (Bullet, double precision): the robot as a fixed-base btMultiBody with "
-               "joint motors and limits, gravity, self-collision (adjacent links filtered), "
-               "static/dynamic/kinematic/guided objects and contacts. One fixed step per tick.");
-  robot::add_robot_param(s);
-  s.add_string("initial_posture_deg")
-      .accepts_map_as_text()
-      .defaults(std::string(""))
-      .describe(
+template <class V>
+void BulletWorld::Config::visit(V& v) {
+  v.block(robot);
+  v.field("initial_posture_deg", initial_posture_deg)
+      .map_as_text()
+      .doc(
           "initial joint values held by the motors, 'joint: value, ...' in degrees (prismatic: "
           "m); unlisted joints start at 0 clamped into their limits");
-  s.add_string("encoder_offsets_deg")
-      .accepts_map_as_text()
-      .defaults(std::string(""))
-      .describe(
+  v.field("encoder_offsets_deg", encoder_offsets_deg)
+      .map_as_text()
+      .doc(
           "miscalibrated encoders, 'joint: beta, ...' in degrees: the real joint values are the "
           "encoder readings plus beta (body-schema study). joint_state reports real - beta and "
           "position commands are encoder values (the motors drive real = command + beta); "
           "initial_posture_deg and link_poses are real");
-  s.add_string_list("locked_joints")
-      .defaults(std::vector<std::string>{})
-      .describe(
+  v.field("locked_joints", locked_joints)
+      .doc(
           "joints fixed at their initial value (names, or 'all'): "
           "folded into rigid bodies, no dynamics and no motor; a command on them stops the run. "
           "With 'all' the robot is static collision geometry (fastest; contacts still reported)");
-  s.add_list("gravity")
-      .size(3)
-      .unit_is("m/s^2")
-      .defaults(std::vector<double>{0, 0, -9.81})
-      .describe("gravity in the root frame");
-  s.add_double("position_gain")
-      .unit_is("1/s")
-      .defaults(40.0)
+  v.field("gravity", gravity).size(3).unit("m/s^2").doc("gravity in the root frame");
+  v.field("position_gain", position_gain)
+      .unit("1/s")
       .range(0, 1e4)
-      .describe(
+      .doc(
           "motor position gain: target joint velocity = position_gain * (q* - q) + v*; a step "
           "settles (2%) in about 4/position_gain");
-  s.add_double("velocity_gain")
-      .defaults(1.0)
+  v.field("velocity_gain", velocity_gain)
       .range(0, 1)
-      .describe("motor velocity gain: weight of the velocity target (1 = track it exactly)");
-  s.add_double("max_torque")
-      .unit_is("N*m")
-      .defaults(20.0)
+      .doc("motor velocity gain: weight of the velocity target (1 = track it exactly)");
+  v.field("max_torque", max_torque)
+      .unit("N*m")
       .range(0, 1e4)
-      .describe("largest motor torque per joint (prismatic joints: N)");
-  s.add_int("solver_iterations")
-      .defaults(std::int64_t{20})
+      .doc("largest motor torque per joint (prismatic joints: N)");
+  v.field("solver_iterations", solver_iterations)
       .range(1, 1000)
-      .describe(
+      .doc(
           "iterations of Bullet's constraint solver per step (the solver is most of a step's "
           "cost; below about 15 the motors no longer hold a ball's weight firmly)");
-  s.add_string("scene")
-      .defaults(std::string(""))
-      .describe(
+  v.field("scene", scene)
+      .doc(
           "optional scene file with objects present from t = 0 (format in "
           "somasim/robot/scene_file.hpp), relative to the experiment file");
-  s.add_double("friction")
-      .defaults(0.8)
-      .range(0, 10)
-      .describe("friction coefficient of links and objects");
-  s.add_double("rolling_friction")
-      .unit_is("m")
-      .defaults(0.0005)
+  v.field("friction", friction).range(0, 10).doc("friction coefficient of links and objects");
+  v.field("rolling_friction", rolling_friction)
+      .unit("m")
       .range(0, 1)
-      .describe("rolling and spinning friction of objects (lets balls come to rest)");
-  s.add_double("restitution")
-      .defaults(0.0)
-      .range(0, 1)
-      .describe("restitution of links and objects");
-  s.add_double("contact_distance")
-      .unit_is("m")
-      .defaults(0.0005)
+      .doc("rolling and spinning friction of objects (lets balls come to rest)");
+  v.field("restitution", restitution).range(0, 1).doc("restitution of links and objects");
+  v.field("contact_distance", contact_distance)
+      .unit("m")
       .range(0, 0.1)
-      .describe("contact points closer than this (or penetrating) are reported");
-  s.add_double("kinematic_contact_stiffness")
-      .unit_is("N/m")
-      .defaults(1000.0)
+      .doc("contact points closer than this (or penetrating) are reported");
+  v.field("kinematic_contact_stiffness", kinematic_contact_stiffness)
+      .unit("N/m")
       .range(0, 1e7)
-      .describe(
+      .doc(
           "normal force per metre of penetration reported for a kinematic object touching "
           "immovable robot geometry (locked links, the fixed base), where the solver applies no "
           "force; the object keeps its path");
-  s.add_double("guide_max_force")
-      .unit_is("N")
-      .defaults(5.0)
+  v.field("guide_max_force", guide_max_force)
+      .unit("N")
       .range(0, 1e4)
-      .describe(
+      .doc(
           "largest force that pulls a guided object along its path (a hand holding it): "
           "against the robot it presses with at most this much");
-  s.add_double("guide_bandwidth")
-      .unit_is("1/s")
-      .defaults(100.0)
+  v.field("guide_bandwidth", guide_bandwidth)
+      .unit("1/s")
       .range(1, 1e4)
-      .describe(
+      .doc(
           "bandwidth of the critically damped servo that keeps a guided object on its path "
           "(keep bandwidth x step well below 1)");
-  s.add_double("guide_contact_stiffness")
-      .unit_is("N/m")
-      .defaults(1000.0)
+  v.field("guide_contact_stiffness", guide_contact_stiffness)
+      .unit("N/m")
       .range(0, 1e7)
-      .describe(
+      .doc(
           "contact stiffness of guided objects (0: rigid): pressed with F, a guided object sinks "
           "about F / stiffness into what it touches, as a held object into the soft skin "
           "(the same law as kinematic_contact_stiffness)");
-  s.add_double("contact_history")
-      .unit_is("s")
-      .defaults(0.1)
+  v.field("contact_history", contact_history)
+      .unit("s")
       .range(0, 10)
-      .describe(
+      .doc(
           "contacts of this recent past are kept in the output's `recent` list, so that "
           "slower nodes (a 50 Hz skin) see brief impacts");
-  s.add_double("spawn_tolerance")
-      .unit_is("m")
-      .defaults(0.001)
+  v.field("spawn_tolerance", spawn_tolerance)
+      .unit("m")
       .range(0, 1)
-      .describe("an object may start overlapping a robot link by at most this much");
-  s.add_double("world_radius")
-      .unit_is("m")
-      .defaults(10.0)
+      .doc("an object may start overlapping a robot link by at most this much");
+  v.field("world_radius", world_radius)
+      .unit("m")
       .range(0.1, 1e6)
-      .describe("dynamic objects farther than this from the root are removed (fell away)");
-  s.add_double("max_joint_speed")
-      .unit_is("rad/s")
-      .defaults(99.0)
+      .doc("dynamic objects farther than this from the root are removed (fell away)");
+  v.field("max_joint_speed", max_joint_speed)
+      .unit("rad/s")
       .range(0, 99)
-      .describe(
+      .doc(
           "blow-up bound: a faster joint stops the run (kept below Bullet's own clamp of joint "
           "speeds at 100 rad/s, which a blown-up joint sits at; hard contacts can briefly "
           "drive a light joint to ~70 rad/s)");
-  s.add_double("max_object_speed")
-      .unit_is("m/s")
-      .defaults(50.0)
+  v.field("max_object_speed", max_object_speed)
+      .unit("m/s")
       .range(0, 1e6)
-      .describe("blow-up bound: a faster object stops the run");
-  s.add_double("max_penetration")
-      .unit_is("m")
-      .defaults(0.02)
+      .doc("blow-up bound: a faster object stops the run");
+  v.field("max_penetration", max_penetration)
+      .unit("m")
       .range(0, 10)
-      .describe("blow-up bound: a deeper interpenetration stops the run");
-  s.input<JointCommand>("commands",
-                        "joint commands (position/velocity per dof; kNone keeps the last target)",
-                        /*optional=*/true);
-  s.input<ObjectSpawns>("spawns", "objects to add (each id once)", /*optional=*/true);
-  s.output<JointState>("joint_state", "joint positions [rad] and velocities [rad/s], dof order");
-  s.output<LinkPoses>("link_poses", "pose of every model link in the root frame, link order");
-  s.output<ObjectStates>("objects", "state of every object, spawn order (root frame)");
-  s.output<Contacts>("contacts",
-                     "contact points of the last step: bodies, point (root and link-a frame), "
-                     "normal from b to a, normal force [N]");
-  return s;
+      .doc("blow-up bound: a deeper interpenetration stops the run");
+}
+
+template <class V>
+void BulletWorld::Ports::visit(V& v) {
+  v.port("commands", commands,
+         "joint commands (position/velocity per dof; kNone keeps the last target)");
+  v.port("spawns", spawns, "objects to add (each id once)");
+  v.port("joint_state", joint_state, "joint positions [rad] and velocities [rad/s], dof order");
+  v.port("link_poses", link_poses, "pose of every model link in the root frame, link order");
+  v.port("objects", objects, "state of every object, spawn order (root frame)");
+  v.port("contacts", contacts,
+         "contact points of the last step: bodies, point (root and link-a frame), "
+         "normal from b to a, normal force [N]");
+}
+
+PluginSpec BulletWorld::spec() {
+  return make_plugin_spec<Config, Ports>(
+      "bullet_world",
+      "Physics (Bullet, double precision): the robot as a fixed-base btMultiBody with "
+      "joint motors and limits, gravity, self-collision (adjacent links filtered), "
+      "static/dynamic/kinematic/guided objects and contacts. One fixed step per tick.");
 }
 
 void BulletWorld::configure(NodeContext& ctx) {
+  config_ = read_config<Config>(ctx);
+  bind_ports(ctx, ports_);
   model_ = robot::experiment_robot(ctx);
   Eigen::VectorXd q0;
   try {
-    q0 = robot::parse_posture_deg(*model_, ctx.param<std::string>("initial_posture_deg"));
+    q0 = robot::parse_posture_deg(*model_, config_.initial_posture_deg);
   } catch (const InputError& e) {
-    ctx.param_error("initial_posture_deg", e.what());
+    config_error(ctx, config_, config_.initial_posture_deg, e.what());
   }
   try {
-    encoder_offsets_ =
-        robot::parse_joint_offsets(*model_, ctx.param<std::string>("encoder_offsets_deg"));
+    encoder_offsets_ = robot::parse_joint_offsets(*model_, config_.encoder_offsets_deg);
   } catch (const InputError& e) {
-    ctx.param_error("encoder_offsets_deg", e.what());
+    config_error(ctx, config_, config_.encoder_offsets_deg, e.what());
   }
   miscalibrated_ = !encoder_offsets_.isZero();
   std::vector<bool> locked;
   try {
-    locked = parse_locked_joints(ctx.param<std::vector<std::string>>("locked_joints"), *model_);
+    locked = parse_locked_joints(config_.locked_joints, *model_);
   } catch (const InputError& e) {
-    ctx.param_error("locked_joints", e.what());
+    config_error(ctx, config_, config_.locked_joints, e.what());
   }
   dt_ = ctx.period_s();
-  contact_distance_ = ctx.param<double>("contact_distance");
-  contact_history_ = ctx.param<double>("contact_history");
-  kinematic_stiffness_ = ctx.param<double>("kinematic_contact_stiffness");
-  spawn_tolerance_ = ctx.param<double>("spawn_tolerance");
-  world_radius_ = ctx.param<double>("world_radius");
-  limits_ = {ctx.param<double>("max_joint_speed"), ctx.param<double>("max_object_speed"),
-             ctx.param<double>("max_penetration")};
-  const auto g = ctx.param<std::vector<double>>("gravity");
-  const double friction = ctx.param<double>("friction");
-  const double rolling = ctx.param<double>("rolling_friction");
-  const double restitution = ctx.param<double>("restitution");
+  contact_distance_ = config_.contact_distance;
+  contact_history_ = config_.contact_history;
+  kinematic_stiffness_ = config_.kinematic_contact_stiffness;
+  spawn_tolerance_ = config_.spawn_tolerance;
+  world_radius_ = config_.world_radius;
+  limits_ = {config_.max_joint_speed, config_.max_object_speed, config_.max_penetration};
+  const auto g = config_.gravity;
+  const double friction = config_.friction;
+  const double rolling = config_.rolling_friction;
+  const double restitution = config_.restitution;
 
-  physics_ = std::make_unique<PhysicsWorld>(Eigen::Vector3d(g[0], g[1], g[2]),
-                                            ctx.param<int>("solver_iterations"));
+  physics_ =
+      std::make_unique<PhysicsWorld>(Eigen::Vector3d(g[0], g[1], g[2]), config_.solver_iterations);
   filter_ = std::make_unique<SelfCollisionFilter>(*model_, locked);
   physics_->set_pair_filter(filter_.get());
   shapes_ = std::make_unique<ShapeStore>();
@@ -212,35 +189,33 @@ void BulletWorld::configure(NodeContext& ctx) {
   } catch (const InputError& e) {  // e.g. a collision mesh that cannot be used
     robot::robot_error(ctx, e.what());
   }
-  const MotorGains gains{ctx.param<double>("position_gain"), ctx.param<double>("velocity_gain"),
-                         ctx.param<double>("max_torque")};
+  const MotorGains gains{config_.position_gain, config_.velocity_gain, config_.max_torque};
   motors_ = std::make_unique<JointMotors>(*robot_, physics_->world(), gains, dt_, q0);
-  const ObjectGuide guide{ctx.param<double>("guide_max_force"),
-                          ctx.param<double>("guide_bandwidth"),
-                          ctx.param<double>("guide_contact_stiffness")};
+  const ObjectGuide guide{config_.guide_max_force, config_.guide_bandwidth,
+                          config_.guide_contact_stiffness};
   if (guide.bandwidth * dt_ > 0.5)
-    ctx.param_error("guide_bandwidth",
-                    fmt::format("{} 1/s at a {} s step makes the guide unstable: keep "
-                                "guide_bandwidth x step <= 0.5 (here <= {:g} 1/s)",
-                                guide.bandwidth, dt_, 0.5 / dt_));
+    config_error(ctx, config_, config_.guide_bandwidth,
+                 fmt::format("{} 1/s at a {} s step makes the guide unstable: keep "
+                             "guide_bandwidth x step <= 0.5 (here <= {:g} 1/s)",
+                             guide.bandwidth, dt_, 0.5 / dt_));
   objects_ = std::make_unique<ObjectManager>(physics_->world(), *shapes_,
                                              ObjectMaterial{friction, rolling, restitution}, guide);
   physics_->world().updateAabbs();
 
-  if (const std::string scene = ctx.param<std::string>("scene"); !scene.empty()) {
+  if (const std::string scene = config_.scene; !scene.empty()) {
     std::vector<robot::SceneObject> objects;
     try {
       objects = robot::load_scene(ctx.resolve_input_path(scene));
     } catch (const InputError& e) {
-      ctx.param_error("scene", e.what());
+      config_error(ctx, config_, config_.scene, e.what());
     }
     for (const robot::SceneObject& so : objects) {
       int i = -1;
       try {
         i = objects_->add(so.spawn, 0.0);
       } catch (const InputError& e) {  // e.g. a mesh that cannot be used
-        ctx.param_error(
-            "scene", fmt::format("{}: object '{}': {}", so.where.str(), so.spawn.name, e.what()));
+        config_error(ctx, config_, config_.scene,
+                     fmt::format("{}: object '{}': {}", so.where.str(), so.spawn.name, e.what()));
       }
       const RobotOverlap overlap =
           deepest_robot_overlap(physics_->world(), *robot_, objects_->body(i));
@@ -254,12 +229,12 @@ void BulletWorld::configure(NodeContext& ctx) {
     }
   }
 
-  joint_state_ = &ctx.output<JointState>("joint_state");
-  link_poses_ = &ctx.output<LinkPoses>("link_poses");
-  object_states_ = &ctx.output<ObjectStates>("objects");
-  contacts_ = &ctx.output<Contacts>("contacts");
-  if (ctx.is_wired("commands")) commands_ = &ctx.input<JointCommand>("commands");
-  if (ctx.is_wired("spawns")) spawns_ = &ctx.input<ObjectSpawns>("spawns");
+  joint_state_ = &ports_.joint_state.get();
+  link_poses_ = &ports_.link_poses.get();
+  object_states_ = &ports_.objects.get();
+  contacts_ = &ports_.contacts.get();
+  commands_ = ports_.commands.get();
+  spawns_ = ports_.spawns.get();
 }
 
 void BulletWorld::start(NodeContext& ctx) {

@@ -33,7 +33,10 @@
 #include "physics_world.hpp"
 #include "robot_multibody.hpp"
 #include "self_collision_filter.hpp"
+#include "somasim/config.hpp"
 #include "somasim/plugin.hpp"
+#include "somasim/plugin_ports.hpp"
+#include "somasim/robot/experiment_robot.hpp"
 #include "somasim/robot/ports.hpp"
 
 namespace somasim::bullet_world {
@@ -43,6 +46,44 @@ inline constexpr double kDefaultSettlingTime = 0.15;
 
 class BulletWorld : public Plugin {
  public:
+  struct Config {
+    robot::RobotParam robot;
+    std::string initial_posture_deg;
+    std::string encoder_offsets_deg;
+    std::vector<std::string> locked_joints;
+    std::vector<double> gravity{0, 0, -9.81};  // [m/s^2]
+    double position_gain = 40.0;               // [1/s]
+    double velocity_gain = 1.0;
+    double max_torque = 20.0;  // [N*m]
+    int solver_iterations = 20;
+    std::string scene;
+    double friction = 0.8;
+    double rolling_friction = 0.0005;  // [m]
+    double restitution = 0.0;
+    double contact_distance = 0.0005;             // [m]
+    double kinematic_contact_stiffness = 1000.0;  // [N/m]
+    double guide_max_force = 5.0;                 // [N]
+    double guide_bandwidth = 100.0;               // [1/s]
+    double guide_contact_stiffness = 1000.0;      // [N/m]
+    double contact_history = 0.1;                 // [s]
+    double spawn_tolerance = 0.001;               // [m]
+    double world_radius = 10.0;                   // [m]
+    double max_joint_speed = 99.0;                // [rad/s]
+    double max_object_speed = 50.0;               // [m/s]
+    double max_penetration = 0.02;                // [m]
+    template <class V>
+    void visit(V& v);
+  };
+  struct Ports {
+    OptionalIn<JointCommand> commands;
+    OptionalIn<ObjectSpawns> spawns;
+    Out<JointState> joint_state;
+    Out<LinkPoses> link_poses;
+    Out<ObjectStates> objects;
+    Out<Contacts> contacts;
+    template <class V>
+    void visit(V& v);
+  };
   static PluginSpec spec();
   void configure(NodeContext& ctx) override;
   void start(NodeContext& ctx) override;
@@ -50,6 +91,8 @@ class BulletWorld : public Plugin {
   void finish(NodeContext& ctx) override;
 
  private:
+  Config config_;
+  Ports ports_;
   void spawn_from_port(NodeContext& ctx, double t);
   void publish(double t);
   /// The commands with position targets shifted from encoder to real values (encoder offsets).

@@ -40,64 +40,64 @@ std::vector<std::string> words(const std::string& text) {
 
 }  // namespace
 
+template <class V>
+void CameraPlugin::Config::visit(V& v) {
+  v.block(robot);
+  v.field("cameras", cameras)
+      .doc(
+          "1 or 2 cameras of the robot model; the first feeds the ports left_eye_*, the second "
+          "right_eye_*");
+  v.field("outputs", outputs)
+      .doc("images to render: any of rgb, depth, mask (the others stay empty)");
+  v.field("background", background)
+      .doc(
+          "'R G B' in [0, 1], a name (black, white, grey, blue) or 'textured': clutter "
+          "(rectangles and bars of random colours from the node's random stream) on a plane "
+          "1.2 m in front of the first camera at q = 0");
+  v.field("resolution", resolution)
+      .range(3, 256)
+      .doc("segments around curved primitives (spheres, cylinders, capsules)");
+  v.field("backend", backend)
+      .one_of(render::render_backend_names())
+      .doc(
+          "where the OpenGL context comes from: osmesa (Mesa's llvmpipe, software) or egl "
+          "(EGL's surfaceless platform: the node's GPU through Mesa, else llvmpipe; needs "
+          "libegl-mesa0); camera nodes on one thread share one context and so one backend");
+  v.field("save_every", save_every)
+      .at_least(0)
+      .doc(
+          "write every N-th frame's images as PNG under frames/NODE.PORT/ in the run folder "
+          "(encodings as when recorded: somasim/render/ports.hpp); 0 = never");
+  v.field("sheet_times", sheet_times)
+      .doc(
+          "[s] sim times of the rows of the contact sheet figures/stereo_frames.png (the RGB "
+          "views side by side); empty = no sheet");
+}
+
+template <class V>
+void CameraPlugin::Ports::visit(V& v) {
+  v.port("link_poses", link_poses,
+         "poses of all robot links (root frame): world.link_poses for the true eyes, "
+         "believed link poses for believed eye kinematics; empty = q = 0");
+  v.port("objects", objects, "the world's objects (drawn with their shapes)");
+  for (std::size_t i = 0; i < kSlots.size(); ++i) {
+    const std::string slot = kSlots[i];
+    v.port(slot + "_rgb", rgb[i], "rgb8 view of that camera (somasim/render/ports.hpp)");
+    v.port(slot + "_depth", depth[i], "depth32f [m] along the optical axis");
+    v.port(slot + "_mask", mask[i], "id32s: what each pixel shows");
+  }
+}
+
 PluginSpec CameraPlugin::spec() {
-  PluginSpec s(
+  return make_plugin_spec<Config, Ports>(
       "camera",
       "The robot's eyes: renders the views of the robot model's cameras (OSMesa or "
       "EGL, Lambert + ambient shading) from the world's link and object poses: RGB, metric "
       "depth and id masks (link i -> i + 1, object k -> 1000 + k, backdrop 60000).");
-  robot::add_robot_param(s);
-  s.add_string_list("cameras")
-      .defaults(std::vector<std::string>{"left_eye", "right_eye"})
-      .describe(
-          "1 or 2 cameras of the robot model; the first feeds the ports left_eye_*, the second "
-          "right_eye_*");
-  s.add_string_list("outputs")
-      .defaults(std::vector<std::string>{"rgb", "depth", "mask"})
-      .describe("images to render: any of rgb, depth, mask (the others stay empty)");
-  s.add_string("background")
-      .defaults(std::string("0.35 0.45 0.55"))
-      .describe(
-          "'R G B' in [0, 1], a name (black, white, grey, blue) or 'textured': clutter "
-          "(rectangles and bars of random colours from the node's random stream) on a plane "
-          "1.2 m in front of the first camera at q = 0");
-  s.add_int("resolution")
-      .defaults(std::int64_t{24})
-      .range(3, 256)
-      .describe("segments around curved primitives (spheres, cylinders, capsules)");
-  s.add_string("backend")
-      .defaults(std::string("osmesa"))
-      .one_of(render::render_backend_names())
-      .describe(
-          "where the OpenGL context comes from: osmesa (Mesa's llvmpipe, software) or egl "
-          "(EGL's surfaceless platform: the node's GPU through Mesa, else llvmpipe; needs "
-          "libegl-mesa0); camera nodes on one thread share one context and so one backend");
-  s.add_int("save_every")
-      .defaults(std::int64_t{0})
-      .at_least(0)
-      .describe(
-          "write every N-th frame's images as PNG under frames/NODE.PORT/ in the run folder "
-          "(encodings as when recorded: somasim/render/ports.hpp); 0 = never");
-  s.add_list("sheet_times")
-      .defaults(std::vector<double>{})
-      .describe(
-          "[s] sim times of the rows of the contact sheet figures/stereo_frames.png (the RGB "
-          "views side by side); empty = no sheet");
-  s.input<LinkPoses>("link_poses",
-                     "poses of all robot links (root frame): world.link_poses for the true eyes, "
-                     "believed link poses for believed eye kinematics; empty = q = 0");
-  s.input<ObjectStates>("objects", "the world's objects (drawn with their shapes)", true);
-  for (const char* slot : kSlots) {
-    s.output<Image>(fmt::format("{}_rgb", slot),
-                    "rgb8 view of that camera (somasim/render/ports.hpp)");
-    s.output<Image>(fmt::format("{}_depth", slot), "depth32f [m] along the optical axis");
-    s.output<Image>(fmt::format("{}_mask", slot), "id32s: what each pixel shows");
-  }
-  return s;
 }
 
 void CameraPlugin::parse_background(NodeContext& ctx) {
-  const std::string text = ctx.param<std::string>("background");
+  const std::string text = config_.background;
   if (text == "textured") return;  // backdrop items made once the scene exists
   const std::vector<std::string> w = words(text);
   if (w.size() == 1) {
@@ -118,15 +118,17 @@ void CameraPlugin::parse_background(NodeContext& ctx) {
     }
   }
   if (!ok)
-    ctx.param_error("background",
-                    fmt::format("expected 'R G B' (three numbers in [0, 1]), black, white, grey, "
-                                "blue or textured, got '{}'",
-                                text));
+    config_error(ctx, config_, config_.background,
+                 fmt::format("expected 'R G B' (three numbers in [0, 1]), black, white, grey, "
+                             "blue or textured, got '{}'",
+                             text));
 }
 
 void CameraPlugin::configure(NodeContext& ctx) {
+  config_ = read_config<Config>(ctx);
+  bind_ports(ctx, ports_);
   model_ = robot::experiment_robot(ctx);
-  for (const std::string& o : ctx.param<std::vector<std::string>>("outputs")) {
+  for (const std::string& o : config_.outputs) {
     if (o == "rgb")
       want_rgb_ = true;
     else if (o == "depth")
@@ -134,58 +136,61 @@ void CameraPlugin::configure(NodeContext& ctx) {
     else if (o == "mask")
       want_mask_ = true;
     else
-      ctx.param_error("outputs", fmt::format("unknown output '{}' (expected rgb, depth, mask)", o));
+      config_error(ctx, config_, config_.outputs,
+                   fmt::format("unknown output '{}' (expected rgb, depth, mask)", o));
   }
-  const auto cameras = ctx.param<std::vector<std::string>>("cameras");
+  const auto cameras = config_.cameras;
   if (cameras.empty() || cameras.size() > kSlots.size())
-    ctx.param_error("cameras", fmt::format("expected 1 or 2 camera names (ports left_eye_*, "
-                                           "right_eye_*), got {}",
-                                           cameras.size()));
+    config_error(ctx, config_, config_.cameras,
+                 fmt::format("expected 1 or 2 camera names (ports left_eye_*, "
+                             "right_eye_*), got {}",
+                             cameras.size()));
   robot::RobotData rest(*model_);
   robot::forward_kinematics(*model_, rest, Eigen::VectorXd::Zero(model_->num_dofs()));
   for (std::size_t i = 0; i < cameras.size(); ++i) {
     try {
       render::camera_for(*model_, cameras[i], rest.link_poses);
     } catch (const InputError& e) {
-      ctx.param_error("cameras", e.what());
+      config_error(ctx, config_, config_.cameras, e.what());
     }
     View v;
     v.camera = cameras[i];
     v.slot = kSlots[i];
-    v.rgb = &ctx.output<Image>(v.slot + "_rgb");
-    v.depth = &ctx.output<Image>(v.slot + "_depth");
-    v.mask = &ctx.output<Image>(v.slot + "_mask");
+    v.rgb = &ports_.rgb[i].get();
+    v.depth = &ports_.depth[i].get();
+    v.mask = &ports_.mask[i].get();
     views_.push_back(v);
   }
   parse_background(ctx);
-  save_every_ = ctx.param<int>("save_every");
-  sheet_times_ = ctx.param<std::vector<double>>("sheet_times");
+  save_every_ = config_.save_every;
+  sheet_times_ = config_.sheet_times;
   if (!sheet_times_.empty() && !want_rgb_)
-    ctx.param_error("sheet_times", "the contact sheet needs the rgb output (outputs: rgb ...)");
+    config_error(ctx, config_, config_.sheet_times,
+                 "the contact sheet needs the rgb output (outputs: rgb ...)");
   options_.read_rgb = want_rgb_;
   options_.read_depth = want_depth_;
   options_.read_ids = want_mask_;
   options_.check_drawn = true;  // an item in view that draws nothing is an error (never blank)
   options_.light_direction_root = Eigen::Vector3d(0.7, 0.2, 1.0);  // above, behind the eyes
 
-  const std::string backend_name = ctx.param<std::string>("backend");  // checked by one_of
+  const std::string backend_name = config_.backend;  // checked by one_of
   const render::RenderBackend backend = render::parse_render_backend(backend_name);
   bool created = false;
   context_ = thread_context(backend, created);
   if (context_->backend() != backend)
-    ctx.param_error("backend",
-                    fmt::format("'{}', but another camera node on this thread already renders with "
-                                "'{}' (one OpenGL context per thread: give the camera nodes of a "
-                                "thread the same backend)",
-                                backend_name, render::render_backend_name(context_->backend())));
+    config_error(ctx, config_, config_.backend,
+                 fmt::format("'{}', but another camera node on this thread already renders with "
+                             "'{}' (one OpenGL context per thread: give the camera nodes of a "
+                             "thread the same backend)",
+                             backend_name, render::render_backend_name(context_->backend())));
   if (created)
     ctx.log().info("camera: OpenGL renderer '{}', version '{}' (backend {})", context_->renderer(),
                    context_->version(), backend_name);
   renderer_ = std::make_unique<render::SceneRenderer>(context_->gl());
   render::RobotSceneOptions scene_options;
-  scene_options.segments = ctx.param<int>("resolution");
+  scene_options.segments = config_.resolution;
   scene_ = std::make_unique<render::RobotScene>(*renderer_, model_, scene_options);
-  if (ctx.param<std::string>("background") == "textured") {
+  if (config_.background == "textured") {
     const render::Camera first = render::camera_for(*model_, cameras[0], rest.link_poses);
     const Eigen::Vector3d forward = first.pose_root.linear().col(2);
     BackdropSpec spec;
@@ -197,8 +202,8 @@ void CameraPlugin::configure(NodeContext& ctx) {
   ctx.log().info("camera: {} view(s) of robot '{}' ({} triangles), outputs{}{}{}", views_.size(),
                  model_->name(), scene_->triangle_count(), want_rgb_ ? " rgb" : "",
                  want_depth_ ? " depth" : "", want_mask_ ? " mask" : "");
-  link_poses_ = &ctx.input<LinkPoses>("link_poses");
-  objects_ = ctx.is_wired("objects") ? &ctx.input<ObjectStates>("objects") : nullptr;
+  link_poses_ = &ports_.link_poses.get();
+  objects_ = ports_.objects.get();
   rest_poses_ = rest.link_poses;
 }
 

@@ -7,11 +7,14 @@
 #include <vector>
 
 #include "contact_sheet.hpp"
+#include "somasim/config.hpp"
 #include "somasim/plugin.hpp"
+#include "somasim/plugin_ports.hpp"
 #include "somasim/render/context.hpp"
 #include "somasim/render/ports.hpp"
 #include "somasim/render/robot_scene.hpp"
 #include "somasim/render/scene_renderer.hpp"
+#include "somasim/robot/experiment_robot.hpp"
 #include "somasim/robot/ports.hpp"
 #include "somasim/robot/robot_model.hpp"
 
@@ -19,6 +22,25 @@ namespace somasim::plugins {
 
 class CameraPlugin : public Plugin {
  public:
+  struct Config {
+    robot::RobotParam robot;
+    std::vector<std::string> cameras{"left_eye", "right_eye"};
+    std::vector<std::string> outputs{"rgb", "depth", "mask"};
+    std::string background = "0.35 0.45 0.55";
+    int resolution = 24;
+    std::string backend = "osmesa";
+    int save_every = 0;
+    std::vector<double> sheet_times;
+    template <class V>
+    void visit(V& v);
+  };
+  struct Ports {
+    In<LinkPoses> link_poses;
+    OptionalIn<ObjectStates> objects;
+    std::array<Out<Image>, 2> rgb, depth, mask;  // per slot: left_eye_*, right_eye_*
+    template <class V>
+    void visit(V& v);
+  };
   static PluginSpec spec();
   void configure(NodeContext& ctx) override;
   void step(NodeContext& ctx) override;
@@ -28,6 +50,8 @@ class CameraPlugin : public Plugin {
   static constexpr std::array<const char*, 2> kSlots = {"left_eye", "right_eye"};
 
  private:
+  Config config_;
+  Ports ports_;
   struct View {
     std::string camera;  // the model's camera name
     std::string slot;

@@ -25,11 +25,13 @@ Eigen::Vector3d vec3(const std::vector<double>& v) {
 }  // namespace
 
 void DoubleTouch::configure(NodeContext& ctx) {
+  config_ = read_config<Config>(ctx);
+  bind_ports(ctx, ports_);
   model_ = robot::experiment_robot(ctx);
   true_data_ = std::make_unique<robot::RobotData>(*model_);
   believed_data_ = std::make_unique<robot::RobotData>(*model_);
 
-  body_part_ = ctx.param<std::string>("body_part");
+  body_part_ = config_.body_part;
   const robot::SkinPatch* patch = nullptr;
   std::vector<std::string> parts;
   for (const auto& p : model_->skin_patches()) {
@@ -37,41 +39,42 @@ void DoubleTouch::configure(NodeContext& ctx) {
     if (p.body_part == body_part_) patch = &p;
   }
   if (!patch)
-    ctx.param_error("body_part", "unknown skin part '" + body_part_ + "'" +
-                                     did_you_mean(body_part_, parts) +
-                                     "; the robot's skin parts: " + join_names(parts));
+    config_error(ctx, config_, config_.body_part,
+                 "unknown skin part '" + body_part_ + "'" + did_you_mean(body_part_, parts) +
+                     "; the robot's skin parts: " + join_names(parts));
   try {
-    effector_ = model_->frame_ref(ctx.param<std::string>("effector"));
+    effector_ = model_->frame_ref(config_.effector);
   } catch (const InputError& e) {
-    ctx.param_error("effector", e.what());
+    config_error(ctx, config_, config_.effector, e.what());
   }
-  const Eigen::Vector3d axis = vec3(ctx.param<std::vector<double>>("effector_axis"));
-  if (axis.norm() < 1e-9) ctx.param_error("effector_axis", "must not be zero");
+  const Eigen::Vector3d axis = vec3(config_.effector_axis);
+  if (axis.norm() < 1e-9) config_error(ctx, config_, config_.effector_axis, "must not be zero");
   effector_axis_link_ = effector_.pose.linear() * axis.normalized();
-  const Eigen::Vector3d side = vec3(ctx.param<std::vector<double>>("effector_side"));
-  limb_axis_ = vec3(ctx.param<std::vector<double>>("limb_axis"));
+  const Eigen::Vector3d side = vec3(config_.effector_side);
+  limb_axis_ = vec3(config_.limb_axis);
   const Eigen::Vector3d side_link = effector_.pose.linear() * side;
-  finger_tilt_ = ctx.param<double>("finger_tilt_deg") * kDeg;
+  finger_tilt_ = config_.finger_tilt_deg * kDeg;
 
-  touches_ = ctx.param<int>("touches");
-  speed_min_ = ctx.param<double>("speed_min");
-  speed_max_ = ctx.param<double>("speed_max");
-  if (speed_max_ < speed_min_) ctx.param_error("speed_max", "must not be less than speed_min");
-  position_jitter_ = ctx.param<double>("position_jitter");
-  normal_jitter_ = ctx.param<double>("normal_jitter_deg") * kDeg;
-  move_duration_ = ctx.param<double>("move_duration");
-  hold_ = ctx.param<double>("hold");
-  finger_radius_ = ctx.param<double>("finger_radius");
-  position_noise_ = ctx.param<double>("position_noise");
-  velocity_noise_ = ctx.param<double>("velocity_noise");
-  seen_by_eyes_ = ctx.param<std::string>("perception") == "vision";
-  marker_radius_ = ctx.param<double>("marker_radius");
+  touches_ = config_.touches;
+  speed_min_ = config_.speed_min;
+  speed_max_ = config_.speed_max;
+  if (speed_max_ < speed_min_)
+    config_error(ctx, config_, config_.speed_max, "must not be less than speed_min");
+  position_jitter_ = config_.position_jitter;
+  normal_jitter_ = config_.normal_jitter_deg * kDeg;
+  move_duration_ = config_.move_duration;
+  hold_ = config_.hold;
+  finger_radius_ = config_.finger_radius;
+  position_noise_ = config_.position_noise;
+  velocity_noise_ = config_.velocity_noise;
+  seen_by_eyes_ = config_.perception == "vision";
+  marker_radius_ = config_.marker_radius;
   try {
-    home_ = robot::parse_posture_deg(*model_, ctx.param<std::string>("home_posture_deg"));
+    home_ = robot::parse_posture_deg(*model_, config_.home_posture_deg);
   } catch (const InputError& e) {
-    ctx.param_error("home_posture_deg", e.what());
+    config_error(ctx, config_, config_.home_posture_deg, e.what());
   }
-  for (const std::string& t : ctx.param<std::vector<std::string>>("taxels")) {
+  for (const std::string& t : config_.taxels) {
     std::size_t used = 0;
     int id = -1;
     try {
@@ -80,17 +83,18 @@ void DoubleTouch::configure(NodeContext& ctx) {
       used = 0;
     }
     if (used == 0 || used != t.size() || id < 0)
-      ctx.param_error("taxels", "expected taxel ids (integers >= 0), got '" + t + "'");
+      config_error(ctx, config_, config_.taxels,
+                   "expected taxel ids (integers >= 0), got '" + t + "'");
     taxel_list_.push_back(id);
   }
 
   TouchPlannerOptions po;
-  po.start_distance = ctx.param<double>("start_distance");
-  po.press_depth = ctx.param<double>("press_depth");
-  po.step = ctx.param<double>("approach_step");
-  po.align_distance = ctx.param<double>("align_distance");
-  po.max_tilt = ctx.param<double>("max_tilt_deg") * kDeg;
-  po.clearance = ctx.param<double>("clearance");
+  po.start_distance = config_.start_distance;
+  po.press_depth = config_.press_depth;
+  po.step = config_.approach_step;
+  po.align_distance = config_.align_distance;
+  po.max_tilt = config_.max_tilt_deg * kDeg;
+  po.clearance = config_.clearance;
   try {
     control::TouchIkOptions io;
     io.position_tolerance = 1e-4;  // waypoints this close to the normal line
@@ -98,7 +102,7 @@ void DoubleTouch::configure(NodeContext& ctx) {
     control::TouchIk ik(model_, effector_, effector_axis_link_, side_link, patch->link, {}, io);
     planner_ = std::make_unique<TouchPlanner>(model_, std::move(ik), po);
   } catch (const InputError& e) {
-    ctx.param_error("effector", e.what());
+    config_error(ctx, config_, config_.effector, e.what());
   }
 
   plan_data_ = std::make_unique<robot::RobotData>(*model_);
@@ -110,15 +114,15 @@ void DoubleTouch::configure(NodeContext& ctx) {
     const Eigen::Vector3d tip = robot::frame_pose(*plan_data_, effector_).translation();
     return (tip - t * aimed_link_).dot(t.linear() * aimed_normal_link_);
   };
-  state_ = &ctx.input<JointState>("state");
-  taxels_ = &ctx.input<SkinTaxels>("taxels");
-  if (ctx.is_wired("contacts")) contacts_ = &ctx.input<ContactEvents>("contacts");
-  if (ctx.is_wired("believed_state")) believed_state_ = &ctx.input<JointState>("believed_state");
-  if (ctx.is_wired("believed_taxels")) believed_taxels_ = &ctx.input<SkinTaxels>("believed_taxels");
-  command_ = &ctx.output<JointCommand>("command");
-  stimulus_ = &ctx.output<pps::Stimulus>("stimulus");
-  truth_ = &ctx.output<pps::Stimulus>("truth");
-  true_offsets_ = &ctx.output<TaxelValues>("true_offsets");
+  state_ = &ports_.state.get();
+  taxels_ = &ports_.taxels.get();
+  contacts_ = ports_.contacts.get();
+  believed_state_ = ports_.believed_state.get();
+  believed_taxels_ = ports_.believed_taxels.get();
+  command_ = &ports_.command.get();
+  stimulus_ = &ports_.stimulus.get();
+  truth_ = &ports_.truth.get();
+  true_offsets_ = &ports_.true_offsets.get();
 }
 
 const SkinPart& DoubleTouch::part(NodeContext&) const {

@@ -33,9 +33,12 @@
 #include <string>
 #include <vector>
 
+#include "somasim/config.hpp"
 #include "somasim/plugin.hpp"
+#include "somasim/plugin_ports.hpp"
 #include "somasim/pps/ports.hpp"
 #include "somasim/pps/true_offsets.hpp"
+#include "somasim/robot/experiment_robot.hpp"
 #include "somasim/robot/kinematics.hpp"
 #include "somasim/robot/ports.hpp"
 #include "somasim/robot/robot_model.hpp"
@@ -46,12 +49,64 @@ namespace somasim::plugins {
 
 class DoubleTouch : public Plugin {
  public:
+  struct Config {
+    robot::RobotParam robot;
+    std::string body_part = "left_forearm";
+    std::string effector = "r_index_tip";
+    std::vector<double> effector_axis{1, 0, 0};
+    std::vector<double> effector_side{0, 1, 0};
+    std::vector<double> limb_axis{0, 1, 0};
+    double finger_tilt_deg = 25.0;  // [deg]
+    double finger_radius = 0.0065;  // [m]
+    std::vector<std::string> taxels;
+    int touches = 20;
+    double start_distance = 0.20;    // [m]
+    double press_depth = 0.003;      // [m]
+    double align_distance = 0.03;    // [m]
+    double max_tilt_deg = 60.0;      // [deg]
+    double approach_step = 0.01;     // [m]
+    double speed_min = 0.05;         // [m/s]
+    double speed_max = 0.15;         // [m/s]
+    double position_jitter = 0.003;  // [m]
+    double normal_jitter_deg = 5.0;  // [deg]
+    // A double-touch posture of the iCub: the left forearm in front of the body, turned
+    // (prosup) so that most of its skin faces the right hand, the right hand beside it (21 of
+    // the 32 forearm taxels of icub_v1 can then be touched).
+    std::string home_posture_deg =
+        "l_shoulder_pitch: -60, l_shoulder_roll: 30, l_shoulder_yaw: 30, l_elbow: 55, "
+        "l_wrist_prosup: -45, r_shoulder_pitch: -45, r_shoulder_roll: 30, r_shoulder_yaw: 30, "
+        "r_elbow: 70";
+    double move_duration = 2.0;   // [s]
+    double hold = 0.3;            // [s]
+    double clearance = 0.002;     // [m]
+    double position_noise = 0.0;  // [m]
+    double velocity_noise = 0.0;  // [m/s]
+    std::string perception = "proprioception";
+    double marker_radius = 0.007;  // [m]
+    template <class V>
+    void visit(V& v);
+  };
+  struct Ports {
+    In<JointState> state;
+    In<SkinTaxels> taxels;
+    OptionalIn<ContactEvents> contacts;
+    OptionalIn<JointState> believed_state;
+    OptionalIn<SkinTaxels> believed_taxels;
+    Out<JointCommand> command;
+    Out<pps::Stimulus> stimulus;
+    Out<pps::Stimulus> truth;
+    Out<TaxelValues> true_offsets;
+    template <class V>
+    void visit(V& v);
+  };
   static PluginSpec spec();
   void configure(NodeContext& ctx) override;
   void step(NodeContext& ctx) override;
   void finish(NodeContext& ctx) override;
 
  private:
+  Config config_;
+  Ports ports_;
   enum class Phase { kPlan, kTransfer, kApproach, kHold, kRetreat, kHome, kDone };
   struct Touch {
     int taxel_id = -1;

@@ -15,100 +15,103 @@
 
 namespace somasim::plugins {
 
-PluginSpec PpsLearner::spec() {
-  PluginSpec s("pps_learner",
-               "Peripersonal-space learner (Roncone et al. 2016): per taxel (D, TTC) counts "
-               "learned from buffered stimuli at skin contacts; Parzen-smoothed activations.");
-  s.add_string_list("body_part")
-      .defaults(std::vector<std::string>{"taxel"})
-      .describe(
+template <class V>
+void PpsLearner::Config::visit(V& v) {
+  v.field("body_part", body_part)
+      .doc(
           "the skin part(s) whose taxels learn: one or several space-separated names in the "
           "'taxels' input, e.g. \"left_forearm right_palm\" (one learner per part)");
-  declare_learner_params(s);
-  s.add_bool("learn").defaults(true).describe("learn from contact events (false: only evaluate)");
-  s.add_string("load")
-      .defaults(std::string(""))
-      .describe(
+  v.block(learning);
+  v.field("learn", learn).doc("learn from contact events (false: only evaluate)");
+  v.field("load", load)
+      .doc(
           "learned-state file to start from, relative to the experiment: somasim JSON (holding "
           "every body part), or the iCub's taxels2D_*.ini (sections named as the body parts; "
           "(D, TTC) counts only, taxel geometry taken from the 'taxels' input by id)");
-  s.add_string("save")
-      .defaults(std::string("pps_map.json"))
-      .describe(
+  v.field("save", save)
+      .doc(
           "file name of the learned state written into the run folder, all parts in one file: "
           "*.json (somasim) or *.ini (the iCub's taxels2D format, d_ttc model only) ('' = none)");
-  s.add_list("figure_taxels")
-      .defaults(std::vector<double>{})
-      .describe(
+  v.field("figure_taxels", figure_taxels)
+      .doc(
           "taxel ids whose landscapes are drawn, in every part that has them (empty: the first "
           "four of each part; for the snapshots, the first four touched so far)");
-  s.add_list("snapshot_events")
-      .defaults(std::vector<double>{})
-      .describe(
+  v.field("snapshot_events", snapshot_events)
+      .doc(
           "also draw a part's landscapes after it learned from these many events (e.g. [1, 4] "
           "as in Fig 9); a drawn taxel without positive samples yet is named in the log");
-  s.add_int("min_samples")
-      .defaults(std::int64_t{50})
+  v.field("min_samples", min_samples)
       .at_least(0)
-      .describe("taxels with fewer learned samples are left out of offset statistics");
-  s.add_string("offset_groups")
-      .defaults(std::string(""))
-      .describe(
+      .doc("taxels with fewer learned samples are left out of offset statistics");
+  v.field("offset_groups", offset_groups)
+      .doc(
           "taxel groups whose offsets are also reported together (metric offset_groups), e.g. "
           "\"inner_forearm: left_forearm +z, palm: right_palm\": a body part, optionally only "
           "the taxels whose outward normal points along +x/-x/+y/-y/+z/-z of its link frame");
-  s.input<pps::Stimulus>("stimulus",
-                         "perceived stimulus (root frame), sampled at this node's rate");
-  s.input<SkinTaxels>("taxels", "taxel poses in the root frame");
-  s.input<ContactEvents>("contacts", "skin contact events (unwired: no learning)", true);
-  s.input<TaxelValues>("true_offsets",
-                       "the offset [m] each taxel should show, by label \"part/id\" (NaN: "
-                       "unknown), for the offset_error_* metrics",
-                       true);
-  s.output<TaxelValues>("activations",
-                        "activation in [0, 1] of each taxel, parts concatenated in the order of "
-                        "body_part, labels \"part/id\"");
-  s.output<double>("max_activation", "largest activation over all parts");
-  return s;
+}
+
+template <class V>
+void PpsLearner::Ports::visit(V& v) {
+  v.port("stimulus", stimulus, "perceived stimulus (root frame), sampled at this node's rate");
+  v.port("taxels", taxels, "taxel poses in the root frame");
+  v.port("contacts", contacts, "skin contact events (unwired: no learning)");
+  v.port("true_offsets", true_offsets,
+         "the offset [m] each taxel should show, by label \"part/id\" (NaN: "
+         "unknown), for the offset_error_* metrics");
+  v.port("activations", activations,
+         "activation in [0, 1] of each taxel, parts concatenated in the order of "
+         "body_part, labels \"part/id\"");
+  v.port("max_activation", max_activation, "largest activation over all parts");
+}
+
+PluginSpec PpsLearner::spec() {
+  return make_plugin_spec<Config, Ports>(
+      "pps_learner",
+      "Peripersonal-space learner (Roncone et al. 2016): per taxel (D, TTC) counts "
+      "learned from buffered stimuli at skin contacts; Parzen-smoothed activations.");
 }
 
 void PpsLearner::configure(NodeContext& ctx) {
-  params_ = read_learner_params(ctx);
+  config_ = read_config<Config>(ctx);
+  bind_ports(ctx, ports_);
+  params_ = config_.learning.to_params();
   parse_body_parts(ctx);
-  learn_ = ctx.param<bool>("learn");
-  save_name_ = ctx.param<std::string>("save");
-  if (!save_name_.empty()) save_path_ = ctx.output_path_param("save");
+  learn_ = config_.learn;
+  save_name_ = config_.save.name;
+  if (!save_name_.empty()) save_path_ = config_.save.path;
   if (!save_name_.empty() && pps::is_ini_learned_file(save_name_) &&
       params_.model != pps::PpsModel::kDTtc)
-    ctx.param_error("save", "an .ini file holds (D, TTC) maps; this learner's model is " +
-                                std::string(pps::to_string(params_.model)) + " (save as .json)");
-  min_samples_ = ctx.param<int>("min_samples");
-  figure_taxels_ = ctx.param<std::vector<double>>("figure_taxels");
+    config_error(ctx, config_, config_.save,
+                 "an .ini file holds (D, TTC) maps; this learner's model is " +
+                     std::string(pps::to_string(params_.model)) + " (save as .json)");
+  min_samples_ = config_.min_samples;
+  figure_taxels_ = config_.figure_taxels;
   try {
     std::vector<std::string> names;
     for (const LearnerPart& p : parts_) names.push_back(p.name);
-    offset_groups_ = parse_offset_groups(ctx.param<std::string>("offset_groups"), names);
+    offset_groups_ = parse_offset_groups(config_.offset_groups, names);
   } catch (const InputError& e) {
-    ctx.param_error("offset_groups", e.what());
+    config_error(ctx, config_, config_.offset_groups, e.what());
   }
-  for (double e : ctx.param<std::vector<double>>("snapshot_events"))
-    snapshot_after_.push_back(static_cast<std::size_t>(e));
-  stimulus_ = &ctx.input<pps::Stimulus>("stimulus");
-  skin_ = &ctx.input<SkinTaxels>("taxels");
-  contacts_ = ctx.is_wired("contacts") ? &ctx.input<ContactEvents>("contacts") : nullptr;
-  true_offsets_ = ctx.is_wired("true_offsets") ? &ctx.input<TaxelValues>("true_offsets") : nullptr;
-  activations_ = &ctx.output<TaxelValues>("activations");
-  max_activation_ = &ctx.output<double>("max_activation");
-  if (const std::string load = ctx.param<std::string>("load"); !load.empty()) this->load(ctx, load);
+  for (double e : config_.snapshot_events) snapshot_after_.push_back(static_cast<std::size_t>(e));
+  stimulus_ = &ports_.stimulus.get();
+  skin_ = &ports_.taxels.get();
+  contacts_ = ports_.contacts.get();
+  true_offsets_ = ports_.true_offsets.get();
+  activations_ = &ports_.activations.get();
+  max_activation_ = &ports_.max_activation.get();
+  if (const std::string load = config_.load; !load.empty()) this->load(ctx, load);
 }
 
 void PpsLearner::parse_body_parts(NodeContext& ctx) {
-  for (const std::string& name : ctx.param<std::vector<std::string>>("body_part")) {
+  for (const std::string& name : config_.body_part) {
     for (const LearnerPart& p : parts_)
-      if (p.name == name) ctx.param_error("body_part", "lists '" + name + "' twice");
+      if (p.name == name)
+        config_error(ctx, config_, config_.body_part, "lists '" + name + "' twice");
     parts_.emplace_back().name = name;
   }
-  if (parts_.empty()) ctx.param_error("body_part", "is empty, expected one or more skin parts");
+  if (parts_.empty())
+    config_error(ctx, config_, config_.body_part, "is empty, expected one or more skin parts");
 }
 
 void PpsLearner::load(NodeContext& ctx, const std::string& file) {
@@ -120,7 +123,8 @@ void PpsLearner::load(NodeContext& ctx, const std::string& file) {
   try {
     loaded = pps::load_learned_file(load_path_, expect, params_.parzen);
   } catch (const InputError& e) {
-    ctx.param_error("load", e.what());  // the file's own message, located at the parameter
+    config_error(ctx, config_, config_.load,
+                 e.what());  // the file's own message, located at the parameter
   }
   for (std::size_t i = 0; i < parts_.size(); ++i) {
     if (loaded.has_geometry)
@@ -207,8 +211,9 @@ void PpsLearner::check_figure_taxels(NodeContext& ctx) const {
     if (!found) {
       std::string names;
       for (const LearnerPart& p : parts_) names += (names.empty() ? "" : " ") + p.name;
-      ctx.param_error("figure_taxels", "taxel id " + std::to_string(static_cast<int>(id)) +
-                                           " is on none of the parts (" + names + ")");
+      config_error(ctx, config_, config_.figure_taxels,
+                   "taxel id " + std::to_string(static_cast<int>(id)) +
+                       " is on none of the parts (" + names + ")");
     }
   }
 }
@@ -224,9 +229,9 @@ const SkinPart& PpsLearner::input_part(NodeContext& ctx, LearnerPart& p) const {
     if (p.input_index == parts.size()) {
       std::vector<std::string> names;
       for (const auto& q : parts) names.push_back(q.name);
-      ctx.param_error("body_part", "no skin part '" + p.name + "' in the 'taxels' input" +
-                                       did_you_mean(p.name, names) +
-                                       "; parts: " + join_names(names));
+      config_error(ctx, config_, config_.body_part,
+                   "no skin part '" + p.name + "' in the 'taxels' input" +
+                       did_you_mean(p.name, names) + "; parts: " + join_names(names));
     }
   }
   const SkinPart& part = parts[p.input_index];

@@ -7,9 +7,12 @@
 #include <string>
 #include <vector>
 
+#include "learner_params.hpp"
 #include "learner_part.hpp"
 #include "offset_groups.hpp"
+#include "somasim/config.hpp"
 #include "somasim/plugin.hpp"
+#include "somasim/plugin_ports.hpp"
 #include "somasim/port_types.hpp"
 #include "somasim/pps/body_part_learner.hpp"
 #include "somasim/pps/ports.hpp"
@@ -19,12 +22,37 @@ namespace somasim::plugins {
 
 class PpsLearner : public Plugin {
  public:
+  struct Config {
+    std::vector<std::string> body_part{"taxel"};
+    LearnerConfig learning;
+    bool learn = true;
+    std::string load;
+    OutputFile save{"pps_map.json", {}};
+    std::vector<double> figure_taxels;
+    std::vector<double> snapshot_events;
+    int min_samples = 50;
+    std::string offset_groups;
+    template <class V>
+    void visit(V& v);
+  };
+  struct Ports {
+    In<pps::Stimulus> stimulus;
+    In<SkinTaxels> taxels;
+    OptionalIn<ContactEvents> contacts;
+    OptionalIn<TaxelValues> true_offsets;
+    Out<TaxelValues> activations;
+    Out<double> max_activation;
+    template <class V>
+    void visit(V& v);
+  };
   static PluginSpec spec();
   void configure(NodeContext& ctx) override;
   void step(NodeContext& ctx) override;
   void finish(NodeContext& ctx) override;
 
  private:
+  Config config_;
+  Ports ports_;
   void parse_body_parts(NodeContext& ctx);
   void load(NodeContext& ctx, const std::string& file);
   void bind_parts(NodeContext& ctx);

@@ -16,129 +16,123 @@ constexpr double kDeg = kRadPerDeg;
 constexpr double kTimeEps = 1e-9;
 }  // namespace
 
-PluginSpec PpsController::spec() {
-  PluginSpec s("pps_controller",
-               "Avoids or reaches what the peripersonal-space activations announce: taxels above "
-               "the threshold vote a point P and normal N; that point of the arm moves along -N "
-               "(avoid) or +N (reach) through a Cartesian velocity controller on the chain.");
-  robot::add_robot_param(s);
-  s.add_string("chain").describe("the named chain that moves (e.g. left_arm)");
-  s.add_string("base")
-      .defaults(std::string(""))
-      .describe(
+template <class V>
+void PpsController::Config::visit(V& v) {
+  v.block(robot);
+  v.field("chain", chain).required().doc("the named chain that moves (e.g. left_arm)");
+  v.field("base", base)
+      .doc(
           "optional base link: only the joints of `chain` beyond it move (e.g. chest: the arm "
           "without the torso, so that two arm controllers do not share joints); '' = whole chain");
-  s.add_string("mode")
-      .defaults(std::string("avoid"))
+  v.field("mode", mode)
       .one_of({"avoid", "reach"})
-      .describe("avoid: move P along -N (away from the stimulus); reach: along +N (toward it)");
-  s.add_string("reach_direction")
-      .defaults(std::string("normal"))
+      .doc("avoid: move P along -N (away from the stimulus); reach: along +N (toward it)");
+  v.field("reach_direction", reach_direction)
       .one_of({"normal", "stimulus"})
-      .describe(
+      .doc(
           "reach mode: normal moves P along +N (the paper's rule); stimulus moves P straight "
           "toward the perceived stimulus (input 'stimulus'), which meets objects arriving off "
           "the normal with the skin first");
-  s.add_string("body_part")
-      .describe(
-          "the skin part whose taxels vote (its link must be in the chain), e.g. left_forearm");
-  s.add_double("threshold")
-      .defaults(0.4)
-      .range(0, 1)
-      .describe("taxels with an activation above this vote");
-  s.add_double("speed").unit_is("m/s").defaults(0.10).range(0, 10).describe(
-      "speed of the controlled point");
-  s.add_double("persistence")
-      .unit_is("s")
-      .defaults(0.3)
+  v.field("body_part", body_part)
+      .required()
+      .doc("the skin part whose taxels vote (its link must be in the chain), e.g. left_forearm");
+  v.field("threshold", threshold).range(0, 1).doc("taxels with an activation above this vote");
+  v.field("speed", speed).unit("m/s").range(0, 10).doc("speed of the controlled point");
+  v.field("persistence", persistence)
+      .unit("s")
       .range(0, 1000)
-      .describe("keep moving this long after the last above-threshold tick");
-  s.add_double("return_after")
-      .unit_is("s")
-      .defaults(1.0)
+      .doc("keep moving this long after the last above-threshold tick");
+  v.field("return_after", return_after)
+      .unit("s")
       .range(0, 1000)
-      .describe(
+      .doc(
           "this long after the last above-threshold tick, return to the start posture (joint "
           "space)");
-  s.add_double("workspace_radius")
-      .unit_is("m")
-      .defaults(0.2)
+  v.field("workspace_radius", workspace_radius)
+      .unit("m")
       .range(0, 10)
-      .describe(
+      .doc(
           "no point of the body part goes farther than this from where it was at the home "
           "posture (the controlled point stops at this distance)");
-  s.add_double("return_gain")
-      .unit_is("1/s")
-      .defaults(2.0)
+  v.field("return_gain", return_gain)
+      .unit("1/s")
       .range(0, 1000)
-      .describe("return home: joint velocity per radian of error");
-  s.add_double("return_tolerance_deg")
-      .unit_is("deg")
-      .defaults(0.1)
+      .doc("return home: joint velocity per radian of error");
+  v.field("return_tolerance_deg", return_tolerance_deg)
+      .unit("deg")
       .range(0, 90)
-      .describe("return home ends when every chain joint is this close to its start value");
-  s.add_list("max_joint_velocity_deg")
-      .unit_is("deg/s")
-      .defaults(std::vector<double>{60.0})
+      .doc("return home ends when every chain joint is this close to its start value");
+  v.field("max_joint_velocity_deg", max_joint_velocity_deg)
+      .unit("deg/s")
       .at_least(0)
-      .describe("joint speed limits: one value for all chain joints or one per joint");
-  s.add_double("limit_margin_deg")
-      .unit_is("deg")
-      .defaults(2.0)
+      .doc("joint speed limits: one value for all chain joints or one per joint");
+  v.field("limit_margin_deg", limit_margin_deg)
+      .unit("deg")
       .range(0, 90)
-      .describe("joints stop this far from their limits");
-  s.input<SkinTaxels>("taxels", "taxel poses in the root frame");
-  s.input<TaxelValues>("activations",
-                       "taxel activations: labelled 'part/id' (one or several parts; the "
-                       "body part's taxels are picked by label), or unlabelled with one value "
-                       "per taxel of the body part in the order of `taxels`");
-  s.input<JointState>("state", "measured joint state");
-  s.input<pps::Stimulus>("stimulus", "the perceived stimulus (for reach_direction: stimulus)",
-                         /*optional=*/true);
-  s.output<JointCommand>("command", "velocity commands on the chain dofs (kNone elsewhere)");
-  s.output<Eigen::Vector3d>("point", "the last voted point P [m], root frame");
-  s.output<Eigen::Vector3d>("velocity", "commanded velocity of the point [m/s], root frame");
-  s.output<double>("triggered", "1 when a taxel is above the threshold this tick, else 0");
-  return s;
+      .doc("joints stop this far from their limits");
+}
+
+template <class V>
+void PpsController::Ports::visit(V& v) {
+  v.port("taxels", taxels, "taxel poses in the root frame");
+  v.port("activations", activations,
+         "taxel activations: labelled 'part/id' (one or several parts; the "
+         "body part's taxels are picked by label), or unlabelled with one value "
+         "per taxel of the body part in the order of `taxels`");
+  v.port("state", state, "measured joint state");
+  v.port("stimulus", stimulus, "the perceived stimulus (for reach_direction: stimulus)");
+  v.port("command", command, "velocity commands on the chain dofs (kNone elsewhere)");
+  v.port("point", point, "the last voted point P [m], root frame");
+  v.port("velocity", velocity, "commanded velocity of the point [m/s], root frame");
+  v.port("triggered", triggered, "1 when a taxel is above the threshold this tick, else 0");
+}
+
+PluginSpec PpsController::spec() {
+  return make_plugin_spec<Config, Ports>(
+      "pps_controller",
+      "Avoids or reaches what the peripersonal-space activations announce: taxels above "
+      "the threshold vote a point P and normal N; that point of the arm moves along -N "
+      "(avoid) or +N (reach) through a Cartesian velocity controller on the chain.");
 }
 
 void PpsController::configure(NodeContext& ctx) {
+  config_ = read_config<Config>(ctx);
+  bind_ports(ctx, ports_);
   model_ = robot::experiment_robot(ctx);
   control::ChainSelection chain;
   try {
-    chain = control::select_chain(*model_, ctx.param<std::string>("chain"));
+    chain = control::select_chain(*model_, config_.chain);
   } catch (const InputError& e) {
-    ctx.param_error("chain", e.what());
+    config_error(ctx, config_, config_.chain, e.what());
   }
-  if (const auto base = ctx.param<std::string>("base"); !base.empty()) {
+  if (const auto base = config_.base; !base.empty()) {
     try {
-      chain = control::select_chain(
-          *model_, model_->find_chain(ctx.param<std::string>("chain"))->tip_frame, base);
+      chain = control::select_chain(*model_, model_->find_chain(config_.chain)->tip_frame, base);
     } catch (const InputError& e) {
-      ctx.param_error("base", e.what());
+      config_error(ctx, config_, config_.base, e.what());
     }
   }
-  body_part_ = ctx.param<std::string>("body_part");
-  reach_ = ctx.param<std::string>("mode") == "reach";
-  threshold_ = ctx.param<double>("threshold");
-  speed_ = ctx.param<double>("speed");
-  persistence_ = ctx.param<double>("persistence");
-  return_after_ = ctx.param<double>("return_after");
-  radius_ = ctx.param<double>("workspace_radius");
-  return_gain_ = ctx.param<double>("return_gain");
-  return_tolerance_ = ctx.param<double>("return_tolerance_deg") * kDeg;
+  body_part_ = config_.body_part;
+  reach_ = config_.mode == "reach";
+  threshold_ = config_.threshold;
+  speed_ = config_.speed;
+  persistence_ = config_.persistence;
+  return_after_ = config_.return_after;
+  radius_ = config_.workspace_radius;
+  return_gain_ = config_.return_gain;
+  return_tolerance_ = config_.return_tolerance_deg * kDeg;
 
   control::CartesianVelocityOptions options;
-  const auto max_deg = ctx.param<std::vector<double>>("max_joint_velocity_deg");
+  const auto max_deg = config_.max_joint_velocity_deg;
   options.max_joint_velocity =
       Eigen::Map<const Eigen::VectorXd>(max_deg.data(), static_cast<Eigen::Index>(max_deg.size())) *
       kDeg;
-  options.limit_margin = ctx.param<double>("limit_margin_deg") * kDeg;
+  options.limit_margin = config_.limit_margin_deg * kDeg;
   const auto n_chain = static_cast<Eigen::Index>(chain.dofs.size());
   try {
     controller_ = std::make_unique<control::CartesianVelocityController>(model_, chain, options);
   } catch (const InputError& e) {
-    ctx.param_error("max_joint_velocity_deg", e.what());
+    config_error(ctx, config_, config_.max_joint_velocity_deg, e.what());
   }
   max_joint_velocity_ = options.max_joint_velocity.size() == 1
                             ? Eigen::VectorXd::Constant(n_chain, options.max_joint_velocity[0])
@@ -146,19 +140,19 @@ void PpsController::configure(NodeContext& ctx) {
   data_ = std::make_unique<robot::RobotData>(*model_);
   home_data_ = std::make_unique<robot::RobotData>(*model_);
 
-  taxels_ = &ctx.input<SkinTaxels>("taxels");
-  activations_ = &ctx.input<TaxelValues>("activations");
-  state_ = &ctx.input<JointState>("state");
-  if (reach_ && ctx.param<std::string>("reach_direction") == "stimulus") {
-    if (!ctx.is_wired("stimulus"))
-      ctx.param_error("reach_direction",
-                      "'stimulus' needs the input 'stimulus' wired (e.g. thrower.stimulus)");
-    stimulus_ = &ctx.input<pps::Stimulus>("stimulus");
+  taxels_ = &ports_.taxels.get();
+  activations_ = &ports_.activations.get();
+  state_ = &ports_.state.get();
+  if (reach_ && config_.reach_direction == "stimulus") {
+    if (!ports_.stimulus.wired())
+      config_error(ctx, config_, config_.reach_direction,
+                   "'stimulus' needs the input 'stimulus' wired (e.g. thrower.stimulus)");
+    stimulus_ = ports_.stimulus.get();
   }
-  command_ = &ctx.output<JointCommand>("command");
-  point_ = &ctx.output<Eigen::Vector3d>("point");
-  velocity_ = &ctx.output<Eigen::Vector3d>("velocity");
-  triggered_ = &ctx.output<double>("triggered");
+  command_ = &ports_.command.get();
+  point_ = &ports_.point.get();
+  velocity_ = &ports_.velocity.get();
+  triggered_ = &ports_.triggered.get();
   const int n = model_->num_dofs();
   command_->mode.assign(n, JointCommandMode::kNone);
   command_->position.setZero(n);
@@ -175,16 +169,17 @@ const SkinPart& PpsController::find_part(NodeContext& ctx) {
       try {
         link_ = controller_->chain().require_link(*model_, p.link);
       } catch (const InputError& e) {
-        ctx.param_error("body_part", "skin part '" + body_part_ + "': " + e.what());
+        config_error(ctx, config_, config_.body_part,
+                     "skin part '" + body_part_ + "': " + e.what());
       }
     }
     return p;
   }
   std::vector<std::string> names;
   for (const auto& p : taxels_->parts) names.push_back(p.name);
-  ctx.param_error("body_part", "no skin part '" + body_part_ + "' in the 'taxels' input" +
-                                   did_you_mean(body_part_, names) +
-                                   "; parts: " + join_names(names));
+  config_error(ctx, config_, config_.body_part,
+               "no skin part '" + body_part_ + "' in the 'taxels' input" +
+                   did_you_mean(body_part_, names) + "; parts: " + join_names(names));
 }
 
 void PpsController::hold(const Eigen::VectorXd& q) {

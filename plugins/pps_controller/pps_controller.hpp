@@ -12,11 +12,14 @@
 #include <memory>
 #include <string>
 
+#include "somasim/config.hpp"
 #include "somasim/control/cartesian_velocity.hpp"
 #include "somasim/plugin.hpp"
+#include "somasim/plugin_ports.hpp"
 #include "somasim/port_types.hpp"
 #include "somasim/pps/part_activations.hpp"
 #include "somasim/pps/ports.hpp"
+#include "somasim/robot/experiment_robot.hpp"
 #include "somasim/robot/kinematics.hpp"
 #include "somasim/robot/ports.hpp"
 #include "somasim/skin/ports.hpp"
@@ -26,12 +29,45 @@ namespace somasim::plugins {
 
 class PpsController : public Plugin {
  public:
+  struct Config {
+    robot::RobotParam robot;
+    std::string chain;
+    std::string base;
+    std::string mode = "avoid";
+    std::string reach_direction = "normal";
+    std::string body_part;
+    double threshold = 0.4;
+    double speed = 0.10;                               // [m/s]
+    double persistence = 0.3;                          // [s]
+    double return_after = 1.0;                         // [s]
+    double workspace_radius = 0.2;                     // [m]
+    double return_gain = 2.0;                          // [1/s]
+    double return_tolerance_deg = 0.1;                 // [deg]
+    std::vector<double> max_joint_velocity_deg{60.0};  // [deg/s]
+    double limit_margin_deg = 2.0;                     // [deg]
+    template <class V>
+    void visit(V& v);
+  };
+  struct Ports {
+    In<SkinTaxels> taxels;
+    In<TaxelValues> activations;
+    In<JointState> state;
+    OptionalIn<pps::Stimulus> stimulus;
+    Out<JointCommand> command;
+    Out<Eigen::Vector3d> point;
+    Out<Eigen::Vector3d> velocity;
+    Out<double> triggered;
+    template <class V>
+    void visit(V& v);
+  };
   static PluginSpec spec();
   void configure(NodeContext& ctx) override;
   void step(NodeContext& ctx) override;
   void finish(NodeContext& ctx) override;
 
  private:
+  Config config_;
+  Ports ports_;
   const SkinPart& find_part(NodeContext& ctx);
   void hold(const Eigen::VectorXd& q);
   void move(NodeContext& ctx, const Eigen::VectorXd& q);

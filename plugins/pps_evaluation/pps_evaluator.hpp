@@ -40,7 +40,7 @@ class PpsEvaluator : public Plugin {
     std::vector<std::string> velocity_parts;
     std::vector<double> figure_presentations{1, 2, 3, 4};
     int figure_taxels = 3;
-    OutputFile csv{"presentations.csv"};
+    OutputFile csv{"presentations.csv", {}};
     template <class V>
     void visit(V& v);
   };

@@ -41,53 +41,39 @@ double bounding_radius(ObjectShape shape, double size, double half_height) {
 
 }  // namespace
 
-PluginSpec ObjectThrower::spec() {
-  PluginSpec s("object_thrower",
-               "Presents objects (balls, cubes, cylinders) one at a time at random taxels of skin "
-               "parts - approaching, static or receding - and publishes each as the robot "
-               "perceives it (ground truth + noise, seen through the believed head/eye "
-               "kinematics), and the offset each touched taxel should learn.");
-  robot::add_robot_param(s);
-  s.add_string_list("parts")
-      .defaults(std::vector<std::string>{"left_forearm", "right_palm"})
-      .describe("skin parts to aim at, in turn");
-  s.add_string_list("shapes")
-      .defaults(std::vector<std::string>{"sphere", "box"})
-      .describe(
+template <class V>
+void ObjectThrower::Config::visit(V& v) {
+  v.block(robot);
+  v.field("parts", parts).doc("skin parts to aim at, in turn");
+  v.field("shapes", shapes)
+      .doc(
           "space-separated object shapes (sphere, box, cylinder), in turn (with two parts, "
           "'sphere sphere box box' gives each part both)");
-  s.add_string_list("motions")
-      .defaults(std::vector<std::string>{"approach"})
-      .describe("motions (approach, static, receding), in turn");
-  s.add_double("size")
-      .unit_is("m")
-      .defaults(0.025)
+  v.field("motions", motions).doc("motions (approach, static, receding), in turn");
+  v.field("size", size)
+      .unit("m")
       .range(0.001, 0.5)
-      .describe("sphere radius / half edge of the cube / cylinder radius");
-  s.add_string("box_facing")
-      .defaults(std::string("face"))
+      .doc("sphere radius / half edge of the cube / cylinder radius");
+  v.field("box_facing", box_facing)
       .one_of({"face", "corner"})
-      .describe(
+      .doc(
           "what of a cube meets the aimed taxel: a face (stimulus radius = half edge) or a "
           "corner (a point contact like a ball's; radius = half diagonal, sqrt(3) x size)");
-  s.add_double("cylinder_half_height")
-      .unit_is("m")
-      .defaults(0.04)
+  v.field("cylinder_half_height", cylinder_half_height)
+      .unit("m")
       .range(0.001, 0.5)
-      .describe("half height of cylinders (their side faces the taxel)");
-  s.add_string("cylinder_axis")
-      .defaults(std::string("any"))
+      .doc("half height of cylinders (their side faces the taxel)");
+  v.field("cylinder_axis", cylinder_axis)
       .one_of(cylinder_axis_names())
-      .describe(
+      .doc(
           "how a cylinder's axis lies across the aimed taxel's normal: any (a direction fixed by "
           "the normal alone), across_part (across the skin part's long axis, the direction of "
           "largest spread of its taxels: a cylinder spans a forearm's width, its round side "
           "along the forearm) or along_part");
-  s.add_double("path_clearance")
-      .unit_is("m")
-      .defaults(0.005)
+  v.field("path_clearance", path_clearance)
+      .unit("m")
       .range(0.0, 0.2)
-      .describe(
+      .doc(
           "how far an object's path (the whole object) stays from every robot link but the "
           "aimed one; a taxel no such path reaches is given up for another (unreachable_draws), "
           "and where no taxel can be reached so (a large object beside the hand) the "
@@ -95,294 +81,287 @@ PluginSpec ObjectThrower::spec() {
           "where the robot moves toward the object (reaching), so that the arm's own motion "
           "does not bring a neighbouring link (the hand next to a wrist taxel) into the "
           "object's way");
-  s.add_double("distance_min")
-      .unit_is("m")
-      .defaults(0.20)
+  v.field("distance_min", distance_min)
+      .unit("m")
       .range(0.0, 5)
-      .describe("smallest start distance of approaching and static objects (surface to taxel)");
-  s.add_double("distance_max")
-      .unit_is("m")
-      .defaults(0.30)
+      .doc("smallest start distance of approaching and static objects (surface to taxel)");
+  v.field("distance_max", distance_max)
+      .unit("m")
       .range(0.01, 5)
-      .describe("largest start distance; also how far receding objects travel");
-  s.add_double("receding_start_min")
-      .unit_is("m")
-      .defaults(0.05)
+      .doc("largest start distance; also how far receding objects travel");
+  v.field("receding_start_min", receding_start_min)
+      .unit("m")
       .range(0.0, 5)
-      .describe("smallest start distance of receding objects (surface to taxel)");
-  s.add_double("receding_start_max")
-      .unit_is("m")
-      .defaults(0.10)
+      .doc("smallest start distance of receding objects (surface to taxel)");
+  v.field("receding_start_max", receding_start_max)
+      .unit("m")
       .range(0.0, 5)
-      .describe("largest start distance of receding objects");
-  s.add_double("static_duration")
-      .unit_is("s")
-      .defaults(2.0)
+      .doc("largest start distance of receding objects");
+  v.field("static_duration", static_duration)
+      .unit("s")
       .range(0.01, 1000)
-      .describe("how long a static object stays");
-  s.add_double("cone_deg")
-      .unit_is("deg")
-      .defaults(45.0)
+      .doc("how long a static object stays");
+  v.field("cone_deg", cone_deg)
+      .unit("deg")
       .range(0, 89)
-      .describe("start directions within this angle of the aimed taxel's normal");
-  s.add_double("speed_min")
-      .unit_is("m/s")
-      .defaults(0.05)
+      .doc("start directions within this angle of the aimed taxel's normal");
+  v.field("speed_min", speed_min)
+      .unit("m/s")
       .range(0.001, 10)
-      .describe("smallest speed of approaching and receding objects");
-  s.add_double("speed_max")
-      .unit_is("m/s")
-      .defaults(0.15)
-      .range(0.001, 10)
-      .describe("largest speed");
-  s.add_int("approaches")
-      .defaults(std::int64_t{20})
+      .doc("smallest speed of approaching and receding objects");
+  v.field("speed_max", speed_max).unit("m/s").range(0.001, 10).doc("largest speed");
+  v.field("approaches", approaches)
       .range(1, 1000000)
-      .describe("objects presented (all motions); the run stops after the last");
-  s.add_double("pause").unit_is("s").defaults(1.0).range(0, 100).describe(
-      "pause between the removal of an object and the next one");
-  s.add_double("first_after")
-      .unit_is("s")
-      .defaults(0.0)
+      .doc("objects presented (all motions); the run stops after the last");
+  v.field("pause", pause)
+      .unit("s")
+      .range(0, 100)
+      .doc("pause between the removal of an object and the next one");
+  v.field("first_after", first_after)
+      .unit("s")
       .range(0, 1e6)
-      .describe("the first object appears this long after the start (e.g. once the gaze settled)");
-  s.add_double("linger").unit_is("s").defaults(0.1).range(0, 10).describe(
-      "an approaching object is removed this long after reaching the skin");
-  s.add_double("withdraw_after_skin_contact")
-      .unit_is("s")
-      .defaults(-1.0)
+      .doc("the first object appears this long after the start (e.g. once the gaze settled)");
+  v.field("linger", linger)
+      .unit("s")
+      .range(0, 10)
+      .doc("an approaching object is removed this long after reaching the skin");
+  v.field("withdraw_after_skin_contact", withdraw_after_skin_contact)
+      .unit("s")
       .range(-1, 100)
-      .describe(
+      .doc(
           "the object is withdrawn (removed from the world) this long after the skin first "
           "reports a contact during its presentation — a person holding it does not push on "
           "into an arm that came to meet it; needs the 'contacts' input; < 0: it flies its "
           "whole planned path");
-  s.add_double("withdraw_after_robot_contact")
-      .unit_is("s")
-      .defaults(-1.0)
+  v.field("withdraw_after_robot_contact", withdraw_after_robot_contact)
+      .unit("s")
       .range(-1, 100)
-      .describe(
+      .doc(
           "the object is withdrawn this long after it first touches any robot link, with or "
           "without skin (the world's contacts); needs the 'world_contacts' input; < 0: off");
-  s.add_double("wait_for_clear_path")
-      .unit_is("s")
-      .defaults(10.0)
+  v.field("wait_for_clear_path", wait_for_clear_path)
+      .unit("s")
       .range(0, 1e6)
-      .describe(
+      .doc(
           "when no path clear of the robot reaches the part (the posture blocks it), the "
           "presentation is tried again every 0.5 s for this long, then the run stops naming "
           "what was tried (metric presentations_postponed)");
-  s.add_string("object_motion")
-      .defaults(std::string("guided"))
+  v.field("object_motion", object_motion)
       .one_of({"guided", "kinematic"})
-      .describe(
+      .doc(
           "guided: a dynamic body pulled along its path by a bounded force (bullet_world's "
           "guide_max_force), stopped by what it meets, as in a hand; kinematic: moved along "
           "its path whatever it meets (pushes the robot without bound)");
-  s.add_double("mass").unit_is("kg").defaults(0.1).range(1e-4, 100).describe(
-      "mass of guided objects");
-  s.add_string("view")
-      .defaults(std::string("report"))
+  v.field("mass", mass).unit("kg").range(1e-4, 100).doc("mass of guided objects");
+  v.field("view", view)
       .one_of({"ignore", "report", "require"})
-      .describe(
+      .doc(
           "whether the cameras (view_cameras) can see each object coming - all of it in their "
           "images where it appears, then its centre in them and not behind the robot's links "
           "until view_until from the skin, the head as it is when the object appears: report "
           "labels each presentation (its 'sight'; metric presentations_out_of_view), require "
           "presents only objects seen coming (paths_out_of_view counts the paths given up), "
           "ignore does neither; needs link_poses");
-  s.add_string_list("view_cameras")
-      .defaults(std::vector<std::string>{})
-      .describe("cameras that must see the object (empty: every camera of the robot)");
-  s.add_double("view_until")
-      .unit_is("m")
-      .defaults(0.05)
+  v.field("view_cameras", view_cameras)
+      .doc("cameras that must see the object (empty: every camera of the robot)");
+  v.field("view_until", view_until)
+      .unit("m")
       .range(0, 5)
-      .describe("an approaching object must be seen until this far from the end of its path");
-  s.add_double("view_margin")
-      .unit_is("px")
-      .defaults(10.0)
+      .doc("an approaching object must be seen until this far from the end of its path");
+  v.field("view_margin", view_margin)
+      .unit("px")
       .range(0, 1000)
-      .describe("the object's centre stays this far inside the images");
-  s.add_double("position_noise")
-      .unit_is("m")
-      .defaults(0.0)
+      .doc("the object's centre stays this far inside the images");
+  v.field("position_noise", position_noise)
+      .unit("m")
       .range(0, 1)
-      .describe("perceived position noise (Gaussian σ per axis)");
-  s.add_double("velocity_noise")
-      .unit_is("m/s")
-      .defaults(0.0)
+      .doc("perceived position noise (Gaussian σ per axis)");
+  v.field("velocity_noise", velocity_noise)
+      .unit("m/s")
       .range(0, 10)
-      .describe("perceived velocity noise (Gaussian σ per axis)");
-  s.add_string("vision_link")
-      .defaults(std::string(""))
-      .describe(
+      .doc("perceived velocity noise (Gaussian σ per axis)");
+  v.field("vision_link", vision_link)
+      .doc(
           "link the cameras are on, for vision through the believed kinematics ('' = the link "
           "of the robot's left_eye camera)");
-  s.input<SkinTaxels>("taxels", "skin taxel poses (root frame, true kinematics)");
-  s.input<JointState>("state", "true joint values (the true camera pose)");
-  s.input<ObjectStates>("objects", "object states from the world (ground truth)");
-  s.input<JointState>("believed_state",
-                      "believed joint values (believed_kinematics.state): the object is placed "
-                      "through the believed camera pose; unwired: truth + noise",
-                      /*optional=*/true);
-  s.input<LinkPoses>("link_poses", "robot link poses: start points are drawn clear of the robot",
-                     /*optional=*/true);
-  s.input<ContactEvents>("contacts",
-                         "skin contact events (for true_offsets and withdraw_after_skin_contact)",
-                         /*optional=*/true);
-  s.input<Contacts>("world_contacts",
-                    "the world's contacts (world.contacts): touches of any robot link by the "
-                    "current object are counted (metrics robot_contact_*) and can end it "
-                    "(withdraw_after_robot_contact)",
-                    /*optional=*/true);
-  s.input<SkinTaxels>("believed_taxels",
-                      "taxels posed by the believed kinematics (believed_kinematics.taxels), for "
-                      "the perceived D of true_offsets; unwired: the true taxels",
-                      /*optional=*/true);
-  s.input<pps::Stimulus>(
-      "learner_stimulus",
+}
+
+template <class V>
+void ObjectThrower::Ports::visit(V& v) {
+  v.port("taxels", taxels, "skin taxel poses (root frame, true kinematics)");
+  v.port("state", state, "true joint values (the true camera pose)");
+  v.port("objects", objects, "object states from the world (ground truth)");
+  v.port("believed_state", believed_state,
+         "believed joint values (believed_kinematics.state): the object is placed "
+         "through the believed camera pose; unwired: truth + noise");
+  v.port("link_poses", link_poses, "robot link poses: start points are drawn clear of the robot");
+  v.port("contacts", contacts,
+         "skin contact events (for true_offsets and withdraw_after_skin_contact)");
+  v.port("world_contacts", world_contacts,
+         "the world's contacts (world.contacts): touches of any robot link by the "
+         "current object are counted (metrics robot_contact_*) and can end it "
+         "(withdraw_after_robot_contact)");
+  v.port("believed_taxels", believed_taxels,
+         "taxels posed by the believed kinematics (believed_kinematics.taxels), for "
+         "the perceived D of true_offsets; unwired: the true taxels");
+  v.port(
+      "learner_stimulus", learner_stimulus,
       "the stimulus the PPS learner is fed when it is not this node's (e.g. an object tracker's, "
       "wired delayed): the perceived D of true_offsets then subtracts the radius the learner "
       "perceives (its median over the presentation so far) instead of the contact distance - a "
       "learner's D subtracts the radius it perceives, and a tracker's radius of a cube meeting "
-      "the skin with a corner is ~1 cm below that corner's distance from the centre",
-      /*optional=*/true);
-  s.output<ObjectSpawns>("spawns", "objects to add to the world");
-  s.output<pps::Stimulus>("stimulus", "the object as the robot perceives it (root frame)");
-  s.output<pps::Stimulus>("truth", "the object's true centre and velocity (root frame)");
-  s.output<Presentation>("presentation", "the object presented now (motion, aimed taxel)");
-  s.output<TaxelValues>("true_offsets",
-                        "per taxel 'part/id': mean perceived D − true D over its contact events "
-                        "[m]; NaN while never touched (needs 'contacts')");
-  return s;
+      "the skin with a corner is ~1 cm below that corner's distance from the centre");
+  v.port("spawns", spawns, "objects to add to the world");
+  v.port("stimulus", stimulus, "the object as the robot perceives it (root frame)");
+  v.port("truth", truth, "the object's true centre and velocity (root frame)");
+  v.port("presentation", presentation, "the object presented now (motion, aimed taxel)");
+  v.port("true_offsets", true_offsets,
+         "per taxel 'part/id': mean perceived D − true D over its contact events "
+         "[m]; NaN while never touched (needs 'contacts')");
+}
+
+PluginSpec ObjectThrower::spec() {
+  return make_plugin_spec<Config, Ports>(
+      "object_thrower",
+      "Presents objects (balls, cubes, cylinders) one at a time at random taxels of skin "
+      "parts - approaching, static or receding - and publishes each as the robot "
+      "perceives it (ground truth + noise, seen through the believed head/eye "
+      "kinematics), and the offset each touched taxel should learn.");
 }
 
 void ObjectThrower::read_lists(NodeContext& ctx) {
-  parts_ = ctx.param<std::vector<std::string>>("parts");
-  if (parts_.empty()) ctx.param_error("parts", "expected at least one skin part name");
+  parts_ = config_.parts;
+  if (parts_.empty())
+    config_error(ctx, config_, config_.parts, "expected at least one skin part name");
   std::vector<std::string> known;
   for (const auto& patch : model_->skin_patches()) known.push_back(patch.body_part);
   for (const auto& p : parts_)
     if (std::find(known.begin(), known.end(), p) == known.end())
-      ctx.param_error("parts", "unknown skin part '" + p + "'" + did_you_mean(p, known) +
-                                   "; the robot's skin parts: " + join_names(known));
+      config_error(ctx, config_, config_.parts,
+                   "unknown skin part '" + p + "'" + did_you_mean(p, known) +
+                       "; the robot's skin parts: " + join_names(known));
 
   const std::vector<std::string> shape_names = {"sphere", "box", "cylinder"};
-  for (const auto& s : ctx.param<std::vector<std::string>>("shapes")) {
+  for (const auto& s : config_.shapes) {
     const auto it = std::find(shape_names.begin(), shape_names.end(), s);
     if (it == shape_names.end())
-      ctx.param_error("shapes", "unknown shape '" + s + "'" + did_you_mean(s, shape_names) +
-                                    "; expected sphere, box or cylinder");
+      config_error(ctx, config_, config_.shapes,
+                   "unknown shape '" + s + "'" + did_you_mean(s, shape_names) +
+                       "; expected sphere, box or cylinder");
     const ObjectShape shapes[] = {ObjectShape::kSphere, ObjectShape::kBox, ObjectShape::kCylinder};
     shapes_.push_back(shapes[it - shape_names.begin()]);
   }
-  if (shapes_.empty()) ctx.param_error("shapes", "expected at least one shape (sphere, box)");
+  if (shapes_.empty())
+    config_error(ctx, config_, config_.shapes, "expected at least one shape (sphere, box)");
 
   const std::vector<std::string> motion_names = {"approach", "static", "receding"};
-  for (const auto& m : ctx.param<std::vector<std::string>>("motions")) {
+  for (const auto& m : config_.motions) {
     const auto it = std::find(motion_names.begin(), motion_names.end(), m);
     if (it == motion_names.end())
-      ctx.param_error("motions", "unknown motion '" + m + "'" + did_you_mean(m, motion_names) +
-                                     "; expected approach, static or receding");
+      config_error(ctx, config_, config_.motions,
+                   "unknown motion '" + m + "'" + did_you_mean(m, motion_names) +
+                       "; expected approach, static or receding");
     const PresentationMotion motions[] = {
         PresentationMotion::kApproach, PresentationMotion::kStatic, PresentationMotion::kReceding};
     motions_.push_back(motions[it - motion_names.begin()]);
   }
   if (motions_.empty())
-    ctx.param_error("motions", "expected at least one motion (approach, static, receding)");
+    config_error(ctx, config_, config_.motions,
+                 "expected at least one motion (approach, static, receding)");
 }
 
 void ObjectThrower::configure(NodeContext& ctx) {
+  config_ = read_config<Config>(ctx);
+  bind_ports(ctx, ports_);
   model_ = robot::experiment_robot(ctx);
   read_lists(ctx);
 
   auto& g = geometry_;
-  g.size = ctx.param<double>("size");
-  cylinder_half_height_ = ctx.param<double>("cylinder_half_height");
-  box_corner_ = ctx.param<std::string>("box_facing") == "corner";
-  cylinder_axis_ = parse_cylinder_axis(ctx.param<std::string>("cylinder_axis"));
-  path_clearance_ = ctx.param<double>("path_clearance");
-  g.distance_min = ctx.param<double>("distance_min");
-  g.distance_max = ctx.param<double>("distance_max");
+  g.size = config_.size;
+  cylinder_half_height_ = config_.cylinder_half_height;
+  box_corner_ = config_.box_facing == "corner";
+  cylinder_axis_ = parse_cylinder_axis(config_.cylinder_axis);
+  path_clearance_ = config_.path_clearance;
+  g.distance_min = config_.distance_min;
+  g.distance_max = config_.distance_max;
   if (g.distance_max < g.distance_min)
-    ctx.param_error("distance_max", "must not be less than distance_min");
-  g.receding_start_min = ctx.param<double>("receding_start_min");
-  g.receding_start_max = ctx.param<double>("receding_start_max");
+    config_error(ctx, config_, config_.distance_max, "must not be less than distance_min");
+  g.receding_start_min = config_.receding_start_min;
+  g.receding_start_max = config_.receding_start_max;
   if (g.receding_start_max < g.receding_start_min)
-    ctx.param_error("receding_start_max", "must not be less than receding_start_min");
-  g.static_duration = ctx.param<double>("static_duration");
-  g.cone_rad = deg_to_rad(ctx.param<double>("cone_deg"));
-  g.speed_min = ctx.param<double>("speed_min");
-  g.speed_max = ctx.param<double>("speed_max");
-  if (g.speed_max < g.speed_min) ctx.param_error("speed_max", "must not be less than speed_min");
-  g.linger = ctx.param<double>("linger");
-  presentations_ = ctx.param<int>("approaches");
-  pause_ = ctx.param<double>("pause");
-  retry_at_s_ = ctx.param<double>("first_after");
-  withdraw_after_skin_contact_ = ctx.param<double>("withdraw_after_skin_contact");
-  position_noise_ = ctx.param<double>("position_noise");
-  velocity_noise_ = ctx.param<double>("velocity_noise");
+    config_error(ctx, config_, config_.receding_start_max,
+                 "must not be less than receding_start_min");
+  g.static_duration = config_.static_duration;
+  g.cone_rad = deg_to_rad(config_.cone_deg);
+  g.speed_min = config_.speed_min;
+  g.speed_max = config_.speed_max;
+  if (g.speed_max < g.speed_min)
+    config_error(ctx, config_, config_.speed_max, "must not be less than speed_min");
+  g.linger = config_.linger;
+  presentations_ = config_.approaches;
+  pause_ = config_.pause;
+  retry_at_s_ = config_.first_after;
+  withdraw_after_skin_contact_ = config_.withdraw_after_skin_contact;
+  position_noise_ = config_.position_noise;
+  velocity_noise_ = config_.velocity_noise;
 
-  skin_ = &ctx.input<SkinTaxels>("taxels");
-  state_ = &ctx.input<JointState>("state");
-  objects_ = &ctx.input<ObjectStates>("objects");
-  if (ctx.is_wired("believed_state")) {
-    believed_state_ = &ctx.input<JointState>("believed_state");
-    const std::string name = ctx.param<std::string>("vision_link");
+  skin_ = &ports_.taxels.get();
+  state_ = &ports_.state.get();
+  objects_ = &ports_.objects.get();
+  if (ports_.believed_state.wired()) {
+    believed_state_ = ports_.believed_state.get();
+    const std::string name = config_.vision_link;
     int link = -1;
     if (name.empty()) {
       const int camera = model_->find_camera("left_eye");
       if (camera < 0)
-        ctx.param_error("vision_link", "robot '" + model_->name() +
-                                           "' has no 'left_eye' camera; name the link the "
-                                           "cameras are on");
+        config_error(ctx, config_, config_.vision_link,
+                     "robot '" + model_->name() +
+                         "' has no 'left_eye' camera; name the link the "
+                         "cameras are on");
       link = model_->cameras()[static_cast<std::size_t>(camera)].link;
     } else {
       try {
         link = model_->link_index(name);
       } catch (const InputError& e) {
-        ctx.param_error("vision_link", e.what());
+        config_error(ctx, config_, config_.vision_link, e.what());
       }
     }
     vision_ = std::make_unique<BelievedVision>(model_, link);
   }
-  link_poses_ = ctx.is_wired("link_poses") ? &ctx.input<LinkPoses>("link_poses") : nullptr;
-  contacts_ = ctx.is_wired("contacts") ? &ctx.input<ContactEvents>("contacts") : nullptr;
+  link_poses_ = ports_.link_poses.get();
+  contacts_ = ports_.contacts.get();
   if (withdraw_after_skin_contact_ >= 0 && !contacts_)
-    ctx.param_error("withdraw_after_skin_contact",
-                    "needs the skin's contact events: wire input 'contacts' (e.g. skin.contacts)");
+    config_error(ctx, config_, config_.withdraw_after_skin_contact,
+                 "needs the skin's contact events: wire input 'contacts' (e.g. skin.contacts)");
   configure_view(ctx);
-  object_motion_ = ctx.param<std::string>("object_motion") == "kinematic" ? ObjectMotion::kKinematic
-                                                                          : ObjectMotion::kGuided;
-  object_mass_ = ctx.param<double>("mass");
-  wait_for_clear_path_ = ctx.param<double>("wait_for_clear_path");
-  withdraw_after_robot_contact_ = ctx.param<double>("withdraw_after_robot_contact");
-  if (ctx.is_wired("world_contacts")) {
+  object_motion_ =
+      config_.object_motion == "kinematic" ? ObjectMotion::kKinematic : ObjectMotion::kGuided;
+  object_mass_ = config_.mass;
+  wait_for_clear_path_ = config_.wait_for_clear_path;
+  withdraw_after_robot_contact_ = config_.withdraw_after_robot_contact;
+  if (ports_.world_contacts.wired()) {
     robot_contacts_ = std::make_unique<RobotContactLog>(*model_);
-    world_contacts_ = &ctx.input<Contacts>("world_contacts");
+    world_contacts_ = ports_.world_contacts.get();
   }
   if (withdraw_after_robot_contact_ >= 0 && !world_contacts_)
-    ctx.param_error(
-        "withdraw_after_robot_contact",
-        "needs the world's contacts: wire input 'world_contacts' (e.g. world.contacts)");
-  believed_taxels_ =
-      ctx.is_wired("believed_taxels") ? &ctx.input<SkinTaxels>("believed_taxels") : nullptr;
-  learner_stimulus_ =
-      ctx.is_wired("learner_stimulus") ? &ctx.input<pps::Stimulus>("learner_stimulus") : nullptr;
+    config_error(ctx, config_, config_.withdraw_after_robot_contact,
+                 "needs the world's contacts: wire input 'world_contacts' (e.g. world.contacts)");
+  believed_taxels_ = ports_.believed_taxels.get();
+  learner_stimulus_ = ports_.learner_stimulus.get();
   if (learner_stimulus_ && !contacts_)
-    ctx.param_error("learner_stimulus",
-                    "is used only for true_offsets, which need the skin's contact events: wire "
-                    "input 'contacts' (e.g. skin.contacts)");
-  spawns_ = &ctx.output<ObjectSpawns>("spawns");
-  stimulus_ = &ctx.output<pps::Stimulus>("stimulus");
-  truth_ = &ctx.output<pps::Stimulus>("truth");
-  presentation_ = &ctx.output<Presentation>("presentation");
-  true_offsets_out_ = &ctx.output<TaxelValues>("true_offsets");
+    ctx.node_error(
+        "input 'learner_stimulus' is used only for true_offsets, which need the skin's contact "
+        "events: wire input 'contacts' (e.g. skin.contacts)");
+  spawns_ = &ports_.spawns.get();
+  stimulus_ = &ports_.stimulus.get();
+  truth_ = &ports_.truth.get();
+  presentation_ = &ports_.presentation.get();
+  true_offsets_out_ = &ports_.true_offsets.get();
 }
 
 void ObjectThrower::configure_view(NodeContext& ctx) {
-  const std::string policy = ctx.param<std::string>("view");
+  const std::string policy = config_.view;
   view_policy_ = policy == "require"  ? ViewPolicy::kRequire
                  : policy == "report" ? ViewPolicy::kReport
                                       : ViewPolicy::kIgnore;
@@ -390,26 +369,27 @@ void ObjectThrower::configure_view(NodeContext& ctx) {
   std::vector<std::string> known;
   for (const auto& c : model_->cameras()) known.push_back(c.name);
   std::vector<int> cameras;
-  for (const auto& name : ctx.param<std::vector<std::string>>("view_cameras")) {
+  for (const auto& name : config_.view_cameras) {
     const int c = model_->find_camera(name);
     if (c < 0)
-      ctx.param_error("view_cameras", "unknown camera '" + name + "'" + did_you_mean(name, known) +
-                                          "; the robot's cameras: " + join_names(known));
+      config_error(ctx, config_, config_.view_cameras,
+                   "unknown camera '" + name + "'" + did_you_mean(name, known) +
+                       "; the robot's cameras: " + join_names(known));
     if (std::find(cameras.begin(), cameras.end(), c) != cameras.end())
-      ctx.param_error("view_cameras", "camera '" + name + "' is named twice");
+      config_error(ctx, config_, config_.view_cameras, "camera '" + name + "' is named twice");
     cameras.push_back(c);
   }
   if (cameras.empty())
     for (int c = 0; c < static_cast<int>(model_->cameras().size()); ++c) cameras.push_back(c);
   const bool can_check = link_poses_ && !cameras.empty();
   if (view_policy_ == ViewPolicy::kRequire && !can_check)
-    ctx.param_error("view", link_poses_ ? "robot '" + model_->name() + "' has no camera"
-                                        : std::string("needs the robot's link poses: wire "
-                                                      "input 'link_poses' (world.link_poses)"));
+    config_error(ctx, config_, config_.view,
+                 link_poses_ ? "robot '" + model_->name() + "' has no camera"
+                             : std::string("needs the robot's link poses: wire "
+                                           "input 'link_poses' (world.link_poses)"));
   if (can_check)
-    view_ = std::make_unique<PresentationView>(*model_, std::move(cameras),
-                                               ctx.param<double>("view_until"),
-                                               ctx.param<double>("view_margin"));
+    view_ = std::make_unique<PresentationView>(*model_, std::move(cameras), config_.view_until,
+                                               config_.view_margin);
 }
 
 bool ObjectThrower::launch(NodeContext& ctx) {

@@ -30,9 +30,12 @@
 #include "presentation_plan.hpp"
 #include "presentation_view.hpp"
 #include "robot_contact_log.hpp"
+#include "somasim/config.hpp"
 #include "somasim/plugin.hpp"
+#include "somasim/plugin_ports.hpp"
 #include "somasim/pps/ports.hpp"
 #include "somasim/pps/true_offsets.hpp"
+#include "somasim/robot/experiment_robot.hpp"
 #include "somasim/robot/ports.hpp"
 #include "somasim/robot/robot_model.hpp"
 #include "somasim/skin/ports.hpp"
@@ -41,12 +44,69 @@ namespace somasim::plugins {
 
 class ObjectThrower : public Plugin {
  public:
+  struct Config {
+    robot::RobotParam robot;
+    std::vector<std::string> parts{"left_forearm", "right_palm"};
+    std::vector<std::string> shapes{"sphere", "box"};
+    std::vector<std::string> motions{"approach"};
+    double size = 0.025;  // [m]
+    std::string box_facing = "face";
+    double cylinder_half_height = 0.04;  // [m]
+    std::string cylinder_axis = "any";
+    double path_clearance = 0.005;     // [m]
+    double distance_min = 0.20;        // [m]
+    double distance_max = 0.30;        // [m]
+    double receding_start_min = 0.05;  // [m]
+    double receding_start_max = 0.10;  // [m]
+    double static_duration = 2.0;      // [s]
+    double cone_deg = 45.0;            // [deg]
+    double speed_min = 0.05;           // [m/s]
+    double speed_max = 0.15;           // [m/s]
+    int approaches = 20;
+    double pause = 1.0;                          // [s]
+    double first_after = 0.0;                    // [s]
+    double linger = 0.1;                         // [s]
+    double withdraw_after_skin_contact = -1.0;   // [s]
+    double withdraw_after_robot_contact = -1.0;  // [s]
+    double wait_for_clear_path = 10.0;           // [s]
+    std::string object_motion = "guided";
+    double mass = 0.1;  // [kg]
+    std::string view = "report";
+    std::vector<std::string> view_cameras;
+    double view_until = 0.05;     // [m]
+    double view_margin = 10.0;    // [px]
+    double position_noise = 0.0;  // [m]
+    double velocity_noise = 0.0;  // [m/s]
+    std::string vision_link;
+    template <class V>
+    void visit(V& v);
+  };
+  struct Ports {
+    In<SkinTaxels> taxels;
+    In<JointState> state;
+    In<ObjectStates> objects;
+    OptionalIn<JointState> believed_state;
+    OptionalIn<LinkPoses> link_poses;
+    OptionalIn<ContactEvents> contacts;
+    OptionalIn<Contacts> world_contacts;
+    OptionalIn<SkinTaxels> believed_taxels;
+    OptionalIn<pps::Stimulus> learner_stimulus;
+    Out<ObjectSpawns> spawns;
+    Out<pps::Stimulus> stimulus;
+    Out<pps::Stimulus> truth;
+    Out<Presentation> presentation;
+    Out<TaxelValues> true_offsets;
+    template <class V>
+    void visit(V& v);
+  };
   static PluginSpec spec();
   void configure(NodeContext& ctx) override;
   void step(NodeContext& ctx) override;
   void finish(NodeContext& ctx) override;
 
  private:
+  Config config_;
+  Ports ports_;
   void read_lists(NodeContext& ctx);
   void configure_view(NodeContext& ctx);
   /// Presents the next object; false (unplaced_ says why) when no clear path reaches its part.

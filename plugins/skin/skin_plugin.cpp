@@ -39,78 +39,81 @@ std::vector<std::string> split_list(const std::string& s) {
 
 }  // namespace
 
-PluginSpec SkinPlugin::spec() {
-  PluginSpec s("skin",
-               "Artificial skin: taxel layouts on the robot's skin patches (generated or from "
-               "files), grouped into virtual taxels (modules); contact points -> taxel pressures "
-               "-> one contact event per body part and contact episode (pressure over threshold "
-               "on more than min_taxels taxels); virtual taxel poses in the root frame.");
-  robot::add_robot_param(s);
-  s.add_string_list("parts")
-      .defaults(std::vector<std::string>{})
-      .describe("body parts with skin (names of the robot's skin patches); empty = all");
-  s.add_double("spacing").unit_is("m").defaults(0.0).range(0.0, 1.0).describe(
-      "distance between neighbouring physical taxels; 0 = each patch's own");
-  s.add_int("group_size")
-      .defaults(std::int64_t{0})
+template <class V>
+void SkinPlugin::Config::visit(V& v) {
+  v.block(robot);
+  v.field("parts", parts)
+      .doc("body parts with skin (names of the robot's skin patches); empty = all");
+  v.field("spacing", spacing)
+      .unit("m")
+      .range(0.0, 1.0)
+      .doc("distance between neighbouring physical taxels; 0 = each patch's own");
+  v.field("group_size", group_size)
       .range(0, 10000)
-      .describe("physical taxels per virtual taxel (module); 0 = each patch's own");
-  s.add_string("layout_files")
-      .defaults(std::string(""))
-      .describe(
+      .doc("physical taxels per virtual taxel (module); 0 = each patch's own");
+  v.field("layout_files", layout_files)
+      .doc(
           "'part=file, ...': layouts read from files (format: somasim/skin/layout_file.hpp) "
           "instead of generated; relative to the experiment file");
-  s.add_double("contact_radius")
-      .unit_is("m")
-      .defaults(0.01)
+  v.field("contact_radius", contact_radius)
+      .unit("m")
       .range(1e-4, 1.0)
-      .describe("taxels within this distance of a contact point respond");
-  s.add_string("pressure_model")
-      .defaults(std::string("shared"))
+      .doc("taxels within this distance of a contact point respond");
+  v.field("pressure_model", pressure_model)
       .one_of({"shared", "kernel"})
-      .describe(
+      .doc(
           "shared: normal force / taxels in the radius; kernel: force x "
           "exp(-d^2 / (2 sigma^2)), sigma = contact_radius / 2");
-  s.add_double("pressure_threshold")
-      .unit_is("N")
-      .defaults(0.01)
+  v.field("pressure_threshold", pressure_threshold)
+      .unit("N")
       .at_least(0.0)
-      .describe("a taxel is active when its pressure (force per taxel) exceeds this");
-  s.add_int("min_taxels")
-      .defaults(std::int64_t{2})
+      .doc("a taxel is active when its pressure (force per taxel) exceeds this");
+  v.field("min_taxels", min_taxels)
       .at_least(0)
-      .describe("a contact event needs MORE than this many active physical taxels on a part");
-  s.add_double("release_s")
-      .unit_is("s")
-      .defaults(0.1)
+      .doc("a contact event needs MORE than this many active physical taxels on a part");
+  v.field("release_s", release_s)
+      .unit("s")
       .at_least(0.0)
-      .describe("a contact episode ends after this long without active taxels on the part");
-  s.add_bool("figure").defaults(true).describe("draw figures/skin_layout.png at the end");
-  s.input<LinkPoses>("link_poses",
-                     "poses of all robot links (root frame); empty = the robot at q = 0");
-  s.input<Contacts>("contacts", "contact points; those on skin links press taxels", true);
-  s.output<SkinTaxels>("taxels",
-                       "one part per body part: virtual taxel ids, poses in the root frame (this "
-                       "tick) and in the link frame");
-  s.output<ContactEvents>("contacts",
-                          "one event per part and contact episode, with the touched virtual "
-                          "taxels; events older than 2 s are pruned");
-  s.output<TaxelValues>("pressures",
-                        "per virtual taxel (order of 'taxels'): peak pressure of its physical "
-                        "taxels [N]");
-  return s;
+      .doc("a contact episode ends after this long without active taxels on the part");
+  v.field("figure", figure).doc("draw figures/skin_layout.png at the end");
+}
+
+template <class V>
+void SkinPlugin::Ports::visit(V& v) {
+  v.port("link_poses", link_poses,
+         "poses of all robot links (root frame); empty = the robot at q = 0");
+  v.port("contacts", contacts_in, "contact points; those on skin links press taxels");
+  v.port("taxels", taxels,
+         "one part per body part: virtual taxel ids, poses in the root frame (this "
+         "tick) and in the link frame");
+  v.port("contacts", contacts,
+         "one event per part and contact episode, with the touched virtual "
+         "taxels; events older than 2 s are pruned");
+  v.port("pressures", pressures,
+         "per virtual taxel (order of 'taxels'): peak pressure of its physical "
+         "taxels [N]");
+}
+
+PluginSpec SkinPlugin::spec() {
+  return make_plugin_spec<Config, Ports>(
+      "skin",
+      "Artificial skin: taxel layouts on the robot's skin patches (generated or from "
+      "files), grouped into virtual taxels (modules); contact points -> taxel pressures "
+      "-> one contact event per body part and contact episode (pressure over threshold "
+      "on more than min_taxels taxels); virtual taxel poses in the root frame.");
 }
 
 void SkinPlugin::configure(NodeContext& ctx) {
+  config_ = read_config<Config>(ctx);
+  bind_ports(ctx, ports_);
   model_ = robot::experiment_robot(ctx);
-  response_params_.contact_radius = ctx.param<double>("contact_radius");
-  response_params_.model = ctx.param<std::string>("pressure_model") == "kernel"
-                               ? skin::PressureModel::kKernel
-                               : skin::PressureModel::kShared;
-  response_params_.pressure_threshold = ctx.param<double>("pressure_threshold");
-  response_params_.min_taxels = ctx.param<int>("min_taxels");
-  response_params_.release_s = ctx.param<double>("release_s");
-  draw_figure_ = ctx.param<bool>("figure");
+  response_params_.contact_radius = config_.contact_radius;
+  response_params_.model = config_.pressure_model == "kernel" ? skin::PressureModel::kKernel
+                                                              : skin::PressureModel::kShared;
+  response_params_.pressure_threshold = config_.pressure_threshold;
+  response_params_.min_taxels = config_.min_taxels;
+  response_params_.release_s = config_.release_s;
+  draw_figure_ = config_.figure;
 
   select_parts(ctx);
   load_layouts(ctx);
@@ -127,11 +130,11 @@ void SkinPlugin::configure(NodeContext& ctx) {
   robot::forward_kinematics(*model_, data, Eigen::VectorXd::Zero(model_->num_dofs()));
   rest_poses_ = data.link_poses;
 
-  link_poses_ = &ctx.input<LinkPoses>("link_poses");
-  contacts_ = ctx.is_wired("contacts") ? &ctx.input<Contacts>("contacts") : nullptr;
-  taxels_ = &ctx.output<SkinTaxels>("taxels");
-  events_ = &ctx.output<ContactEvents>("contacts");
-  pressures_ = &ctx.output<TaxelValues>("pressures");
+  link_poses_ = &ports_.link_poses.get();
+  contacts_ = ports_.contacts_in.get();
+  taxels_ = &ports_.taxels.get();
+  events_ = &ports_.contacts.get();
+  pressures_ = &ports_.pressures.get();
   init_outputs();
   update_poses(rest_poses_);
 }
@@ -139,38 +142,40 @@ void SkinPlugin::configure(NodeContext& ctx) {
 void SkinPlugin::select_parts(NodeContext& ctx) {
   std::vector<std::string> available;
   for (const auto& patch : model_->skin_patches()) available.push_back(patch.body_part);
-  const auto find_patch = [&](const std::string& name,
-                              const std::string& param) -> const robot::SkinPatch* {
+  const auto find_patch = [&](const std::string& name) -> const robot::SkinPatch* {
     for (const auto& patch : model_->skin_patches())
       if (patch.body_part == name) return &patch;
-    ctx.param_error(param, "unknown body part '" + name + "'" + did_you_mean(name, available) +
-                               "; robot '" + model_->name() + "' has skin on: " +
-                               (available.empty() ? "nothing" : join_names(available)));
+    config_error(ctx, config_, config_.parts,
+                 "unknown body part '" + name + "'" + did_you_mean(name, available) + "; robot '" +
+                     model_->name() +
+                     "' has skin on: " + (available.empty() ? "nothing" : join_names(available)));
   };
-  std::vector<std::string> names = ctx.param<std::vector<std::string>>("parts");
+  std::vector<std::string> names = config_.parts;
   if (names.empty()) names = available;
   for (const auto& name : names) {
     for (const auto& p : parts_)
-      if (p.patch->body_part == name) ctx.param_error("parts", "body part '" + name + "' twice");
+      if (p.patch->body_part == name)
+        config_error(ctx, config_, config_.parts, "body part '" + name + "' twice");
     Part part;
-    part.patch = find_patch(name, "parts");
+    part.patch = find_patch(name);
     parts_.push_back(std::move(part));
   }
   if (parts_.empty())
-    ctx.param_error("robot", "robot '" + model_->name() + "' has no skin patches");
+    config_error(ctx, config_, config_.robot.name,
+                 "robot '" + model_->name() + "' has no skin patches");
 }
 
 void SkinPlugin::load_layouts(NodeContext& ctx) {
   skin::LayoutOptions options;
-  options.spacing = ctx.param<double>("spacing");
-  options.group_size = ctx.param<int>("group_size");
+  options.spacing = config_.spacing;
+  options.group_size = config_.group_size;
   std::map<std::string, std::string> files;
-  for (const auto& item : split_list(ctx.param<std::string>("layout_files"))) {
+  for (const auto& item : split_list(config_.layout_files)) {
     const auto eq = item.find('=');
     if (eq == std::string::npos || trim(item.substr(0, eq)).empty() ||
         trim(item.substr(eq + 1)).empty())
-      ctx.param_error("layout_files",
-                      "expected 'part=file' items separated by commas, got '" + item + "'");
+      config_error(ctx, config_, config_.layout_files,
+                   "expected 'part=file' items separated by commas, got '" + item + "'");
     const std::string part = trim(item.substr(0, eq));
     bool selected = false;
     std::vector<std::string> names;
@@ -179,9 +184,9 @@ void SkinPlugin::load_layouts(NodeContext& ctx) {
       selected = selected || p.patch->body_part == part;
     }
     if (!selected)
-      ctx.param_error("layout_files", "body part '" + part + "' has no skin in this node" +
-                                          did_you_mean(part, names) +
-                                          "; parts: " + join_names(names));
+      config_error(ctx, config_, config_.layout_files,
+                   "body part '" + part + "' has no skin in this node" + did_you_mean(part, names) +
+                       "; parts: " + join_names(names));
     files[part] = ctx.resolve_input_path(trim(item.substr(eq + 1))).string();
   }
   for (auto& p : parts_) {
@@ -191,7 +196,8 @@ void SkinPlugin::load_layouts(NodeContext& ctx) {
                      ? skin::load_layout_file(it->second, p.patch->body_part, p.patch->link)
                      : skin::generate_layout(*p.patch, options);
     } catch (const InputError& e) {
-      ctx.param_error(it != files.end() ? "layout_files" : "spacing", e.what());
+      if (it != files.end()) config_error(ctx, config_, config_.layout_files, e.what());
+      config_error(ctx, config_, config_.spacing, e.what());
     }
   }
 }

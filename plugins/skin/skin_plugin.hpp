@@ -7,7 +7,10 @@
 #include <string>
 #include <vector>
 
+#include "somasim/config.hpp"
 #include "somasim/plugin.hpp"
+#include "somasim/plugin_ports.hpp"
+#include "somasim/robot/experiment_robot.hpp"
 #include "somasim/robot/ports.hpp"
 #include "somasim/robot/robot_model.hpp"
 #include "somasim/skin/ports.hpp"
@@ -18,12 +21,38 @@ namespace somasim::plugins {
 
 class SkinPlugin : public Plugin {
  public:
+  struct Config {
+    robot::RobotParam robot;
+    std::vector<std::string> parts;
+    double spacing = 0.0;  // [m]
+    int group_size = 0;
+    std::string layout_files;
+    double contact_radius = 0.01;  // [m]
+    std::string pressure_model = "shared";
+    double pressure_threshold = 0.01;  // [N]
+    int min_taxels = 2;
+    double release_s = 0.1;  // [s]
+    bool figure = true;
+    template <class V>
+    void visit(V& v);
+  };
+  struct Ports {
+    In<LinkPoses> link_poses;
+    OptionalIn<Contacts> contacts_in;
+    Out<SkinTaxels> taxels;
+    Out<ContactEvents> contacts;
+    Out<TaxelValues> pressures;
+    template <class V>
+    void visit(V& v);
+  };
   static PluginSpec spec();
   void configure(NodeContext& ctx) override;
   void step(NodeContext& ctx) override;
   void finish(NodeContext& ctx) override;
 
  private:
+  Config config_;
+  Ports ports_;
   /// One body part: its patch, layout, response and statistics.
   struct Part {
     const robot::SkinPatch* patch = nullptr;

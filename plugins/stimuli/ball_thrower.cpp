@@ -13,91 +13,91 @@
 
 namespace somasim::plugins {
 
-PluginSpec BallThrower::spec() {
-  PluginSpec s("ball_thrower",
-               "Throws balls at skin parts one at a time and checks against the physics ground "
-               "truth that a ball touching a part yields a skin contact event on that part.");
-  robot::add_robot_param(s);
-  s.add_string_list("parts")
-      .defaults(std::vector<std::string>{"left_forearm", "right_palm"})
-      .describe("skin parts to aim at, in turn");
-  s.add_int("throws")
-      .defaults(std::int64_t{40})
-      .range(1, 1000000)
-      .describe("balls thrown; the run stops after the last");
-  s.add_double("distance")
-      .unit_is("m")
-      .defaults(0.25)
-      .range(0.05, 5)
-      .describe("start distance from the aimed taxel");
-  s.add_double("cone_deg")
-      .unit_is("deg")
-      .defaults(40.0)
+template <class V>
+void BallThrower::Config::visit(V& v) {
+  v.block(robot);
+  v.field("parts", parts).doc("skin parts to aim at, in turn");
+  v.field("throws", throws).range(1, 1000000).doc("balls thrown; the run stops after the last");
+  v.field("distance", distance).unit("m").range(0.05, 5).doc("start distance from the aimed taxel");
+  v.field("cone_deg", cone_deg)
+      .unit("deg")
       .range(0, 89)
-      .describe("start directions within this angle of the taxel normal");
-  s.add_double("flight_time")
-      .unit_is("s")
-      .defaults(0.35)
+      .doc("start directions within this angle of the taxel normal");
+  v.field("flight_time", flight_time)
+      .unit("s")
       .range(0.05, 10)
-      .describe("time to reach the taxel (ballistic)");
-  s.add_double("ball_lifetime")
-      .unit_is("s")
-      .defaults(1.0)
+      .doc("time to reach the taxel (ballistic)");
+  v.field("ball_lifetime", ball_lifetime)
+      .unit("s")
       .range(0.1, 100)
-      .describe("a ball is removed this long after its launch");
-  s.add_double("ball_radius").unit_is("m").defaults(0.02).range(0.001, 0.5).describe("ball radius");
-  s.add_double("ball_mass").unit_is("kg").defaults(0.05).range(1e-4, 100).describe("ball mass");
-  s.add_double("gravity").unit_is("m/s^2").defaults(-9.81).range(-100, 100).describe(
-      "gravity along the root z axis (must match the world)");
-  s.add_double("skin_margin")
-      .unit_is("m")
-      .defaults(0.01)
+      .doc("a ball is removed this long after its launch");
+  v.field("ball_radius", ball_radius).unit("m").range(0.001, 0.5).doc("ball radius");
+  v.field("ball_mass", ball_mass).unit("kg").range(1e-4, 100).doc("ball mass");
+  v.field("gravity", gravity)
+      .unit("m/s^2")
+      .range(-100, 100)
+      .doc("gravity along the root z axis (must match the world)");
+  v.field("skin_margin", skin_margin)
+      .unit("m")
       .range(0, 1)
-      .describe(
+      .doc(
           "a contact counts as on the part's skin within this distance of one of its (virtual) "
           "taxels");
-  s.add_double("event_window")
-      .unit_is("s")
-      .defaults(0.2)
+  v.field("event_window", event_window)
+      .unit("s")
       .range(0, 10)
-      .describe("a skin event this close to the first physical touch counts");
-  s.input<SkinTaxels>("taxels", "skin taxel poses (root frame)");
-  s.input<LinkPoses>("link_poses", "robot link poses (start points clear of the robot)");
-  s.input<ObjectStates>("objects", "object states from the world");
-  s.input<Contacts>("contacts", "physical contacts from the world (ground truth)");
-  s.input<ContactEvents>("skin_events", "contact events from the skin");
-  s.output<ObjectSpawns>("spawns", "balls to add to the world");
-  return s;
+      .doc("a skin event this close to the first physical touch counts");
+}
+
+template <class V>
+void BallThrower::Ports::visit(V& v) {
+  v.port("taxels", taxels, "skin taxel poses (root frame)");
+  v.port("link_poses", link_poses, "robot link poses (start points clear of the robot)");
+  v.port("objects", objects, "object states from the world");
+  v.port("contacts", contacts, "physical contacts from the world (ground truth)");
+  v.port("skin_events", skin_events, "contact events from the skin");
+  v.port("spawns", spawns, "balls to add to the world");
+}
+
+PluginSpec BallThrower::spec() {
+  return make_plugin_spec<Config, Ports>(
+      "ball_thrower",
+      "Throws balls at skin parts one at a time and checks against the physics ground "
+      "truth that a ball touching a part yields a skin contact event on that part.");
 }
 
 void BallThrower::configure(NodeContext& ctx) {
+  config_ = read_config<Config>(ctx);
+  bind_ports(ctx, ports_);
   model_ = robot::experiment_robot(ctx);
-  parts_ = ctx.param<std::vector<std::string>>("parts");
-  if (parts_.empty()) ctx.param_error("parts", "expected at least one skin part name");
+  parts_ = config_.parts;
+  if (parts_.empty())
+    config_error(ctx, config_, config_.parts, "expected at least one skin part name");
   std::vector<std::string> known;
   for (const auto& patch : model_->skin_patches()) {
     known.push_back(patch.body_part);
   }
   for (const auto& p : parts_)
     if (std::find(known.begin(), known.end(), p) == known.end())
-      ctx.param_error("parts", "unknown skin part '" + p + "'" + did_you_mean(p, known) +
-                                   "; the robot's skin parts: " + join_names(known));
-  throws_ = ctx.param<int>("throws");
-  distance_ = ctx.param<double>("distance");
-  cone_rad_ = deg_to_rad(ctx.param<double>("cone_deg"));
-  flight_time_ = ctx.param<double>("flight_time");
-  lifetime_ = ctx.param<double>("ball_lifetime");
-  radius_ = ctx.param<double>("ball_radius");
-  mass_ = ctx.param<double>("ball_mass");
-  gravity_ = ctx.param<double>("gravity");
-  event_window_ = ctx.param<double>("event_window");
-  skin_margin_ = ctx.param<double>("skin_margin");
-  skin_ = &ctx.input<SkinTaxels>("taxels");
-  link_poses_ = &ctx.input<LinkPoses>("link_poses");
-  objects_ = &ctx.input<ObjectStates>("objects");
-  contacts_ = &ctx.input<Contacts>("contacts");
-  events_ = &ctx.input<ContactEvents>("skin_events");
-  spawns_ = &ctx.output<ObjectSpawns>("spawns");
+      config_error(ctx, config_, config_.parts,
+                   "unknown skin part '" + p + "'" + did_you_mean(p, known) +
+                       "; the robot's skin parts: " + join_names(known));
+  throws_ = config_.throws;
+  distance_ = config_.distance;
+  cone_rad_ = deg_to_rad(config_.cone_deg);
+  flight_time_ = config_.flight_time;
+  lifetime_ = config_.ball_lifetime;
+  radius_ = config_.ball_radius;
+  mass_ = config_.ball_mass;
+  gravity_ = config_.gravity;
+  event_window_ = config_.event_window;
+  skin_margin_ = config_.skin_margin;
+  skin_ = &ports_.taxels.get();
+  link_poses_ = &ports_.link_poses.get();
+  objects_ = &ports_.objects.get();
+  contacts_ = &ports_.contacts.get();
+  events_ = &ports_.skin_events.get();
+  spawns_ = &ports_.spawns.get();
 }
 
 void BallThrower::launch(NodeContext& ctx) {

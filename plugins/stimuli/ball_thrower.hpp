@@ -10,7 +10,10 @@
 #include <memory>
 #include <random>
 
+#include "somasim/config.hpp"
 #include "somasim/plugin.hpp"
+#include "somasim/plugin_ports.hpp"
+#include "somasim/robot/experiment_robot.hpp"
 #include "somasim/robot/ports.hpp"
 #include "somasim/robot/robot_model.hpp"
 #include "somasim/skin/ports.hpp"
@@ -19,12 +22,40 @@ namespace somasim::plugins {
 
 class BallThrower : public Plugin {
  public:
+  struct Config {
+    robot::RobotParam robot;
+    std::vector<std::string> parts{"left_forearm", "right_palm"};
+    int throws = 40;
+    double distance = 0.25;      // [m]
+    double cone_deg = 40.0;      // [deg]
+    double flight_time = 0.35;   // [s]
+    double ball_lifetime = 1.0;  // [s]
+    double ball_radius = 0.02;   // [m]
+    double ball_mass = 0.05;     // [kg]
+    double gravity = -9.81;      // [m/s^2]
+    double skin_margin = 0.01;   // [m]
+    double event_window = 0.2;   // [s]
+    template <class V>
+    void visit(V& v);
+  };
+  struct Ports {
+    In<SkinTaxels> taxels;
+    In<LinkPoses> link_poses;
+    In<ObjectStates> objects;
+    In<Contacts> contacts;
+    In<ContactEvents> skin_events;
+    Out<ObjectSpawns> spawns;
+    template <class V>
+    void visit(V& v);
+  };
   static PluginSpec spec();
   void configure(NodeContext& ctx) override;
   void step(NodeContext& ctx) override;
   void finish(NodeContext& ctx) override;
 
  private:
+  Config config_;
+  Ports ports_;
   struct Throw {
     std::string name, part;
     int part_link = -1;

@@ -8,115 +8,111 @@
 
 namespace somasim::plugins {
 namespace {
-Eigen::Vector3d list3(const NodeContext& ctx, const char* name) {
-  const auto v = ctx.param<std::vector<double>>(name);
+Eigen::Vector3d list3(const std::vector<double>& v) {
   return {v[0], v[1], v[2]};
 }
 }  // namespace
 
-PluginSpec TaxelThrower::spec() {
-  PluginSpec s("taxel_thrower",
-               "Single-taxel Monte Carlo (Roncone et al. 2016, Figs 2-3): objects thrown at one "
-               "taxel on a skin plane; perceived stimulus with noise and a systematic offset.");
-  s.add_int("throws")
-      .defaults(std::int64_t{500})
+template <class V>
+void TaxelThrower::Config::visit(V& v) {
+  v.field("throws", throws)
       .range(1, 10000000)
-      .describe("number of objects thrown; the run stops after the last");
-  s.add_list("taxel_position")
-      .size(3)
-      .unit_is("m")
-      .defaults(std::vector<double>{0, 0, 0})
-      .describe("taxel centre, root frame");
-  s.add_list("taxel_normal")
-      .size(3)
-      .defaults(std::vector<double>{0, 0, 1})
-      .describe("outward skin normal, root frame (normalised)");
-  s.add_string("body_part")
-      .defaults(std::string("taxel"))
-      .describe("name of the skin part in the outputs");
-  s.add_double("start_distance_min")
-      .unit_is("m")
-      .defaults(0.25)
+      .doc("number of objects thrown; the run stops after the last");
+  v.field("taxel_position", taxel_position).size(3).unit("m").doc("taxel centre, root frame");
+  v.field("taxel_normal", taxel_normal).size(3).doc("outward skin normal, root frame (normalised)");
+  v.field("body_part", body_part).doc("name of the skin part in the outputs");
+  v.field("start_distance_min", start_distance_min)
+      .unit("m")
       .range(0, 10)
-      .describe("closest start of a throw from the taxel");
-  s.add_double("start_distance_max")
-      .unit_is("m")
-      .defaults(0.30)
+      .doc("closest start of a throw from the taxel");
+  v.field("start_distance_max", start_distance_max)
+      .unit("m")
       .range(0, 10)
-      .describe("farthest start of a throw");
-  s.add_double("start_cone_deg")
-      .unit_is("deg")
-      .defaults(45.0)
+      .doc("farthest start of a throw");
+  v.field("start_cone_deg", start_cone_deg)
+      .unit("deg")
       .range(0, 89)
-      .describe("start directions within this angle of the normal (uniform over the solid angle)");
-  s.add_double("landing_sigma")
-      .unit_is("m")
-      .defaults(0.018)
+      .doc("start directions within this angle of the normal (uniform over the solid angle)");
+  v.field("landing_sigma", landing_sigma)
+      .unit("m")
       .range(0, 1)
-      .describe(
+      .doc(
           "landing point: Gaussian around the taxel, per skin-plane axis (released data 1.8 cm; "
           "paper text 5 cm)");
-  s.add_double("speed_min").unit_is("m/s").defaults(0.05).range(1e-4, 10).describe("slowest throw");
-  s.add_double("speed_max").unit_is("m/s").defaults(0.07).range(1e-4, 10).describe("fastest throw");
-  s.add_double("hit_radius")
-      .unit_is("m")
-      .defaults(0.02)
+  v.field("speed_min", speed_min).unit("m/s").range(1e-4, 10).doc("slowest throw");
+  v.field("speed_max", speed_max).unit("m/s").range(1e-4, 10).doc("fastest throw");
+  v.field("hit_radius", hit_radius)
+      .unit("m")
       .range(0, 1)
-      .describe("a landing point this close to the taxel centre touches it");
-  s.add_double("object_radius")
-      .unit_is("m")
-      .defaults(0.0)
+      .doc("a landing point this close to the taxel centre touches it");
+  v.field("object_radius", object_radius)
+      .unit("m")
       .range(0, 1)
-      .describe("radius of the thrown objects (the centre lands at this height)");
-  s.add_double("position_noise")
-      .unit_is("m")
-      .defaults(0.0)
+      .doc("radius of the thrown objects (the centre lands at this height)");
+  v.field("position_noise", position_noise)
+      .unit("m")
       .range(0, 1)
-      .describe("perceived position noise, std per axis");
-  s.add_double("velocity_noise")
-      .unit_is("m/s")
-      .defaults(0.0)
+      .doc("perceived position noise, std per axis");
+  v.field("velocity_noise", velocity_noise)
+      .unit("m/s")
       .range(0, 10)
-      .describe("perceived velocity noise, std per axis");
-  s.add_double("offset").unit_is("m").defaults(0.0).range(-1, 1).describe(
-      "systematic error of the perceived position along the normal (Fig 3: -0.10)");
-  s.output<pps::Stimulus>("stimulus", "the stimulus as perceived (root frame)");
-  s.output<pps::Stimulus>("truth", "the true object state (root frame)");
-  s.output<SkinTaxels>("taxels", "the one taxel, as a skin part");
-  s.output<ContactEvents>("contacts", "a contact event at each landing (taxel touched on hits)");
-  s.output<double>("distance", "true distance of the object centre from the taxel centre [m]");
-  return s;
+      .doc("perceived velocity noise, std per axis");
+  v.field("offset", offset)
+      .unit("m")
+      .range(-1, 1)
+      .doc("systematic error of the perceived position along the normal (Fig 3: -0.10)");
+}
+
+template <class V>
+void TaxelThrower::Ports::visit(V& v) {
+  v.port("stimulus", stimulus, "the stimulus as perceived (root frame)");
+  v.port("truth", truth, "the true object state (root frame)");
+  v.port("taxels", taxels, "the one taxel, as a skin part");
+  v.port("contacts", contacts, "a contact event at each landing (taxel touched on hits)");
+  v.port("distance", distance, "true distance of the object centre from the taxel centre [m]");
+}
+
+PluginSpec TaxelThrower::spec() {
+  return make_plugin_spec<Config, Ports>(
+      "taxel_thrower",
+      "Single-taxel Monte Carlo (Roncone et al. 2016, Figs 2-3): objects thrown at one "
+      "taxel on a skin plane; perceived stimulus with noise and a systematic offset.");
 }
 
 void TaxelThrower::configure(NodeContext& ctx) {
-  throws_ = ctx.param<int>("throws");
-  taxel_position_ = list3(ctx, "taxel_position");
-  taxel_normal_ = list3(ctx, "taxel_normal");
-  if (taxel_normal_.norm() < 1e-9) ctx.param_error("taxel_normal", "must not be the zero vector");
+  config_ = read_config<Config>(ctx);
+  bind_ports(ctx, ports_);
+  throws_ = config_.throws;
+  taxel_position_ = list3(config_.taxel_position);
+  taxel_normal_ = list3(config_.taxel_normal);
+  if (taxel_normal_.norm() < 1e-9)
+    config_error(ctx, config_, config_.taxel_normal, "must not be the zero vector");
   taxel_normal_.normalize();
   // Any orthonormal pair spanning the skin plane.
   tangent_u_ = taxel_normal_.unitOrthogonal();
   tangent_v_ = taxel_normal_.cross(tangent_u_);
-  body_part_ = ctx.param<std::string>("body_part");
-  start_distance_min_ = ctx.param<double>("start_distance_min");
-  start_distance_max_ = ctx.param<double>("start_distance_max");
+  body_part_ = config_.body_part;
+  start_distance_min_ = config_.start_distance_min;
+  start_distance_max_ = config_.start_distance_max;
   if (start_distance_max_ < start_distance_min_)
-    ctx.param_error("start_distance_max", "must not be less than start_distance_min");
-  start_cone_rad_ = deg_to_rad(ctx.param<double>("start_cone_deg"));
-  landing_sigma_ = ctx.param<double>("landing_sigma");
-  speed_min_ = ctx.param<double>("speed_min");
-  speed_max_ = ctx.param<double>("speed_max");
-  if (speed_max_ < speed_min_) ctx.param_error("speed_max", "must not be less than speed_min");
-  hit_radius_ = ctx.param<double>("hit_radius");
-  radius_ = ctx.param<double>("object_radius");
-  position_noise_ = ctx.param<double>("position_noise");
-  velocity_noise_ = ctx.param<double>("velocity_noise");
-  offset_ = ctx.param<double>("offset");
-  perceived_ = &ctx.output<pps::Stimulus>("stimulus");
-  truth_ = &ctx.output<pps::Stimulus>("truth");
-  taxels_ = &ctx.output<SkinTaxels>("taxels");
-  contacts_ = &ctx.output<ContactEvents>("contacts");
-  distance_ = &ctx.output<double>("distance");
+    config_error(ctx, config_, config_.start_distance_max,
+                 "must not be less than start_distance_min");
+  start_cone_rad_ = deg_to_rad(config_.start_cone_deg);
+  landing_sigma_ = config_.landing_sigma;
+  speed_min_ = config_.speed_min;
+  speed_max_ = config_.speed_max;
+  if (speed_max_ < speed_min_)
+    config_error(ctx, config_, config_.speed_max, "must not be less than speed_min");
+  hit_radius_ = config_.hit_radius;
+  radius_ = config_.object_radius;
+  position_noise_ = config_.position_noise;
+  velocity_noise_ = config_.velocity_noise;
+  offset_ = config_.offset;
+  perceived_ = &ports_.stimulus.get();
+  truth_ = &ports_.truth.get();
+  taxels_ = &ports_.taxels.get();
+  contacts_ = &ports_.contacts.get();
+  distance_ = &ports_.distance.get();
   SkinPart part;
   part.name = body_part_;
   part.link = "root";

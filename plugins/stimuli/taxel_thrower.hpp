@@ -11,7 +11,9 @@
 // truth plus Gaussian position and velocity noise and a systematic offset along the normal.
 #include <random>
 
+#include "somasim/config.hpp"
 #include "somasim/plugin.hpp"
+#include "somasim/plugin_ports.hpp"
 #include "somasim/port_types.hpp"
 #include "somasim/pps/ports.hpp"
 #include "somasim/skin/ports.hpp"
@@ -20,6 +22,34 @@ namespace somasim::plugins {
 
 class TaxelThrower : public Plugin {
  public:
+  struct Config {
+    int throws = 500;
+    std::vector<double> taxel_position{0, 0, 0};  // [m]
+    std::vector<double> taxel_normal{0, 0, 1};
+    std::string body_part = "taxel";
+    double start_distance_min = 0.25;  // [m]
+    double start_distance_max = 0.30;  // [m]
+    double start_cone_deg = 45.0;      // [deg]
+    double landing_sigma = 0.018;      // [m]
+    double speed_min = 0.05;           // [m/s]
+    double speed_max = 0.07;           // [m/s]
+    double hit_radius = 0.02;          // [m]
+    double object_radius = 0.0;        // [m]
+    double position_noise = 0.0;       // [m]
+    double velocity_noise = 0.0;       // [m/s]
+    double offset = 0.0;               // [m]
+    template <class V>
+    void visit(V& v);
+  };
+  struct Ports {
+    Out<pps::Stimulus> stimulus;
+    Out<pps::Stimulus> truth;
+    Out<SkinTaxels> taxels;
+    Out<ContactEvents> contacts;
+    Out<double> distance;
+    template <class V>
+    void visit(V& v);
+  };
   static PluginSpec spec();
   void configure(NodeContext& ctx) override;
   void start(NodeContext& ctx) override;
@@ -27,6 +57,8 @@ class TaxelThrower : public Plugin {
   void finish(NodeContext& ctx) override;
 
  private:
+  Config config_;
+  Ports ports_;
   struct Throw {
     Eigen::Vector3d start, landing, velocity;  // root frame [m], [m/s]
     double t0 = 0.0, duration = 0.0;           // [s]

@@ -303,6 +303,10 @@ void NodeContext::param_error(const std::string& param, const std::string& messa
                    "': " + message);
 }
 
+void NodeContext::node_error(const std::string& message) const {
+  throw InputError(rt_.spec.where.str() + ": node '" + rt_.spec.name + "': " + message);
+}
+
 const RobotSpec& NodeContext::robot_spec(const std::string& param) const {
   const std::string name = params().get<std::string>(param);
   const auto& robots = rt_.sim.experiment().robots;

@@ -38,35 +38,23 @@ std::string ParzenSpec::validate() const {
 }
 
 const char* to_string(KernelAnchor a) {
-  return a == KernelAnchor::kCentre ? "centre" : "lower_edge";
+  return enum_name(a).data();
 }
 
 bool parse_kernel_anchor(const std::string& s, KernelAnchor& out) {
-  if (s == "centre") {
-    out = KernelAnchor::kCentre;
-    return true;
-  }
-  if (s == "lower_edge") {
-    out = KernelAnchor::kLowerEdge;
-    return true;
-  }
-  return false;
+  const auto parsed = parse_enum<KernelAnchor>(s);
+  if (parsed) out = *parsed;
+  return parsed.has_value();
 }
 
 const char* to_string(PpsModel m) {
-  return m == PpsModel::kDTtc ? "d_ttc" : "distance_only";
+  return enum_name(m).data();
 }
 
 bool parse_pps_model(const std::string& s, PpsModel& out) {
-  if (s == "d_ttc") {
-    out = PpsModel::kDTtc;
-    return true;
-  }
-  if (s == "distance_only") {
-    out = PpsModel::kDistanceOnly;
-    return true;
-  }
-  return false;
+  const auto parsed = parse_enum<PpsModel>(s);
+  if (parsed) out = *parsed;
+  return parsed.has_value();
 }
 
 GridSpec distance_only_grid(const GridSpec& g) {

@@ -88,6 +88,9 @@ class NodeContext {
 
   /// Throws InputError naming the node and parameter, with the parameter's file location.
   [[noreturn]] void param_error(const std::string& param, const std::string& message) const;
+  /// Throws InputError naming the node, located at its entry in the experiment file (for
+  /// problems of the node as a whole, e.g. how its ports are wired).
+  [[noreturn]] void node_error(const std::string& message) const;
 
   /// The robot named by this node's string parameter `param` in the experiment's `robots:`
   /// section; an empty name picks the experiment's only robot. InputError (located at the

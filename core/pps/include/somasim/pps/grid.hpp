@@ -6,20 +6,24 @@
 /// TTC its time to contact [s]. Both ranges are closed intervals; the grid has `d_bins` x
 /// `ttc_bins` equal bins, stored D-major: index = d_bin * ttc_bins + ttc_bin.
 #include <cstddef>
+#include <span>
 #include <string>
+
+#include "somasim/name_table.hpp"
 
 namespace somasim::pps {
 
 /// Largest number of bins per axis supported (keeps queries allocation-free).
 inline constexpr int kMaxBinsPerAxis = 32;
 
-/// Grid over D [m] x TTC [s]. Defaults: the released robot code (TTC up to 1.2 s).
+/// Grid over D [m] x TTC [s]. Defaults: the paper text's (TTC up to 3 s; the released robot
+/// code's 1.2 s is code()).
 struct GridSpec {
   double d_min = -0.10;  ///< [m] lower edge of the first D bin.
   double d_max = 0.20;   ///< [m] upper edge of the last D bin.
   int d_bins = 8;        ///< number of D bins.
   double ttc_min = 0.0;  ///< [s] lower edge of the first TTC bin.
-  double ttc_max = 1.2;  ///< [s] upper edge of the last TTC bin (paper text: 3 s).
+  double ttc_max = 3.0;  ///< [s] upper edge of the last TTC bin (released code: 1.2 s).
   int ttc_bins = 4;      ///< number of TTC bins.
 
   double d_width() const { return (d_max - d_min) / d_bins; }          ///< [m]
@@ -36,9 +40,9 @@ struct GridSpec {
   std::string validate() const;
 
   /// Paper text variant: TTC in [0, 3] s.
-  static GridSpec paper() { return GridSpec{-0.10, 0.20, 8, 0.0, 3.0, 4}; }
+  static GridSpec paper() { return GridSpec{}; }
   /// Released robot code variant: TTC in [0, 1.2] s.
-  static GridSpec code() { return GridSpec{}; }
+  static GridSpec code() { return GridSpec{-0.10, 0.20, 8, 0.0, 1.2, 4}; }
 
   bool operator==(const GridSpec&) const = default;
 };
@@ -48,6 +52,12 @@ enum class KernelAnchor {
   kCentre,     ///< bin centres (paper; default).
   kLowerEdge,  ///< bin lower edges (released code: shifts the surface by half a bin).
 };
+inline constexpr NamedValue<KernelAnchor> kKernelAnchorNames[] = {
+    {KernelAnchor::kCentre, "centre"}, {KernelAnchor::kLowerEdge, "lower_edge"}};
+/// "centre", "lower_edge".
+constexpr std::span<const NamedValue<KernelAnchor>> name_table(KernelAnchor) {
+  return kKernelAnchorNames;
+}
 
 /// Parzen-window smoothing: sigma = sigma_scale x bin width, per axis.
 struct ParzenSpec {
@@ -66,6 +76,12 @@ enum class PpsModel {
   kDTtc,          ///< (D, TTC) map (paper).
   kDistanceOnly,  ///< D only (the paper's S2 ablation): TTC ignored in learning and queries.
 };
+inline constexpr NamedValue<PpsModel> kPpsModelNames[] = {
+    {PpsModel::kDTtc, "d_ttc"}, {PpsModel::kDistanceOnly, "distance_only"}};
+/// "d_ttc", "distance_only".
+constexpr std::span<const NamedValue<PpsModel>> name_table(PpsModel) {
+  return kPpsModelNames;
+}
 
 /// "d_ttc" / "distance_only".
 const char* to_string(PpsModel m);

@@ -1,7 +1,11 @@
 #pragma once
 /// @file
 /// Receptive field (RF) of a taxel, in the taxel frame (z = outward normal) [m].
+#include <span>
+
 #include <Eigen/Core>
+
+#include "somasim/name_table.hpp"
 
 namespace somasim::pps {
 
@@ -12,6 +16,12 @@ enum class RfShape {
   /// cylinder |z| <= cylinder_half_height_m, radial distance <= cylinder_radius_m.
   kConeMirroredCylinder,
 };
+inline constexpr NamedValue<RfShape> kRfShapeNames[] = {
+    {RfShape::kCone, "cone"}, {RfShape::kConeMirroredCylinder, "cone_mirrored_cylinder"}};
+/// "cone", "cone_mirrored_cylinder".
+constexpr std::span<const NamedValue<RfShape>> name_table(RfShape) {
+  return kRfShapeNames;
+}
 
 struct ReceptiveField {
   RfShape shape = RfShape::kCone;

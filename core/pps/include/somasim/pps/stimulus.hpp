@@ -8,6 +8,9 @@
 /// taxel_rotation().
 #include <span>
 
+#include <span>
+#include "somasim/name_table.hpp"
+
 #include <Eigen/Core>
 
 namespace somasim::pps {
@@ -36,6 +39,12 @@ enum class TtcDefinition {
   /// Invalid only when |v| = 0.
   kUnsigned,
 };
+inline constexpr NamedValue<TtcDefinition> kTtcDefinitionNames[] = {
+    {TtcDefinition::kSigned, "signed"}, {TtcDefinition::kUnsigned, "unsigned"}};
+/// "signed", "unsigned".
+constexpr std::span<const NamedValue<TtcDefinition>> name_table(TtcDefinition) {
+  return kTtcDefinitionNames;
+}
 
 /// Rotation R (root <- taxel) whose third column is the normalised `normal`. The x axis is the
 /// root axis least aligned with the normal (X, then Y, then Z on ties), made orthogonal to it.
