@@ -31,6 +31,8 @@
 #                    `somasim run configs/<config>.yaml --out DIR/<config>`), instead of running
 #                    the old executable; OLD_SOMASIM may then be given as "-".
 #   --nice N         run somasim under `nice -n N` (default 10)
+#   --set PATH=VALUE passed to every run of both executables (repeatable), e.g.
+#                    --set duration_s=20 to shorten long experiments alike
 #   -h, --help       this text
 #
 # Each run is `somasim run CONFIG --out DIR --quiet`, one at a time. Then
@@ -59,6 +61,7 @@ abs_tol=0
 work=""
 old_runs=""
 nice_level=10
+sets=()
 positional=()
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -71,6 +74,8 @@ while [ $# -gt 0 ]; do
     --old-runs) old_runs=${2:?--old-runs needs a folder}; shift 2 ;;
     --old-runs=*) old_runs=${1#*=}; shift ;;
     --nice) nice_level=${2:?--nice needs a value}; shift 2 ;;
+    --set) sets+=(--set "${2:?--set needs PATH=VALUE}"); shift 2 ;;
+    --set=*) sets+=(--set "${1#*=}"); shift ;;
     --nice=*) nice_level=${1#*=}; shift ;;
     -h|--help) usage; exit 0 ;;
     --) shift; positional+=("$@"); break ;;
@@ -146,7 +151,8 @@ run() {
   local exe=$1 cfg=$2 out=$3 t0 t1
   rm -rf "$out"
   t0=$(date +%s.%N)
-  nice -n "$nice_level" "$exe" run "$cfg" --out "$out" --quiet >"$out.stdout" 2>"$out.stderr"
+  nice -n "$nice_level" "$exe" run "$cfg" --out "$out" --quiet "${sets[@]}" >"$out.stdout" \
+    2>"$out.stderr"
   run_rc=$?
   t1=$(date +%s.%N)
   run_wall=$(awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.1f", b - a }')

@@ -15,13 +15,14 @@ What is compared (all files under both folders, recursively):
   * metrics.json: parsed as JSON and compared as a tree. Ignored, at any depth, are the keys
     whose values depend on the wall clock or on the build rather than on the simulation:
     `wall_time_s`, `real_time_factor` (sim_time_s / wall_time_s), `versions` (version strings,
-    compiler), and any key whose name contains "wall". Everything else (status, error,
+    compiler), any key whose name contains "wall", and any key ending in "_ms" (plugins' own
+    wall-clock timings, e.g. body_schema_filter's filter_step_ms). Everything else (status, error,
     stop_reason, seed, sim_time_s and every plugin metric) must match: numbers with the
     tolerance below, and with --rel-tol 0 exactly (same value and same JSON type, int vs float).
-    Why these keys: core/framework/src/runner.cpp is the only code that reads a clock (wall_time_s, and
-    real_time_factor derived from it), and `versions` names the build, not the behaviour; two
-    runs of the same config with the same build differ in metrics.json in exactly
-    wall_time_s and real_time_factor (checked on every shipped config);
+    Why these keys: core/framework/src/runner.cpp reads the clock for wall_time_s (and
+    real_time_factor derived from it), plugins time their own stages in *_ms metrics, and
+    `versions` names the build, not the behaviour; two
+    runs of the same config with the same build differ in metrics.json in exactly these keys;
   * *.png: byte for byte. When the bytes differ the images are decoded (IHDR/PLTE/IDAT, zlib);
     if the pixels (and size, colour type, palette) are identical the difference can only be
     metadata or compression (e.g. another libpng/zlib), which is reported as a TOL line and
@@ -235,7 +236,7 @@ def compare_text(name, a_text, b_text, tol):
 
 
 def metric_key_ignored(key):
-    return key in IGNORED_METRIC_KEYS or "wall" in key
+    return key in IGNORED_METRIC_KEYS or "wall" in key or key.endswith("_ms")
 
 
 def compare_json(a, b, path, tol):

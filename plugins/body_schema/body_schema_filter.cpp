@@ -60,12 +60,10 @@ void BodySchemaFilter::Config::visit(V& v) {
   v.field("kde_sigma_deg", kde_sigma_deg).unit("deg").doc("σ_KDE of the estimate");
   v.field("kde_alpha", kde_alpha).at_least(0.0).doc("α of the estimate's KDE");
   v.field("likelihood", likelihood)
-      .one_of({"silhouette", "edges"})
       .doc(
           "silhouette: Jaccard index of colour-segmented and rendered hand masks; edges: "
           "mean distance-transform value under the rendered contours");
   v.field("silhouette_form", silhouette_form)
-      .one_of({"jaccard", "power"})
       .doc("L = J (paper) or L = J^silhouette_power, per camera, multiplied over cameras");
   v.field("silhouette_power", silhouette_power).at_least(0.0).doc("k of L = J^k");
   v.field("edge_lambda", edge_lambda)
@@ -91,21 +89,17 @@ void BodySchemaFilter::Config::visit(V& v) {
   v.field("margin_px", margin_px).range(0, 1000).doc("ROI margin [px]");
   v.field("contour_width", contour_width).range(1, 2).doc("edges: [px]");
   v.field("distribute", distribute)
-      .one_of({"none", "mpi"})
       .doc(
           "mpi: under `mpirun -n K somasim run`, every rank renders and scores its share of the "
           "particles (of every compared filter too) and the likelihoods are gathered, outputs "
           "byte-identical to one process (README 'MPI'); without an MPI launch one process scores "
           "them all. none: every rank scores all particles");
   v.field("render_threads", render_threads).range(1, 64).doc("render workers");
-  v.field("backend", backend)
-      .one_of({"osmesa", "egl"})
-      .doc("OpenGL back end of the hypothesis renderer");
+  v.field("backend", backend).doc("OpenGL back end of the hypothesis renderer");
   v.field("image_noise", image_noise)
       .at_least(0.0)
       .doc("σ of Gaussian noise added to every RGB channel before the observation [grey levels]");
   v.field("on_no_match", on_no_match)
-      .one_of({"reinflate", "stop"})
       .doc(
           "when every particle's likelihood is 0: keep the particles and multiply σ_s by "
           "reinflate_factor, or stop the run");
@@ -186,16 +180,15 @@ void BodySchemaFilter::configure_scorer(NodeContext& ctx) {
     config_error(ctx, config_, config_.links, e.what());
   }
   body_schema::ScorerOptions options;
-  options.kind = body_schema::likelihood_kind_from_name(config_.likelihood);
-  options.form = body_schema::silhouette_form_from_name(config_.silhouette_form);
+  options.kind = config_.likelihood;
+  options.form = config_.silhouette_form;
   options.power = config_.silhouette_power;
   options.edge_lambda = config_.edge_lambda;
   options.edge_orientation_weight = config_.edge_orientation_weight;
   options.margin_px = config_.margin_px;
   options.contour_width = config_.contour_width;
   scorer_ = std::make_unique<body_schema::HypothesisScorer>(
-      model_, arm, offset_dofs_, config_.render_threads, options,
-      render::parse_render_backend(config_.backend));
+      model_, arm, offset_dofs_, config_.render_threads, options, config_.backend);
 }
 
 void BodySchemaFilter::configure(NodeContext& ctx) {
@@ -238,7 +231,7 @@ void BodySchemaFilter::configure(NodeContext& ctx) {
   canny_low_ = canny[0];
   canny_high_ = canny[1];
   image_noise_ = config_.image_noise;
-  stop_when_lost_ = config_.on_no_match == "stop";
+  stop_when_lost_ = config_.on_no_match == OnNoMatch::kStop;
   reinflate_factor_ = config_.reinflate_factor;
   csv_name_ = config_.csv.name;
   if (!csv_name_.empty()) csv_path_ = config_.csv.path;
@@ -281,12 +274,12 @@ void BodySchemaFilter::configure(NodeContext& ctx) {
       columns_.emplace_back(c);
   ctx.log().info("body_schema_filter: M = {}, {} joints, links {}, {} likelihood, schedule {}",
                  filter_->size(), joint_names_.size(), fmt::join(link_names_, " "),
-                 config_.likelihood, config_.schedule);
+                 enum_name(config_.likelihood), config_.schedule);
 }
 
 void BodySchemaFilter::configure_ranks(NodeContext& ctx, const std::vector<int>& compared_sizes) {
-  distribute_ = config_.distribute == "mpi";
-  if (!ParticleRanks::mpi_running()) return;
+  distribute_ = config_.distribute == ParticleDistribution::kMpi;
+  if (!body_schema::ParticleRanks::mpi_running()) return;
   if (!distribute_) {
     ctx.log().info(
         "body_schema_filter: under MPI with distribute: none: every rank scores all {} "
@@ -294,7 +287,8 @@ void BodySchemaFilter::configure_ranks(NodeContext& ctx, const std::vector<int>&
         filter_->size());
     return;
   }
-  ranks_ = std::make_unique<ParticleRanks>();  // collective: every rank configures alike
+  ranks_ =
+      std::make_unique<body_schema::ParticleRanks>();  // collective: every rank configures alike
   auto check = [&](const auto& key, int particles) {
     if (ranks_->size() > particles)
       config_error(ctx, config_, key,
@@ -305,7 +299,7 @@ void BodySchemaFilter::configure_ranks(NodeContext& ctx, const std::vector<int>&
   };
   check(config_.particles, filter_->size());
   for (int m : compared_sizes) check(config_.compare_particles, m);
-  const ParticleShare mine = ranks_->share(filter_->size());
+  const body_schema::ParticleShare mine = ranks_->share(filter_->size());
   ctx.log().info(
       "body_schema_filter: distribute: mpi over {} ranks; rank {} scores particles {} "
       "to {}",
@@ -318,7 +312,7 @@ std::vector<double> BodySchemaFilter::score(const Eigen::VectorXd& q,
                                             const std::vector<cv::Mat>& observations) {
   if (!ranks_) return scorer_->score(q, particles, cameras, observations);
   const auto m = static_cast<int>(particles.cols());
-  const ParticleShare mine = ranks_->share(m);
+  const body_schema::ParticleShare mine = ranks_->share(m);
   const std::vector<double> local =
       scorer_->score(q, particles.middleCols(mine.begin, mine.count), cameras, observations);
   const auto t0 = std::chrono::steady_clock::now();

@@ -3,16 +3,17 @@
 // mental simulation (Vicente et al. 2016; ../../core/body_schema). See README.md.
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "particle_comparison.hpp"
-#include "particle_ranks.hpp"
 #include "somasim/body_schema/eye_hand.hpp"
 #include "somasim/body_schema/hypothesis_scorer.hpp"
 #include "somasim/body_schema/observation.hpp"
 #include "somasim/body_schema/oriented_edges.hpp"
 #include "somasim/body_schema/particle_filter.hpp"
+#include "somasim/body_schema/particle_ranks.hpp"
 #include "somasim/body_schema/ports.hpp"
 #include "somasim/config.hpp"
 #include "somasim/plugin.hpp"
@@ -23,6 +24,24 @@
 #include "somasim/robot/robot_model.hpp"
 
 namespace somasim::plugins {
+
+/// Where the particles are scored: every rank scores all, or MPI ranks share them.
+enum class ParticleDistribution : std::uint8_t { kNone, kMpi };
+/// "none", "mpi".
+inline constexpr NamedValue<ParticleDistribution> kParticleDistributionNames[] = {
+    {ParticleDistribution::kNone, "none"}, {ParticleDistribution::kMpi, "mpi"}};
+constexpr std::span<const NamedValue<ParticleDistribution>> name_table(ParticleDistribution) {
+  return kParticleDistributionNames;
+}
+
+/// What the filter does when every particle's likelihood is 0.
+enum class OnNoMatch : std::uint8_t { kReinflate, kStop };
+/// "reinflate", "stop".
+inline constexpr NamedValue<OnNoMatch> kOnNoMatchNames[] = {{OnNoMatch::kReinflate, "reinflate"},
+                                                            {OnNoMatch::kStop, "stop"}};
+constexpr std::span<const NamedValue<OnNoMatch>> name_table(OnNoMatch) {
+  return kOnNoMatchNames;
+}
 
 class BodySchemaFilter : public Plugin {
  public:
@@ -42,8 +61,8 @@ class BodySchemaFilter : public Plugin {
     double jump_sigma_deg = 1.5;  // [deg]
     double kde_sigma_deg = 1.0;   // [deg]
     double kde_alpha = 500.0;
-    std::string likelihood = "silhouette";
-    std::string silhouette_form = "jaccard";
+    body_schema::LikelihoodKind likelihood = body_schema::LikelihoodKind::kSilhouette;
+    body_schema::SilhouetteForm silhouette_form = body_schema::SilhouetteForm::kJaccard;
     double silhouette_power = 1.0;
     double edge_lambda = 0.01;             // [1/px]
     double edge_orientation_weight = 0.0;  // [px]
@@ -53,11 +72,11 @@ class BodySchemaFilter : public Plugin {
     int proxy_resolution = 8;
     int margin_px = 8;
     int contour_width = 1;
-    std::string distribute = "none";
+    ParticleDistribution distribute = ParticleDistribution::kNone;
     int render_threads = 2;
-    std::string backend = "osmesa";
+    render::RenderBackend backend = render::RenderBackend::kOsmesa;
     double image_noise = 0.0;
-    std::string on_no_match = "reinflate";
+    OnNoMatch on_no_match = OnNoMatch::kReinflate;
     double reinflate_factor = 2.0;
     std::vector<double> compare_particles;
     int evaluate_frame = 120;
@@ -68,8 +87,8 @@ class BodySchemaFilter : public Plugin {
   };
   struct Ports {
     In<JointState> joint_state;
-    In<Image> left_eye_rgb;
-    OptionalIn<Image> right_eye_rgb;
+    In<RgbImage> left_eye_rgb;
+    OptionalIn<RgbImage> right_eye_rgb;
     OptionalIn<ReachPhase> phase;
     OptionalIn<LinkPoses> true_link_poses;
     Out<BodySchemaEstimate> estimate;
@@ -106,10 +125,11 @@ class BodySchemaFilter : public Plugin {
   std::unique_ptr<body_schema::HypothesisScorer> scorer_;
   std::unique_ptr<body_schema::EyeHand> eye_hand_;
   std::unique_ptr<ParticleComparison> comparison_;
-  std::unique_ptr<ParticleRanks> ranks_;  // distribute: mpi under mpirun; null otherwise
-  bool distribute_ = false;               // distribute: mpi (one rank without MPI)
-  std::vector<double> gather_ms_;         // MPI_Allgatherv wall time of each step [ms]
-  SizeRecord main_record_;  // the main filter's errors at evaluate_frame and step times
+  std::unique_ptr<body_schema::ParticleRanks>
+      ranks_;                      // distribute: mpi under mpirun; null otherwise
+  bool distribute_ = false;        // distribute: mpi (one rank without MPI)
+  std::vector<double> gather_ms_;  // MPI_Allgatherv wall time of each step [ms]
+  SizeRecord main_record_;         // the main filter's errors at evaluate_frame and step times
   int evaluate_frame_ = 120;
   body_schema::HsvRange hand_colour_;
   double canny_low_ = 65.0, canny_high_ = 195.0;

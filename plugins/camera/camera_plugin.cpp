@@ -58,7 +58,6 @@ void CameraPlugin::Config::visit(V& v) {
       .range(3, 256)
       .doc("segments around curved primitives (spheres, cylinders, capsules)");
   v.field("backend", backend)
-      .one_of(render::render_backend_names())
       .doc(
           "where the OpenGL context comes from: osmesa (Mesa's llvmpipe, software) or egl "
           "(EGL's surfaceless platform: the node's GPU through Mesa, else llvmpipe; needs "
@@ -173,8 +172,8 @@ void CameraPlugin::configure(NodeContext& ctx) {
   options_.check_drawn = true;  // an item in view that draws nothing is an error (never blank)
   options_.light_direction_root = Eigen::Vector3d(0.7, 0.2, 1.0);  // above, behind the eyes
 
-  const std::string backend_name = config_.backend;  // checked by one_of
-  const render::RenderBackend backend = render::parse_render_backend(backend_name);
+  const render::RenderBackend backend = config_.backend;
+  const std::string backend_name = render::render_backend_name(backend);
   bool created = false;
   context_ = thread_context(backend, created);
   if (context_->backend() != backend)

@@ -28,7 +28,7 @@ class CameraPlugin : public Plugin {
     std::vector<std::string> outputs{"rgb", "depth", "mask"};
     std::string background = "0.35 0.45 0.55";
     int resolution = 24;
-    std::string backend = "osmesa";
+    render::RenderBackend backend = render::RenderBackend::kOsmesa;
     int save_every = 0;
     std::vector<double> sheet_times;
     template <class V>
@@ -37,7 +37,9 @@ class CameraPlugin : public Plugin {
   struct Ports {
     In<LinkPoses> link_poses;
     OptionalIn<ObjectStates> objects;
-    std::array<Out<Image>, 2> rgb, depth, mask;  // per slot: left_eye_*, right_eye_*
+    std::array<Out<RgbImage>, 2> rgb;  // per slot: left_eye_*, right_eye_*
+    std::array<Out<DepthImage>, 2> depth;
+    std::array<Out<LabelImage>, 2> mask;
     template <class V>
     void visit(V& v);
   };

@@ -67,7 +67,7 @@ void DoubleTouch::configure(NodeContext& ctx) {
   finger_radius_ = config_.finger_radius;
   position_noise_ = config_.position_noise;
   velocity_noise_ = config_.velocity_noise;
-  seen_by_eyes_ = config_.perception == "vision";
+  seen_by_eyes_ = config_.perception == FingertipPerception::kVision;
   marker_radius_ = config_.marker_radius;
   try {
     home_ = robot::parse_posture_deg(*model_, config_.home_posture_deg);
@@ -88,7 +88,7 @@ void DoubleTouch::configure(NodeContext& ctx) {
     taxel_list_.push_back(id);
   }
 
-  TouchPlannerOptions po;
+  control::TouchPlannerOptions po;
   po.start_distance = config_.start_distance;
   po.press_depth = config_.press_depth;
   po.step = config_.approach_step;
@@ -100,7 +100,7 @@ void DoubleTouch::configure(NodeContext& ctx) {
     io.position_tolerance = 1e-4;  // waypoints this close to the normal line
     io.posture_gain = 0.03;        // a gentle pull: fewer jumps along the approach
     control::TouchIk ik(model_, effector_, effector_axis_link_, side_link, patch->link, {}, io);
-    planner_ = std::make_unique<TouchPlanner>(model_, std::move(ik), po);
+    planner_ = std::make_unique<control::TouchPlanner>(model_, std::move(ik), po);
   } catch (const InputError& e) {
     config_error(ctx, config_, config_.effector, e.what());
   }
@@ -158,20 +158,21 @@ bool DoubleTouch::plan_touch(NodeContext& ctx) {
     }
     target.tilt = finger_tilt_;
     std::string detail;
-    PlanResult r = PlanResult::kUnreachable;
+    control::PlanResult r = control::PlanResult::kUnreachable;
     // The other fingers may lie on either side of the limb: try both.
     for (const double sign : {1.0, -1.0}) {
       target.tangent = sign * limb_axis_.cross(target.normal);
       r = planner_->plan(target, home_, q_ref_, path_, detail);
       ctx.log().debug("taxel {}, fingers toward {:+.0f}: {}", p.taxel_ids[k], sign,
-                      r == PlanResult::kOk ? "ok" : detail);
-      if (r == PlanResult::kOk) {
+                      r == control::PlanResult::kOk ? "ok" : detail);
+      if (r == control::PlanResult::kOk) {
         aimed_link_ = target.point;
         aimed_normal_link_ = target.normal.normalized();
         return true;
       }
     }
-    (r == PlanResult::kUnreachable ? ik_failures_ : collision_rejections_) += jitter ? 1 : 0;
+    (r == control::PlanResult::kUnreachable ? ik_failures_ : collision_rejections_) +=
+        jitter ? 1 : 0;
     return false;
   };
   constexpr int kAttempts = 20;

@@ -6,15 +6,15 @@
 //
 // Each touch: a taxel of `body_part` is drawn (at random among the reachable ones, or in turn
 // from `taxels`), its point jittered along the skin (`position_jitter`) and its approach direction
-// within `normal_jitter_deg` of the normal. TouchPlanner solves the postures for the fingertip at
-// the point + d·n, d from `start_distance` down to −`press_depth` (finger along −n leaning
-// `finger_tilt_deg` across the limb so that the longer middle finger stays off the skin, within
-// `align_distance`; free to lean up to `max_tilt_deg` farther out; torso held): both arms present
-// the limb, which then stays nearly still while the fingertip's arm follows the normal. Taxels
-// that are unreachable or where the arms would come too close elsewhere are redrawn. The arms
-// move (minimum jerk, joint space, `move_duration`) to the start of the approach, the fingertip
-// closes in along the normal at a speed drawn in `speed_min..speed_max` (the interpolation
-// between IK waypoints is solved for the exact distance), holds `hold` s, retreats at
+// within `normal_jitter_deg` of the normal. control::TouchPlanner solves the postures for the
+// fingertip at the point + d·n, d from `start_distance` down to −`press_depth` (finger along −n
+// leaning `finger_tilt_deg` across the limb so that the longer middle finger stays off the skin,
+// within `align_distance`; free to lean up to `max_tilt_deg` farther out; torso held): both arms
+// present the limb, which then stays nearly still while the fingertip's arm follows the normal.
+// Taxels that are unreachable or where the arms would come too close elsewhere are redrawn. The
+// arms move (minimum jerk, joint space, `move_duration`) to the start of the approach, the
+// fingertip closes in along the normal at a speed drawn in `speed_min..speed_max` (the
+// interpolation between IK waypoints is solved for the exact distance), holds `hold` s, retreats at
 // `speed_max`, and the next touch begins; after `touches` touches the arms return home and the
 // run stops. Commands: position (with velocity feed-forward) on both arms' dofs.
 //
@@ -30,10 +30,12 @@
 #include <functional>
 #include <memory>
 #include <random>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "somasim/config.hpp"
+#include "somasim/control/touch_planner.hpp"
 #include "somasim/plugin.hpp"
 #include "somasim/plugin_ports.hpp"
 #include "somasim/pps/ports.hpp"
@@ -43,9 +45,18 @@
 #include "somasim/robot/ports.hpp"
 #include "somasim/robot/robot_model.hpp"
 #include "somasim/skin/ports.hpp"
-#include "touch_planner.hpp"
 
 namespace somasim::plugins {
+
+/// How the robot perceives its touching fingertip.
+enum class FingertipPerception : std::uint8_t { kProprioception, kVision };
+/// "proprioception", "vision".
+inline constexpr NamedValue<FingertipPerception> kFingertipPerceptionNames[] = {
+    {FingertipPerception::kProprioception, "proprioception"},
+    {FingertipPerception::kVision, "vision"}};
+constexpr std::span<const NamedValue<FingertipPerception>> name_table(FingertipPerception) {
+  return kFingertipPerceptionNames;
+}
 
 class DoubleTouch : public Plugin {
  public:
@@ -81,7 +92,7 @@ class DoubleTouch : public Plugin {
     double clearance = 0.002;     // [m]
     double position_noise = 0.0;  // [m]
     double velocity_noise = 0.0;  // [m/s]
-    std::string perception = "proprioception";
+    FingertipPerception perception = FingertipPerception::kProprioception;
     double marker_radius = 0.007;  // [m]
     template <class V>
     void visit(V& v);
@@ -127,7 +138,7 @@ class DoubleTouch : public Plugin {
   void write_command();
 
   std::shared_ptr<const robot::RobotModel> model_;
-  std::unique_ptr<TouchPlanner> planner_;
+  std::unique_ptr<control::TouchPlanner> planner_;
   std::unique_ptr<robot::RobotData> true_data_, believed_data_;
   robot::FrameRef effector_;
   Eigen::Vector3d effector_axis_link_ = Eigen::Vector3d::UnitX();
@@ -156,7 +167,7 @@ class DoubleTouch : public Plugin {
   Eigen::VectorXd q_ref_, dq_ref_;
   Eigen::VectorXd transfer_from_, transfer_to_;
   double phase_start_ = 0.0;
-  TouchPath path_;
+  control::TouchPath path_;
   int planned_taxel_ = -1;              // index into the part
   std::vector<std::size_t> reachable_;  // indices of the taxels reachable from home
   Eigen::Vector3d aimed_link_ = Eigen::Vector3d::Zero();          // aimed point, link frame

@@ -96,7 +96,6 @@ void DoubleTouch::Config::visit(V& v) {
       .range(0.0, 10.0)
       .doc("perceived fingertip velocity noise (Gaussian σ per axis)");
   v.field("perception", perception)
-      .one_of({"proprioception", "vision"})
       .doc(
           "how the robot perceives its fingertip, for `stimulus` and `true_offsets`: "
           "proprioception = the fingertip ball of the believed arm kinematics; vision = the "

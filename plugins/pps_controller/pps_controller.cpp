@@ -25,10 +25,8 @@ void PpsController::Config::visit(V& v) {
           "optional base link: only the joints of `chain` beyond it move (e.g. chest: the arm "
           "without the torso, so that two arm controllers do not share joints); '' = whole chain");
   v.field("mode", mode)
-      .one_of({"avoid", "reach"})
       .doc("avoid: move P along -N (away from the stimulus); reach: along +N (toward it)");
   v.field("reach_direction", reach_direction)
-      .one_of({"normal", "stimulus"})
       .doc(
           "reach mode: normal moves P along +N (the paper's rule); stimulus moves P straight "
           "toward the perceived stimulus (input 'stimulus'), which meets objects arriving off "
@@ -113,7 +111,7 @@ void PpsController::configure(NodeContext& ctx) {
     }
   }
   body_part_ = config_.body_part;
-  reach_ = config_.mode == "reach";
+  reach_ = config_.mode == PpsMode::kReach;
   threshold_ = config_.threshold;
   speed_ = config_.speed;
   persistence_ = config_.persistence;
@@ -143,7 +141,7 @@ void PpsController::configure(NodeContext& ctx) {
   taxels_ = &ports_.taxels.get();
   activations_ = &ports_.activations.get();
   state_ = &ports_.state.get();
-  if (reach_ && config_.reach_direction == "stimulus") {
+  if (reach_ && config_.reach_direction == ReachDirection::kStimulus) {
     if (!ports_.stimulus.wired())
       config_error(ctx, config_, config_.reach_direction,
                    "'stimulus' needs the input 'stimulus' wired (e.g. thrower.stimulus)");

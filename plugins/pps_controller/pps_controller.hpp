@@ -10,6 +10,7 @@
 // at the home posture: at the limit the joint velocities are scaled down (WorkspaceGuard), so the
 // arm slides along the boundary or stops there, and only motion back inside is allowed.
 #include <memory>
+#include <span>
 #include <string>
 
 #include "somasim/config.hpp"
@@ -27,14 +28,32 @@
 
 namespace somasim::plugins {
 
+/// What the controller does with the voted point: move it away or toward.
+enum class PpsMode : std::uint8_t { kAvoid, kReach };
+/// "avoid", "reach".
+inline constexpr NamedValue<PpsMode> kPpsModeNames[] = {{PpsMode::kAvoid, "avoid"},
+                                                        {PpsMode::kReach, "reach"}};
+constexpr std::span<const NamedValue<PpsMode>> name_table(PpsMode) {
+  return kPpsModeNames;
+}
+
+/// Which way reaching moves the voted point: along +N or toward the perceived stimulus.
+enum class ReachDirection : std::uint8_t { kNormal, kStimulus };
+/// "normal", "stimulus".
+inline constexpr NamedValue<ReachDirection> kReachDirectionNames[] = {
+    {ReachDirection::kNormal, "normal"}, {ReachDirection::kStimulus, "stimulus"}};
+constexpr std::span<const NamedValue<ReachDirection>> name_table(ReachDirection) {
+  return kReachDirectionNames;
+}
+
 class PpsController : public Plugin {
  public:
   struct Config {
     robot::RobotParam robot;
     std::string chain;
     std::string base;
-    std::string mode = "avoid";
-    std::string reach_direction = "normal";
+    PpsMode mode = PpsMode::kAvoid;
+    ReachDirection reach_direction = ReachDirection::kNormal;
     std::string body_part;
     double threshold = 0.4;
     double speed = 0.10;                               // [m/s]

@@ -126,8 +126,9 @@ const SkinPart* PpsEvaluator::find_part(NodeContext& ctx, const std::string& nam
                  did_you_mean(name, names) + "; parts: " + join_names(names));
 }
 
-ObjectGeometry PpsEvaluator::geometry_of(const std::string& object, std::size_t index) const {
-  ObjectGeometry g;
+robot::ObjectGeometry PpsEvaluator::geometry_of(const std::string& object,
+                                                std::size_t index) const {
+  robot::ObjectGeometry g;
   if (const auto it = geometries_.find(object); it != geometries_.end()) g = it->second;
   if (index < objects_->radius.size()) g.bounding_radius = objects_->radius[index];
   return g;
@@ -173,18 +174,19 @@ void PpsEvaluator::observe(NodeContext& ctx, PresentationRecord& r) {
   distances_.assign(part->positions.size(), PresentationRecord::kNaN);
   double nearest = PresentationRecord::kNaN;
   if (present) {
-    const ObjectGeometry g = geometry_of(r.object, at);
+    const robot::ObjectGeometry g = geometry_of(r.object, at);
     const Eigen::Isometry3d& pose = objects_->poses[at];
     if (!r.seen) r.shape = shape_name(g.shape);
     r.seen = true;
     for (std::size_t k = 0; k < part->positions.size(); ++k) {
-      distances_[k] = surface_distance(g, pose, part->positions[k]);
+      distances_[k] = robot::surface_distance(g, pose, part->positions[k]);
       if (!(distances_[k] >= nearest)) nearest = distances_[k];
     }
     double any = nearest;
     for (const auto& other : taxels_->parts) {
       if (&other == part) continue;
-      for (const auto& x : other.positions) any = std::min(any, surface_distance(g, pose, x));
+      for (const auto& x : other.positions)
+        any = std::min(any, robot::surface_distance(g, pose, x));
     }
     if (!(r.min_distance_m <= nearest)) r.min_distance_m = nearest;
     if (!(r.min_distance_any_part_m <= any)) r.min_distance_any_part_m = any;
@@ -255,7 +257,8 @@ void PpsEvaluator::attribute_contacts() {
 void PpsEvaluator::step(NodeContext& ctx) {
   if (spawns_)
     for (const auto& s : spawns_->recent)
-      if (!geometries_.contains(s.name)) geometries_[s.name] = ObjectGeometry{s.shape, s.size, 0};
+      if (!geometries_.contains(s.name))
+        geometries_[s.name] = robot::ObjectGeometry{s.shape, s.size, 0};
   follow_presentation(ctx);
   if (!records_.empty() && records_.back().open()) observe(ctx, records_.back());
   attribute_contacts();

@@ -27,8 +27,8 @@
 #include "somasim/pps/part_activations.hpp"
 #include "somasim/pps/ports.hpp"
 #include "somasim/robot/ports.hpp"
+#include "somasim/robot/surface_distance.hpp"
 #include "somasim/skin/ports.hpp"
-#include "surface_distance.hpp"
 
 namespace somasim::plugins {
 
@@ -69,7 +69,7 @@ class PpsEvaluator : public Plugin {
   void attribute_contacts();
   PresentationRecord* record_at(double t);
   const SkinPart* find_part(NodeContext& ctx, const std::string& name) const;
-  ObjectGeometry geometry_of(const std::string& object, std::size_t index) const;
+  robot::ObjectGeometry geometry_of(const std::string& object, std::size_t index) const;
 
   double threshold_ = 0.4;
   std::vector<std::string> velocity_parts_;  ///< part controlled by velocity_i ("" = none)
@@ -89,7 +89,7 @@ class PpsEvaluator : public Plugin {
 
   std::vector<PresentationRecord> records_;
   std::map<std::string, std::size_t> record_of_object_;
-  std::map<std::string, ObjectGeometry> geometries_;  ///< by object name, from `spawns`
+  std::map<std::string, robot::ObjectGeometry> geometries_;  ///< by object name, from `spawns`
   std::map<std::uint64_t, PresentationTrace> traces_;
   std::map<std::string, pps::PartActivations> part_activations_;  ///< by aimed part
   std::uint64_t last_event_id_ = 0;

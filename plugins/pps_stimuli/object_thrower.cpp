@@ -55,7 +55,6 @@ void ObjectThrower::Config::visit(V& v) {
       .range(0.001, 0.5)
       .doc("sphere radius / half edge of the cube / cylinder radius");
   v.field("box_facing", box_facing)
-      .one_of({"face", "corner"})
       .doc(
           "what of a cube meets the aimed taxel: a face (stimulus radius = half edge) or a "
           "corner (a point contact like a ball's; radius = half diagonal, sqrt(3) x size)");
@@ -64,7 +63,6 @@ void ObjectThrower::Config::visit(V& v) {
       .range(0.001, 0.5)
       .doc("half height of cylinders (their side faces the taxel)");
   v.field("cylinder_axis", cylinder_axis)
-      .one_of(cylinder_axis_names())
       .doc(
           "how a cylinder's axis lies across the aimed taxel's normal: any (a direction fixed by "
           "the normal alone), across_part (across the skin part's long axis, the direction of "
@@ -154,7 +152,6 @@ void ObjectThrower::Config::visit(V& v) {
           "its path whatever it meets (pushes the robot without bound)");
   v.field("mass", mass).unit("kg").range(1e-4, 100).doc("mass of guided objects");
   v.field("view", view)
-      .one_of({"ignore", "report", "require"})
       .doc(
           "whether the cameras (view_cameras) can see each object coming - all of it in their "
           "images where it appears, then its centre in them and not behind the robot's links "
@@ -279,8 +276,8 @@ void ObjectThrower::configure(NodeContext& ctx) {
   auto& g = geometry_;
   g.size = config_.size;
   cylinder_half_height_ = config_.cylinder_half_height;
-  box_corner_ = config_.box_facing == "corner";
-  cylinder_axis_ = parse_cylinder_axis(config_.cylinder_axis);
+  box_corner_ = config_.box_facing == BoxFacing::kCorner;
+  cylinder_axis_ = config_.cylinder_axis;
   path_clearance_ = config_.path_clearance;
   g.distance_min = config_.distance_min;
   g.distance_max = config_.distance_max;
@@ -361,10 +358,7 @@ void ObjectThrower::configure(NodeContext& ctx) {
 }
 
 void ObjectThrower::configure_view(NodeContext& ctx) {
-  const std::string policy = config_.view;
-  view_policy_ = policy == "require"  ? ViewPolicy::kRequire
-                 : policy == "report" ? ViewPolicy::kReport
-                                      : ViewPolicy::kIgnore;
+  view_policy_ = config_.view;
   if (view_policy_ == ViewPolicy::kIgnore) return;
   std::vector<std::string> known;
   for (const auto& c : model_->cameras()) known.push_back(c.name);

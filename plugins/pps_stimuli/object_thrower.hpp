@@ -25,6 +25,7 @@
 #include <memory>
 #include <optional>
 #include <random>
+#include <span>
 
 #include "believed_vision.hpp"
 #include "presentation_plan.hpp"
@@ -42,6 +43,15 @@
 
 namespace somasim::plugins {
 
+/// What of a cube meets the aimed taxel.
+enum class BoxFacing : std::uint8_t { kFace, kCorner };
+/// "face", "corner".
+inline constexpr NamedValue<BoxFacing> kBoxFacingNames[] = {{BoxFacing::kFace, "face"},
+                                                            {BoxFacing::kCorner, "corner"}};
+constexpr std::span<const NamedValue<BoxFacing>> name_table(BoxFacing) {
+  return kBoxFacingNames;
+}
+
 class ObjectThrower : public Plugin {
  public:
   struct Config {
@@ -50,9 +60,9 @@ class ObjectThrower : public Plugin {
     std::vector<std::string> shapes{"sphere", "box"};
     std::vector<std::string> motions{"approach"};
     double size = 0.025;  // [m]
-    std::string box_facing = "face";
+    BoxFacing box_facing = BoxFacing::kFace;
     double cylinder_half_height = 0.04;  // [m]
-    std::string cylinder_axis = "any";
+    CylinderAxis cylinder_axis = CylinderAxis::kAny;
     double path_clearance = 0.005;     // [m]
     double distance_min = 0.20;        // [m]
     double distance_max = 0.30;        // [m]
@@ -71,7 +81,7 @@ class ObjectThrower : public Plugin {
     double wait_for_clear_path = 10.0;           // [s]
     std::string object_motion = "guided";
     double mass = 0.1;  // [kg]
-    std::string view = "report";
+    ViewPolicy view = ViewPolicy::kReport;
     std::vector<std::string> view_cameras;
     double view_until = 0.05;     // [m]
     double view_margin = 10.0;    // [px]

@@ -52,32 +52,17 @@ std::optional<PlannedObject> plan_presentation(PresentationMotion motion,
 }
 
 const char* cylinder_axis_name(CylinderAxis axis) {
-  switch (axis) {
-    case CylinderAxis::kAcrossPart:
-      return "across_part";
-    case CylinderAxis::kAlongPart:
-      return "along_part";
-    default:
-      return "any";
-  }
+  return enum_name(axis).data();
 }
 
-namespace {
-constexpr CylinderAxis kCylinderAxes[] = {CylinderAxis::kAny, CylinderAxis::kAcrossPart,
-                                          CylinderAxis::kAlongPart};
-}  // namespace
-
 CylinderAxis parse_cylinder_axis(const std::string& name) {
-  for (CylinderAxis a : kCylinderAxes)
-    if (name == cylinder_axis_name(a)) return a;
-  throw std::invalid_argument("unknown cylinder axis '" + name +
-                              "' (expected any, across_part or along_part)");
+  if (const auto axis = parse_enum<CylinderAxis>(name)) return *axis;
+  throw std::invalid_argument("unknown cylinder axis '" + name + "' (expected " +
+                              enum_names_joined<CylinderAxis>() + ")");
 }
 
 std::vector<std::string> cylinder_axis_names() {
-  std::vector<std::string> names;
-  for (CylinderAxis a : kCylinderAxes) names.emplace_back(cylinder_axis_name(a));
-  return names;
+  return enum_names<CylinderAxis>();
 }
 
 Eigen::Vector3d part_long_axis(const std::vector<Eigen::Vector3d>& taxel_positions) {

@@ -10,11 +10,14 @@
 //   static:   placed at target + d·dir, d in distance_min..max, still for static_duration.
 //   receding: starts at target + s·dir, s in receding_start_min..max, moves at +speed·dir and is
 //             removed after travelling distance_max.
+#include <span>
+
 #include <functional>
 #include <optional>
 #include <random>
 #include <string>
 #include <vector>
+#include "somasim/name_table.hpp"
 
 #include <Eigen/Geometry>
 
@@ -62,6 +65,14 @@ enum class CylinderAxis {
   kAcrossPart,  ///< across the skin part's long axis (across a forearm: spans its width)
   kAlongPart,   ///< along the skin part's long axis
 };
+inline constexpr NamedValue<CylinderAxis> kCylinderAxisNames[] = {
+    {CylinderAxis::kAny, "any"},
+    {CylinderAxis::kAcrossPart, "across_part"},
+    {CylinderAxis::kAlongPart, "along_part"}};
+/// "any", "across_part", "along_part".
+constexpr std::span<const NamedValue<CylinderAxis>> name_table(CylinderAxis) {
+  return kCylinderAxisNames;
+}
 /// "any", "across_part", "along_part"; parse_cylinder_axis throws std::invalid_argument on
 /// another name; cylinder_axis_names lists them all (the parameter's choices).
 const char* cylinder_axis_name(CylinderAxis axis);

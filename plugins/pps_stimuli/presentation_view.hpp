@@ -6,9 +6,12 @@
 // approaching object is checked until it is `until` from the skin (the last stretch may leave
 // the image as the object meets the skin), a static one where it stands, a receding one along
 // its whole path. Points and poses in the root frame [m].
+#include <span>
+
 #include <optional>
 #include <string>
 #include <vector>
+#include "somasim/name_table.hpp"
 
 #include <Eigen/Geometry>
 
@@ -20,6 +23,13 @@ namespace somasim::plugins {
 /// What the thrower does with the check: nothing, label each presentation (in_view /
 /// out_of_view), or present only objects the cameras can see coming.
 enum class ViewPolicy : std::uint8_t { kIgnore, kReport, kRequire };
+/// "ignore", "report", "require".
+inline constexpr NamedValue<ViewPolicy> kViewPolicyNames[] = {{ViewPolicy::kIgnore, "ignore"},
+                                                              {ViewPolicy::kReport, "report"},
+                                                              {ViewPolicy::kRequire, "require"}};
+constexpr std::span<const NamedValue<ViewPolicy>> name_table(ViewPolicy) {
+  return kViewPolicyNames;
+}
 
 class PresentationView {
  public:

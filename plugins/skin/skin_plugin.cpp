@@ -60,7 +60,6 @@ void SkinPlugin::Config::visit(V& v) {
       .range(1e-4, 1.0)
       .doc("taxels within this distance of a contact point respond");
   v.field("pressure_model", pressure_model)
-      .one_of({"shared", "kernel"})
       .doc(
           "shared: normal force / taxels in the radius; kernel: force x "
           "exp(-d^2 / (2 sigma^2)), sigma = contact_radius / 2");
@@ -108,8 +107,7 @@ void SkinPlugin::configure(NodeContext& ctx) {
   bind_ports(ctx, ports_);
   model_ = robot::experiment_robot(ctx);
   response_params_.contact_radius = config_.contact_radius;
-  response_params_.model = config_.pressure_model == "kernel" ? skin::PressureModel::kKernel
-                                                              : skin::PressureModel::kShared;
+  response_params_.model = config_.pressure_model;
   response_params_.pressure_threshold = config_.pressure_threshold;
   response_params_.min_taxels = config_.min_taxels;
   response_params_.release_s = config_.release_s;

@@ -28,7 +28,7 @@ class SkinPlugin : public Plugin {
     int group_size = 0;
     std::string layout_files;
     double contact_radius = 0.01;  // [m]
-    std::string pressure_model = "shared";
+    skin::PressureModel pressure_model = skin::PressureModel::kShared;
     double pressure_threshold = 0.01;  // [N]
     int min_taxels = 2;
     double release_s = 0.1;  // [s]

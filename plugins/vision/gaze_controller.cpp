@@ -43,7 +43,6 @@ void GazeController::Config::visit(V& v) {
       .range(0.0, 90.0)
       .doc("a target further than this from an optical axis at the solution is out of reach");
   v.field("idle", idle)
-      .one_of({"hold", "fixation", "scan"})
       .doc(
           "without a target: hold the gaze where it is; fixation: look at the mean of the "
           "believed centroids of idle_parts (between them); scan: look at each part's believed "
@@ -111,15 +110,15 @@ void GazeController::configure(NodeContext& ctx) {
   } catch (const InputError& e) {
     config_error(ctx, config_, config_.joint_offsets_deg, e.what());
   }
-  const std::string idle = config_.idle;
-  idle_ = idle == "fixation" ? Idle::kFixation : idle == "scan" ? Idle::kScan : Idle::kHold;
+  idle_ = config_.idle;
+  const std::string_view idle = enum_name(idle_);
   idle_parts_ = config_.idle_parts;
   hold_s_ = config_.hold_s;
   dwell_s_ = config_.dwell_s;
-  if (idle_ != Idle::kHold && idle_parts_.empty())
+  if (idle_ != GazeIdle::kHold && idle_parts_.empty())
     config_error(ctx, config_, config_.idle_parts,
                  fmt::format("idle '{}' needs at least one skin part", idle));
-  if (idle_ != Idle::kHold && !ports_.taxels.wired())
+  if (idle_ != GazeIdle::kHold && !ports_.taxels.wired())
     config_error(ctx, config_, config_.idle,
                  fmt::format("idle '{}' needs the input 'taxels' (the believed skin, "
                              "e.g. believed.taxels) wired",
@@ -199,7 +198,7 @@ void GazeController::step(NodeContext& ctx) {
     last_target_s_ = t;
     idle_now_ = false;
     aim(ctx, q, target_->position, /*tracking=*/true);
-  } else if (idle_ != Idle::kHold && t - last_target_s_ >= hold_s_) {
+  } else if (idle_ != GazeIdle::kHold && t - last_target_s_ >= hold_s_) {
     if (!idle_now_) {
       idle_now_ = true;
       idle_since_s_ = t;
@@ -209,7 +208,7 @@ void GazeController::step(NodeContext& ctx) {
     std::vector<Eigen::Vector3d> centroids;
     if (part_centroids(centroids)) {
       Eigen::Vector3d point = Eigen::Vector3d::Zero();
-      if (idle_ == Idle::kFixation) {
+      if (idle_ == GazeIdle::kFixation) {
         for (const Eigen::Vector3d& c : centroids) point += c;
         point /= static_cast<double>(centroids.size());
       } else {
@@ -221,7 +220,7 @@ void GazeController::step(NodeContext& ctx) {
         ctx.log().info(
             "gaze_controller: idle ({}) at t = {:.3f} s: looking at ({:.3f}, {:.3f}, "
             "{:.3f}) m",
-            idle_ == Idle::kFixation ? "fixation" : "scan", t, point.x(), point.y(), point.z());
+            enum_name(idle_), t, point.x(), point.y(), point.z());
     }
   }
   // Toward the goal at a bounded speed, within the limits.

@@ -7,6 +7,7 @@
 // turn for dwell_s); never the stimulus's ground truth.
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,15 @@
 
 namespace somasim::plugins {
 
+/// What the gaze does without a target.
+enum class GazeIdle : std::uint8_t { kHold, kFixation, kScan };
+/// "hold", "fixation", "scan".
+inline constexpr NamedValue<GazeIdle> kGazeIdleNames[] = {
+    {GazeIdle::kHold, "hold"}, {GazeIdle::kFixation, "fixation"}, {GazeIdle::kScan, "scan"}};
+constexpr std::span<const NamedValue<GazeIdle>> name_table(GazeIdle) {
+  return kGazeIdleNames;
+}
+
 class GazeController : public Plugin {
  public:
   struct Config {
@@ -34,7 +44,7 @@ class GazeController : public Plugin {
     double max_speed_deg_s = 60.0;  // [deg/s]
     double eye_centring = 0.05;
     double reach_tolerance_deg = 0.5;  // [deg]
-    std::string idle = "hold";
+    GazeIdle idle = GazeIdle::kHold;
     std::vector<std::string> idle_parts;
     double hold_s = 0.5;   // [s]
     double dwell_s = 2.0;  // [s]
@@ -57,7 +67,6 @@ class GazeController : public Plugin {
  private:
   Config config_;
   Ports ports_;
-  enum class Idle : std::uint8_t { kHold, kFixation, kScan };
   /// The believed centroid [m, root] of each idle part's taxels; false when a part is missing.
   bool part_centroids(std::vector<Eigen::Vector3d>& out) const;
   /// Aims goal_ at `point` (root frame); counts and logs out-of-reach targets when `tracking`.
@@ -68,7 +77,7 @@ class GazeController : public Plugin {
   Eigen::VectorXd offsets_;
   double max_speed_ = 0.0;        // [rad/s]
   double reach_tolerance_ = 0.0;  // [rad]
-  Idle idle_ = Idle::kHold;
+  GazeIdle idle_ = GazeIdle::kHold;
   std::vector<std::string> idle_parts_;
   double hold_s_ = 0.0, dwell_s_ = 0.0;  // [s]
   const SkinTaxels* taxels_ = nullptr;   // believed taxels (idle fixation / scan)

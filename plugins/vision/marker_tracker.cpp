@@ -54,7 +54,6 @@ void MarkerTracker::Config::visit(V& v) {
           "joint_offsets_deg the robot's believed arm offsets too, so that the check uses what "
           "the robot believes, not the true arm");
   v.field("blob_centre", blob_centre)
-      .one_of({"circle", "centroid"})
       .doc(
           "the marker's pixel position in an image: the centre of the blob's enclosing circle "
           "(right for a round marker up to half hidden, e.g. behind its finger) or the blob's "
@@ -73,9 +72,7 @@ void MarkerTracker::Config::visit(V& v) {
   v.field("reset_after_lost", reset_after_lost)
       .at_least(1)
       .doc("frames without a fix after which the Kalman filter starts afresh");
-  v.field("motion_model", motion_model)
-      .one_of({"constant_velocity", "constant_acceleration"})
-      .doc("the Kalman filter's motion model");
+  v.field("motion_model", motion_model).doc("the Kalman filter's motion model");
   v.field("process_noise", process_noise)
       .at_least(1e-9)
       .doc(
@@ -143,7 +140,7 @@ void MarkerTracker::configure(NodeContext& ctx) {
   range_text_ =
       fmt::format("hsv_low {} .. hsv_high {}", hsv_text(range_.low), hsv_text(range_.high));
   min_area_px_ = config_.min_area_px;
-  use_circle_ = config_.blob_centre == "circle";
+  use_circle_ = config_.blob_centre == BlobCentre::kCircle;
   marker_radius_ = config_.marker_radius;
   max_reprojection_px_ = config_.max_reprojection_px;
   max_distance_from_believed_ = config_.max_distance_from_believed;
@@ -155,9 +152,7 @@ void MarkerTracker::configure(NodeContext& ctx) {
                  fmt::format("'{}' is neither a frame nor a link of robot '{}'", marker_frame,
                              model_->name()));
   marker_ref_ = model_->frame_ref(marker_frame);
-  kalman_options_.model = config_.motion_model == "constant_acceleration"
-                              ? vision::MotionModel::kConstantAcceleration
-                              : vision::MotionModel::kConstantVelocity;
+  kalman_options_.model = config_.motion_model;
   kalman_options_.process_noise = config_.process_noise;
   kalman_options_.measurement_sigma_m = config_.measurement_sigma;
   kalman_ = vision::KalmanTracker(kalman_options_);

@@ -3,6 +3,7 @@
 // HSV segmentation in each image, stereo triangulation through the believed head/eye
 // kinematics, a Kalman filter for position and velocity; a pps::Stimulus in the root frame.
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,15 @@
 
 namespace somasim::plugins {
 
+/// Where in its blob the marker is measured.
+enum class BlobCentre : std::uint8_t { kCircle, kCentroid };
+/// "circle", "centroid".
+inline constexpr NamedValue<BlobCentre> kBlobCentreNames[] = {{BlobCentre::kCircle, "circle"},
+                                                              {BlobCentre::kCentroid, "centroid"}};
+constexpr std::span<const NamedValue<BlobCentre>> name_table(BlobCentre) {
+  return kBlobCentreNames;
+}
+
 class MarkerTracker : public Plugin {
  public:
   struct Config {
@@ -37,19 +47,19 @@ class MarkerTracker : public Plugin {
     double marker_radius = 0.007;  // [m]
     std::string marker_frame = "r_index_tip";
     double max_distance_from_believed = 0.06;  // [m]
-    std::string blob_centre = "circle";
+    BlobCentre blob_centre = BlobCentre::kCircle;
     double max_reprojection_px = 3.0;  // [px]
     int no_colour_frames_error = 10;
     int reset_after_lost = 5;
-    std::string motion_model = "constant_velocity";
+    vision::MotionModel motion_model = vision::MotionModel::kConstantVelocity;
     double process_noise = 1.0;
     double measurement_sigma = 0.003;  // [m]
     template <class V>
     void visit(V& v);
   };
   struct Ports {
-    In<Image> left_eye_rgb;
-    In<Image> right_eye_rgb;
+    In<RgbImage> left_eye_rgb;
+    In<RgbImage> right_eye_rgb;
     In<JointState> joint_state;
     OptionalIn<LinkPoses> true_link_poses;
     Out<pps::Stimulus> stimulus;

@@ -156,7 +156,6 @@ void ObjectTracker::Config::visit(V& v) {
           "1 m/s at 0.45 m and 20 Hz for a 1.2 cm ball) is met instead of lost; at 0.05-0.30 "
           "m/s it changed no avoidance metric");
   v.field("motion_model", motion_model)
-      .one_of({"constant_velocity", "constant_acceleration"})
       .doc("the Kalman filter's motion model (the paper's: a higher-order one)");
   v.field("process_noise", process_noise)
       .at_least(1e-9)
@@ -234,9 +233,7 @@ void ObjectTracker::configure(NodeContext& ctx) {
     config_error(ctx, config_, config_.radius_max,
                  fmt::format("{} is below radius_min {}", radius_max_, radius_min_));
   vision::KalmanOptions kalman;
-  kalman.model = config_.motion_model == "constant_acceleration"
-                     ? vision::MotionModel::kConstantAcceleration
-                     : vision::MotionModel::kConstantVelocity;
+  kalman.model = config_.motion_model;
   kalman.process_noise = config_.process_noise;
   kalman.measurement_sigma_m = config_.measurement_sigma;
   kalman_ = vision::KalmanTracker(kalman);

@@ -65,15 +65,15 @@ class ObjectTracker : public Plugin {
     double radius_min = 0.005;  // [m]
     double radius_max = 0.2;    // [m]
     bool predict_windows = false;
-    std::string motion_model = "constant_acceleration";
+    vision::MotionModel motion_model = vision::MotionModel::kConstantAcceleration;
     double process_noise = 1.0;
     double measurement_sigma = 0.005;  // [m]
     template <class V>
     void visit(V& v);
   };
   struct Ports {
-    In<Image> left_eye_rgb;
-    In<Image> right_eye_rgb;
+    In<RgbImage> left_eye_rgb;
+    In<RgbImage> right_eye_rgb;
     In<JointState> joint_state;
     OptionalIn<pps::Stimulus> truth;
     Out<pps::Stimulus> stimulus;

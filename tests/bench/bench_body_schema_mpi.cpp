@@ -20,10 +20,10 @@
 #include <vector>
 
 #include "../core/body_schema/real_arm_views.hpp"
-#include "particle_ranks.hpp"
 #include "somasim/body_schema/hypothesis_scorer.hpp"
 #include "somasim/body_schema/observation.hpp"
 #include "somasim/body_schema/particle_filter.hpp"
+#include "somasim/body_schema/particle_ranks.hpp"
 
 namespace {
 
@@ -62,12 +62,12 @@ void benchmark_sink(const std::vector<double>& v) {
 }
 
 int run(int particles, int workers, int steps) {
-  plugins::ParticleRanks ranks;
+  body_schema::ParticleRanks ranks;
   if (ranks.size() > particles) {
     if (ranks.rank() == 0) std::fprintf(stderr, "more ranks than particles\n");
     return 2;
   }
-  const plugins::ParticleShare mine = ranks.share(particles);
+  const body_schema::ParticleShare mine = ranks.share(particles);
   const Eigen::VectorXd q = support::hand_before_eyes();
   const support::RealEyes eyes = support::look(q);
   const ArmHypothesisModel arm = arm_hypothesis_model(*support::icub(), {"r_hand"}, 8);

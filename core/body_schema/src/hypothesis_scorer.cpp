@@ -52,8 +52,7 @@ ArmHypothesisModel arm_hypothesis_model(const robot::RobotModel& model,
 }
 
 LikelihoodKind likelihood_kind_from_name(const std::string& name) {
-  if (name == "silhouette") return LikelihoodKind::kSilhouette;
-  if (name == "edges") return LikelihoodKind::kEdges;
+  if (const auto kind = parse_enum<LikelihoodKind>(name)) return *kind;
   throw InputError(fmt::format("unknown likelihood '{}' (expected silhouette or edges)", name));
 }
 

@@ -9,8 +9,7 @@
 namespace somasim::body_schema {
 
 SilhouetteForm silhouette_form_from_name(std::string_view name) {
-  if (name == "jaccard") return SilhouetteForm::kJaccard;
-  if (name == "power") return SilhouetteForm::kPower;
+  if (const auto form = parse_enum<SilhouetteForm>(name)) return *form;
   throw InputError(
       fmt::format("unknown silhouette likelihood '{}' (expected jaccard or power)", name));
 }

@@ -39,18 +39,17 @@ const char* backend_label(RenderBackend backend) {
 }  // namespace
 
 RenderBackend parse_render_backend(const std::string& name) {
-  if (name == "osmesa") return RenderBackend::kOsmesa;
-  if (name == "egl") return RenderBackend::kEgl;
+  if (const auto backend = parse_enum<RenderBackend>(name)) return *backend;
   throw InputError(fmt::format("unknown render backend '{}'; expected 'osmesa' or 'egl'{}", name,
                                did_you_mean(name, render_backend_names())));
 }
 
 std::string render_backend_name(RenderBackend backend) {
-  return backend == RenderBackend::kEgl ? "egl" : "osmesa";
+  return std::string(enum_name(backend));
 }
 
 std::vector<std::string> render_backend_names() {
-  return {"osmesa", "egl"};
+  return enum_names<RenderBackend>();
 }
 
 RenderContext::RenderContext(RenderBackend backend) : backend_(backend) {

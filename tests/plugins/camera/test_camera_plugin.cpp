@@ -17,13 +17,23 @@
 #include "somasim/testing/harness.hpp"
 #include "somasim/units.hpp"
 
+using somasim::DepthImage;
 using somasim::Image;
 using somasim::ImageEncoding;
+using somasim::LabelImage;
 using somasim::LinkPoses;
+using somasim::RgbImage;
 using somasim::testing::Harness;
 namespace fs = std::filesystem;
 
 namespace {
+
+// The image on a camera output port, whichever of the three image types the port has.
+const Image& camera_image(Harness& h, const std::string& port) {
+  if (port.ends_with("_rgb")) return h.output<RgbImage>(port);
+  if (port.ends_with("_depth")) return h.output<DepthImage>(port);
+  return h.output<LabelImage>(port);
+}
 
 const std::string kRobot = SOMASIM_SOURCE_DIR "/assets/robots/icub_v1.yaml";
 
@@ -71,16 +81,16 @@ TEST(CameraPlugin, OutputsHaveTheCamerasSizeAndEncodings) {
   h.step();
   const int hand_id = somasim::render::link_id(model().link_index("r_hand"));
   for (const std::string eye : {"left_eye", "right_eye"}) {
-    const auto& rgb = h.output<Image>("cam." + eye + "_rgb");
-    const auto& depth = h.output<Image>("cam." + eye + "_depth");
-    const auto& mask = h.output<Image>("cam." + eye + "_mask");
+    const auto& rgb = h.output<RgbImage>("cam." + eye + "_rgb");
+    const auto& depth = h.output<DepthImage>("cam." + eye + "_depth");
+    const auto& mask = h.output<LabelImage>("cam." + eye + "_mask");
     EXPECT_EQ(rgb.encoding, ImageEncoding::kRgb8);
     EXPECT_EQ(rgb.data.type(), CV_8UC3);
     EXPECT_EQ(depth.encoding, ImageEncoding::kDepth32f);
     EXPECT_EQ(depth.data.type(), CV_32F);
     EXPECT_EQ(mask.encoding, ImageEncoding::kId32s);
     EXPECT_EQ(mask.data.type(), CV_32S);
-    for (const Image* i : {&rgb, &depth, &mask}) {
+    for (const Image* i : std::initializer_list<const Image*>{&rgb, &depth, &mask}) {
       EXPECT_EQ(i->data.cols, 320);
       EXPECT_EQ(i->data.rows, 240);
       EXPECT_EQ(i->camera, eye);
@@ -101,9 +111,9 @@ TEST(CameraPlugin, OnlyTheRequestedOutputs) {
   Harness h(graph("outputs: rgb, cameras: right_eye"));
   h.input<LinkPoses>("links").poses = hand_before_eyes();
   h.step();
-  EXPECT_EQ(h.output<Image>("cam.left_eye_rgb").camera, "right_eye");
-  EXPECT_TRUE(h.output<Image>("cam.left_eye_depth").data.empty());
-  EXPECT_TRUE(h.output<Image>("cam.right_eye_rgb").data.empty());
+  EXPECT_EQ(h.output<RgbImage>("cam.left_eye_rgb").camera, "right_eye");
+  EXPECT_TRUE(h.output<DepthImage>("cam.left_eye_depth").data.empty());
+  EXPECT_TRUE(h.output<RgbImage>("cam.right_eye_rgb").data.empty());
 }
 
 TEST(CameraPlugin, SameSeedGivesIdenticalImages) {
@@ -114,7 +124,7 @@ TEST(CameraPlugin, SameSeedGivesIdenticalImages) {
     std::vector<cv::Mat> out;
     for (const char* port :
          {"cam.left_eye_rgb", "cam.right_eye_rgb", "cam.left_eye_depth", "cam.right_eye_mask"})
-      out.push_back(h.output<Image>(port).data.clone());
+      out.push_back(camera_image(h, port).data.clone());
     return out;
   };
   const auto a = render(1), b = render(1), c = render(2);
@@ -127,8 +137,8 @@ TEST(CameraPlugin, RecordingAndSaveEveryWritePngs) {
                   "record: [cam.left_eye_rgb, cam.left_eye_depth, cam.right_eye_mask]\n"));
   h.input<LinkPoses>("links").poses = hand_before_eyes();
   h.step(3);
-  const cv::Mat depth = h.output<Image>("cam.left_eye_depth").data.clone();
-  const cv::Mat mask = h.output<Image>("cam.right_eye_mask").data.clone();
+  const cv::Mat depth = h.output<DepthImage>("cam.left_eye_depth").data.clone();
+  const cv::Mat mask = h.output<LabelImage>("cam.right_eye_mask").data.clone();
   h.finish();
   const fs::path dir = h.out_dir();
   for (const char* f :
@@ -190,7 +200,7 @@ TEST(CameraPlugin, EglBackendRendersTheSameImagesAsOsmesa) {
     std::vector<cv::Mat> out;
     for (const char* port : {"cam.left_eye_rgb", "cam.right_eye_rgb", "cam.left_eye_depth",
                              "cam.right_eye_depth", "cam.left_eye_mask", "cam.right_eye_mask"})
-      out.push_back(h.output<Image>(port).data.clone());
+      out.push_back(camera_image(h, port).data.clone());
     return out;
   };
   const auto osmesa = render("osmesa"), egl = render("egl");

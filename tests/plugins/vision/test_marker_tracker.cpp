@@ -20,6 +20,7 @@
 using somasim::Image;
 using somasim::JointState;
 using somasim::LinkPoses;
+using somasim::RgbImage;
 using somasim::StereoPixels;
 using somasim::pps::Stimulus;
 using somasim::testing::Harness;
@@ -336,7 +337,7 @@ TEST(MarkerTracker, ImagesOfAnotherSizeThanTheCalibrationAreARunError) {
             "joint_state: harness.q}\n");
   h.input<JointState>("q").position = Eigen::VectorXd::Zero(model().num_dofs());
   for (const char* eye : {"left", "right"}) {
-    Image& image = h.input<Image>(eye);
+    Image& image = h.input<RgbImage>(eye);
     image.data = cv::Mat(480, 640, CV_8UC3, cv::Scalar(0, 0, 0));
     image.encoding = somasim::ImageEncoding::kRgb8;
     image.camera = std::string(eye) + "_eye";

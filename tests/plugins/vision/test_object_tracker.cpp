@@ -11,6 +11,7 @@
 
 using somasim::Image;
 using somasim::JointState;
+using somasim::RgbImage;
 using somasim::testing::Harness;
 
 namespace {
@@ -42,7 +43,7 @@ TEST(ObjectTracker, ImagesOfAnotherSizeThanTheCalibrationAreARunError) {
   const auto model = somasim::robot::load_robot_model_shared(kRobot);
   h.input<JointState>("q").position = Eigen::VectorXd::Zero(model->num_dofs());
   for (const char* eye : {"left", "right"}) {
-    Image& image = h.input<Image>(eye);
+    Image& image = h.input<RgbImage>(eye);
     image.data = cv::Mat(480, 640, CV_8UC3, cv::Scalar(0, 0, 0));
     image.encoding = somasim::ImageEncoding::kRgb8;
     image.camera = std::string(eye) + "_eye";
@@ -72,7 +73,7 @@ std::int64_t squares_metric(const std::string& params, const std::string& name, 
   h.input<JointState>("q").position = Eigen::VectorXd::Zero(model->num_dofs());
   for (int f = 1; f <= frames; ++f) {
     for (const char* eye : {"left", "right"}) {
-      Image& image = h.input<Image>(eye);
+      Image& image = h.input<RgbImage>(eye);
       image.data = cv::Mat(240, 320, CV_8UC3, cv::Scalar(110, 110, 110));
       const int side = std::string(eye) == "left" ? left_px : right_px;
       for (int r = 0; r < side; ++r)

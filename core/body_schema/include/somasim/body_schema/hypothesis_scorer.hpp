@@ -12,11 +12,14 @@
 ///
 /// Frames and units: joint values [rad] in model dof order; particles [deg] (one row per offset
 /// joint); cameras posed in the root frame; observations full-size images of each camera.
+#include <span>
+
 #include <chrono>
 #include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
+#include "somasim/name_table.hpp"
 
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
@@ -39,6 +42,12 @@ ArmHypothesisModel arm_hypothesis_model(const robot::RobotModel& model,
                                         const std::vector<std::string>& link_names, int segments);
 
 enum class LikelihoodKind : std::uint8_t { kSilhouette, kEdges };
+inline constexpr NamedValue<LikelihoodKind> kLikelihoodKindNames[] = {
+    {LikelihoodKind::kSilhouette, "silhouette"}, {LikelihoodKind::kEdges, "edges"}};
+/// "silhouette", "edges".
+constexpr std::span<const NamedValue<LikelihoodKind>> name_table(LikelihoodKind) {
+  return kLikelihoodKindNames;
+}
 /// "silhouette" or "edges"; InputError otherwise.
 LikelihoodKind likelihood_kind_from_name(const std::string& name);
 

@@ -14,14 +14,23 @@
 ///
 /// Edges: d̄ = mean of the observed distance map (edge_distance_map, [px]) under the
 /// hypothesis's contour pixels; L = exp(−λ d̄) with λ [1/px] (text 0.01, code 25/255).
+#include <span>
+
 #include <cstdint>
 #include <string_view>
+#include "somasim/name_table.hpp"
 
 #include <opencv2/core.hpp>
 
 namespace somasim::body_schema {
 
 enum class SilhouetteForm : std::uint8_t { kJaccard, kPower };
+inline constexpr NamedValue<SilhouetteForm> kSilhouetteFormNames[] = {
+    {SilhouetteForm::kJaccard, "jaccard"}, {SilhouetteForm::kPower, "power"}};
+/// "jaccard", "power".
+constexpr std::span<const NamedValue<SilhouetteForm>> name_table(SilhouetteForm) {
+  return kSilhouetteFormNames;
+}
 /// "jaccard" or "power"; InputError "unknown silhouette likelihood 'X' (expected jaccard or
 /// power)" otherwise.
 SilhouetteForm silhouette_form_from_name(std::string_view name);

@@ -4,12 +4,17 @@
 /// @code
 ///   somasim::testing::Harness h(R"(
 ///     nodes:
-///       pps: {plugin: pps_learner, params: {ttc_max_s: 3}, inputs: {stimulus: harness.stim}}
+///       thrower: {plugin: taxel_thrower, params: {throws: 3}}
+///       pps:
+///         plugin: pps_learner
+///         params: {ttc_max: 3}
+///         inputs: {stimulus: harness.stim, taxels: thrower.taxels, contacts: thrower.contacts}
 ///   )");
-///   h.input<somasim::Stimulus>("stim").present = true;   // feed an input
-///   h.step(10);                                           // ten base ticks
+///   h.input<somasim::pps::Stimulus>("stim").present = true;  // feed an input
+///   h.step(10);                                              // ten base ticks
 ///   const auto& act = h.output<somasim::TaxelValues>("pps.activations");
-///   h.finish();  h.metric("pps", "samples");
+///   h.finish();
+///   const nlohmann::json events = h.metric("pps", "events");
 /// @endcode
 /// `experiment` and `duration_s` may be omitted; inputs may be wired to "harness.NAME".
 /// Plugins are found on the default search path (plus `plugin_path`).

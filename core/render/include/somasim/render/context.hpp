@@ -15,9 +15,12 @@
 ///
 /// Rendering goes to framebuffer objects: a context's own default framebuffer (1 × 1 for OSMesa,
 /// none for EGL) is never used. The library logs nothing: callers log renderer() and version().
+#include <span>
+
 #include <memory>
 #include <string>
 #include <vector>
+#include "somasim/name_table.hpp"
 
 #include "somasim/render/gl_api.hpp"
 
@@ -28,6 +31,12 @@ enum class RenderBackend {
   kOsmesa,  ///< "osmesa": Mesa's OSMesa, always llvmpipe (software)
   kEgl,     ///< "egl": EGL's surfaceless platform (Mesa): the GPU's driver, or llvmpipe
 };
+inline constexpr NamedValue<RenderBackend> kRenderBackendNames[] = {
+    {RenderBackend::kOsmesa, "osmesa"}, {RenderBackend::kEgl, "egl"}};
+/// "osmesa", "egl".
+constexpr std::span<const NamedValue<RenderBackend>> name_table(RenderBackend) {
+  return kRenderBackendNames;
+}
 
 /// Parses "osmesa" or "egl". Throws somasim::InputError naming the valid names otherwise.
 RenderBackend parse_render_backend(const std::string& name);

@@ -1,6 +1,8 @@
 #pragma once
 /// @file
-/// The Image port type: a cv::Mat-backed camera image with its encoding and frame.
+/// The image port types: a cv::Mat-backed camera image with its encoding and frame. One port
+/// type per encoding (RgbImage, DepthImage, LabelImage), so that wiring a depth output to an
+/// input that expects colour is refused when the experiment is checked; all three are an Image.
 ///
 /// Encodings (`data` is `height` rows × `width` columns, row 0 = top of the image, pixel
 /// conventions of camera.hpp):
@@ -46,9 +48,9 @@ void write_png(const Image& image, const std::filesystem::path& file);
 std::unique_ptr<PortRecorder> make_image_recorder(const Image* image, const RecordTarget& target);
 }  // namespace render
 
-template <>
-struct PortTraits<Image> {
-  static constexpr const char* name = "image";
+namespace detail {
+/// What the three image port types share: copying and the PNG recorder.
+struct ImagePortTraits {
   static constexpr const char* header = "somasim/render/ports.hpp";
   static void copy(Image& dst, const Image& src) {
     src.data.copyTo(dst.data);
@@ -60,6 +62,27 @@ struct PortTraits<Image> {
   static std::unique_ptr<PortRecorder> recorder(const Image* image, const RecordTarget& target) {
     return render::make_image_recorder(image, target);
   }
+};
+}  // namespace detail
+
+/// A colour image port: encoding kRgb8 (or kNone before the first frame).
+struct RgbImage : Image {};
+/// A depth image port: encoding kDepth32f [m] (or kNone before the first frame).
+struct DepthImage : Image {};
+/// An id-mask image port: encoding kId32s (or kNone before the first frame).
+struct LabelImage : Image {};
+
+template <>
+struct PortTraits<RgbImage> : detail::ImagePortTraits {
+  static constexpr const char* name = "rgb8_image";
+};
+template <>
+struct PortTraits<DepthImage> : detail::ImagePortTraits {
+  static constexpr const char* name = "depth32f_image";
+};
+template <>
+struct PortTraits<LabelImage> : detail::ImagePortTraits {
+  static constexpr const char* name = "id32s_image";
 };
 
 }  // namespace somasim

@@ -13,15 +13,24 @@
 /// than `min_taxels` physical taxels are over `pressure_threshold`. One event per contact episode:
 /// it fires at the first touched update, and the episode lasts until no taxel of the part has been
 /// over threshold for `release_s` (so a persistent or bouncing contact does not fire again).
+#include <span>
+
 #include <optional>
 #include <string>
 #include <vector>
+#include "somasim/name_table.hpp"
 
 #include "somasim/skin/skin_layout.hpp"
 
 namespace somasim::skin {
 
 enum class PressureModel { kShared, kKernel };
+inline constexpr NamedValue<PressureModel> kPressureModelNames[] = {
+    {PressureModel::kShared, "shared"}, {PressureModel::kKernel, "kernel"}};
+/// "shared", "kernel".
+constexpr std::span<const NamedValue<PressureModel>> name_table(PressureModel) {
+  return kPressureModelNames;
+}
 
 struct ResponseParams {
   double contact_radius = 0.01;  ///< taxels within this distance of a contact respond [m]

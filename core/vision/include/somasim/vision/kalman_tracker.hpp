@@ -4,7 +4,10 @@
 /// from measured positions, with a constant-velocity or constant-acceleration motion model
 /// (continuous white-noise acceleration or jerk). Positions [m], velocities [m/s], times [s];
 /// any frame, as long as the measurements share it.
+#include <span>
+
 #include <memory>
+#include "somasim/name_table.hpp"
 
 #include <Eigen/Core>
 
@@ -18,6 +21,13 @@ enum class MotionModel {
   kConstantVelocity,      ///< state: position, velocity; white-noise acceleration
   kConstantAcceleration,  ///< state: position, velocity, acceleration; white-noise jerk
 };
+inline constexpr NamedValue<MotionModel> kMotionModelNames[] = {
+    {MotionModel::kConstantVelocity, "constant_velocity"},
+    {MotionModel::kConstantAcceleration, "constant_acceleration"}};
+/// "constant_velocity", "constant_acceleration".
+constexpr std::span<const NamedValue<MotionModel>> name_table(MotionModel) {
+  return kMotionModelNames;
+}
 
 struct KalmanOptions {
   MotionModel model = MotionModel::kConstantVelocity;

@@ -1,12 +1,13 @@
 #pragma once
-// Plans one double touch. The limb is presented first: both arms are solved together (TouchIk,
-// regularised toward home) for the fingertip at a middle distance along the normal; the limb
-// then stays still and the effector's arm alone is solved for the approach postures, from there
-// out to `start_distance` and in to `press_depth` below the skin, each seeded by the previous one
-// (so the fingertip's root-frame velocity is its velocity relative to the skin, as the PPS
-// learner assumes). If that fails, the limb is presented for the touch itself, then for a far
-// point. Every posture, and the joint-space move to the start, is checked for clearance between
-// the two arms (and the trunk) apart from the touching finger on the touched link.
+/// @file
+/// Plans one double touch. The limb is presented first: both arms are solved together (TouchIk,
+/// regularised toward home) for the fingertip at a middle distance along the normal; the limb
+/// then stays still and the effector's arm alone is solved for the approach postures, from there
+/// out to `start_distance` and in to `press_depth` below the skin, each seeded by the previous one
+/// (so the fingertip's root-frame velocity is its velocity relative to the skin, as the PPS
+/// learner assumes). If that fails, the limb is presented for the touch itself, then for a far
+/// point. Every posture, and the joint-space move to the start, is checked for clearance between
+/// the two arms (and the trunk) apart from the touching finger on the touched link.
 #include <functional>
 #include <memory>
 #include <string>
@@ -17,7 +18,7 @@
 #include "somasim/control/link_clearance.hpp"
 #include "somasim/control/touch_ik.hpp"
 
-namespace somasim::plugins {
+namespace somasim::control {
 
 struct TouchPlannerOptions {
   double start_distance = 0.20;  ///< [m]
@@ -63,39 +64,39 @@ enum class PlanResult { kOk, kUnreachable, kCollision };
 
 class TouchPlanner {
  public:
-  TouchPlanner(std::shared_ptr<const robot::RobotModel> model, control::TouchIk ik,
+  TouchPlanner(std::shared_ptr<const robot::RobotModel> model, TouchIk ik,
                TouchPlannerOptions options);
 
   /// Plans an approach to `target` (its distance is ignored) starting with a joint-space move
   /// from `from`; `home` regularises the postures. `detail` says why a plan failed.
-  PlanResult plan(const control::TouchTarget& target, const Eigen::VectorXd& home,
+  PlanResult plan(const TouchTarget& target, const Eigen::VectorXd& home,
                   const Eigen::VectorXd& from, TouchPath& path, std::string& detail);
 
-  control::TouchIk& ik() { return ik_; }
+  TouchIk& ik() { return ik_; }
   const TouchPlannerOptions& options() const { return options_; }
 
  private:
   // The target at distance d (the finger may lean beyond align_distance).
-  control::TouchTarget at(control::TouchTarget target, double d) const;
+  TouchTarget at(TouchTarget target, double d) const;
   // One approach posture at distance d (seeded by q; the limb kept as still as it can).
-  bool solve_at(const control::TouchTarget& target, const Eigen::VectorXd& home, double d,
+  bool solve_at(const TouchTarget& target, const Eigen::VectorXd& home, double d,
                 Eigen::VectorXd& q, std::string& detail);
   // Appends q1 at d1 after q0 at d0, with midpoints where the interpolation strays.
-  bool refine(const control::TouchTarget& target, const Eigen::VectorXd& home, double d0,
+  bool refine(const TouchTarget& target, const Eigen::VectorXd& home, double d0,
               const Eigen::VectorXd& q0, double d1, const Eigen::VectorXd& q1, int depth,
               TouchPath& path, std::string& detail);
   // Postures through distances `ds` from q at d_from; appends them (not d_from) to `path`.
-  bool sweep(const control::TouchTarget& target, const Eigen::VectorXd& home, double d_from,
+  bool sweep(const TouchTarget& target, const Eigen::VectorXd& home, double d_from,
              const std::vector<double>& ds, Eigen::VectorXd q, TouchPath& path,
              std::string& detail);
   // Clearance of posture q [m] (and the closest pair in `detail`).
   double clearance(const Eigen::VectorXd& q, std::string* detail);
 
   std::shared_ptr<const robot::RobotModel> model_;
-  control::TouchIk ik_;
+  TouchIk ik_;
   TouchPlannerOptions options_;
-  std::unique_ptr<control::LinkClearance> check_;
+  std::unique_ptr<LinkClearance> check_;
   robot::RobotData data_;
 };
 
-}  // namespace somasim::plugins
+}  // namespace somasim::control

@@ -1,9 +1,9 @@
-#include "surface_distance.hpp"
+#include "somasim/robot/surface_distance.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-namespace somasim::plugins {
+namespace somasim::robot {
 
 namespace {
 
@@ -36,4 +36,4 @@ double surface_distance(const ObjectGeometry& g, const Eigen::Isometry3d& pose,
   return (point - pose.translation()).norm() - g.bounding_radius;
 }
 
-}  // namespace somasim::plugins
+}  // namespace somasim::robot

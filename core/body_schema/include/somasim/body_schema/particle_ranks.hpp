@@ -1,15 +1,16 @@
 #pragma once
-// body_schema_filter `distribute: mpi`: one filter's particles spread over the ranks of an MPI
-// job (`mpirun -n K somasim run ...`; app/mpi_session.hpp starts MPI). Every rank runs the same
-// deterministic experiment and holds the same particles; each renders and scores its contiguous
-// share, and the likelihoods are gathered on every rank in particle order (MPI_Allgatherv of
-// doubles), so prediction, resampling, the estimate and every random draw run identically on
-// all ranks from the full vector.
+/// @file
+/// body_schema_filter `distribute: mpi`: one filter's particles spread over the ranks of an MPI
+/// job (`mpirun -n K somasim run ...`; app/mpi_session.hpp starts MPI). Every rank runs the same
+/// deterministic experiment and holds the same particles; each renders and scores its contiguous
+/// share, and the likelihoods are gathered on every rank in particle order (MPI_Allgatherv of
+/// doubles), so prediction, resampling, the estimate and every random draw run identically on
+/// all ranks from the full vector.
 #include <mpi.h>
 
 #include <vector>
 
-namespace somasim::plugins {
+namespace somasim::body_schema {
 
 /// Particles [begin, begin + count) of one rank.
 struct ParticleShare {
@@ -49,4 +50,4 @@ class ParticleRanks {
   int size_ = 1;
 };
 
-}  // namespace somasim::plugins
+}  // namespace somasim::body_schema

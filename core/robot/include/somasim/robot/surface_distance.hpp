@@ -1,13 +1,15 @@
 #pragma once
-// Signed distance from a point to the surface of a presented object (PPS evaluation): > 0
-// outside, < 0 inside (penetration depth). Exact for spheres, boxes and cylinders (the world's
-// kCylinder: axis along the object's local z); any other shape is bounded by its bounding sphere,
-// which gives a lower bound of the true distance (conservative for "the object stayed away").
+/// @file
+/// Signed distance from a point to the surface of a presented object (e.g. how close a presented
+/// object came to the skin): > 0 outside, < 0 inside (penetration depth). Exact for spheres, boxes
+/// and cylinders (the world's kCylinder: axis along the object's local z); any other shape is
+/// bounded by its bounding sphere, which gives a lower bound of the true distance (conservative for
+/// "the object stayed away").
 #include <Eigen/Geometry>
 
 #include "somasim/robot/ports.hpp"
 
-namespace somasim::plugins {
+namespace somasim::robot {
 
 /// What the evaluator knows of an object's geometry.
 struct ObjectGeometry {
@@ -21,4 +23,4 @@ struct ObjectGeometry {
 double surface_distance(const ObjectGeometry& geometry, const Eigen::Isometry3d& pose,
                         const Eigen::Vector3d& point);
 
-}  // namespace somasim::plugins
+}  // namespace somasim::robot

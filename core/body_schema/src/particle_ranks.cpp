@@ -1,4 +1,4 @@
-#include "particle_ranks.hpp"
+#include "somasim/body_schema/particle_ranks.hpp"
 
 #include <fmt/format.h>
 
@@ -6,7 +6,7 @@
 
 #include "somasim/error.hpp"
 
-namespace somasim::plugins {
+namespace somasim::body_schema {
 
 ParticleShare particle_share(int particles, int ranks, int rank) {
   const int base = particles / ranks;
@@ -51,4 +51,4 @@ std::vector<double> ParticleRanks::gather(const std::vector<double>& local, int 
   return all;
 }
 
-}  // namespace somasim::plugins
+}  // namespace somasim::body_schema

@@ -1,4 +1,4 @@
-#include "touch_planner.hpp"
+#include "somasim/control/touch_planner.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <fmt/format.h>
 #include "somasim/units.hpp"
 
-namespace somasim::plugins {
+namespace somasim::control {
 
 namespace {
 
@@ -66,7 +66,7 @@ void TouchPath::sample(double d, const std::function<double(const Eigen::VectorX
   if (dq_dd) *dq_dd = (b - a) * ((s1 - s0) / std::min(f1 - f0, -1e-12));
 }
 
-TouchPlanner::TouchPlanner(std::shared_ptr<const robot::RobotModel> model, control::TouchIk ik,
+TouchPlanner::TouchPlanner(std::shared_ptr<const robot::RobotModel> model, TouchIk ik,
                            TouchPlannerOptions options)
     : model_(std::move(model)), ik_(std::move(ik)), options_(options), data_(*model_) {
   const auto& solved = ik_.solved_dofs();
@@ -76,14 +76,14 @@ TouchPlanner::TouchPlanner(std::shared_ptr<const robot::RobotModel> model, contr
     if (model_->link(l).collision.empty()) continue;
     (moved_by(*model_, l, effector_dofs) ? a : b).push_back(l);
   }
-  std::vector<control::LinkClearance::Ignored> ignored;
+  std::vector<LinkClearance::Ignored> ignored;
   // The touching shape on the touched link: the effector link's shape nearest the contact point.
   const robot::FrameRef& eff = ik_.effector();
   int touching = -1;
   double nearest = 1e300;
-  for (const auto& c : control::link_capsules(*model_, eff.link)) {
+  for (const auto& c : link_capsules(*model_, eff.link)) {
     const Eigen::Vector3d p = eff.pose.translation();
-    const double dist = control::segment_distance(p, p, c.a, c.b) - c.radius;
+    const double dist = segment_distance(p, p, c.a, c.b) - c.radius;
     if (dist < nearest) {
       nearest = dist;
       touching = c.shape;
@@ -96,7 +96,7 @@ TouchPlanner::TouchPlanner(std::shared_ptr<const robot::RobotModel> model, contr
     while (g > 0 && model_->link(g).collision.empty()) g = model_->link(g).parent_link;
     if (g >= 0 && std::find(a.begin(), a.end(), g) == a.end()) ignored.push_back({l, -1, g});
   }
-  check_ = std::make_unique<control::LinkClearance>(*model_, a, b, std::move(ignored));
+  check_ = std::make_unique<LinkClearance>(*model_, a, b, std::move(ignored));
 }
 
 double TouchPlanner::clearance(const Eigen::VectorXd& q, std::string* detail) {
@@ -109,7 +109,7 @@ double TouchPlanner::clearance(const Eigen::VectorXd& q, std::string* detail) {
   return r.distance;
 }
 
-control::TouchTarget TouchPlanner::at(control::TouchTarget target, double d) const {
+TouchTarget TouchPlanner::at(TouchTarget target, double d) const {
   target.distance = d;
   if (d > options_.align_distance) {
     // Far out only the fingertip's path matters: the finger may lean from −n, more and more up
@@ -126,9 +126,9 @@ control::TouchTarget TouchPlanner::at(control::TouchTarget target, double d) con
   return target;
 }
 
-bool TouchPlanner::solve_at(const control::TouchTarget& target, const Eigen::VectorXd& home,
-                            double d, Eigen::VectorXd& q, std::string& detail) {
-  control::TouchTarget t = at(target, d);
+bool TouchPlanner::solve_at(const TouchTarget& target, const Eigen::VectorXd& home, double d,
+                            Eigen::VectorXd& q, std::string& detail) {
+  TouchTarget t = at(target, d);
   t.target_dof_cost = options_.limb_cost;
   const auto r = ik_.solve(t, home, q);
   if (!r.success) {
@@ -141,16 +141,15 @@ bool TouchPlanner::solve_at(const control::TouchTarget& target, const Eigen::Vec
   return true;
 }
 
-bool TouchPlanner::refine(const control::TouchTarget& target, const Eigen::VectorXd& home,
-                          double d0, const Eigen::VectorXd& q0, double d1,
-                          const Eigen::VectorXd& q1, int depth, TouchPath& path,
-                          std::string& detail) {
+bool TouchPlanner::refine(const TouchTarget& target, const Eigen::VectorXd& home, double d0,
+                          const Eigen::VectorXd& q0, double d1, const Eigen::VectorXd& q1,
+                          int depth, TouchPath& path, std::string& detail) {
   // Joint-space interpolation between two IK solutions may swing the fingertip off the normal,
   // and a restart of the IK may land on another arm posture (a jump the motors cannot follow):
   // halve such segments; a jump survives the halvings and rejects the plan.
   const double dm = 0.5 * (d0 + d1);
   Eigen::VectorXd qm = 0.5 * (q0 + q1);
-  control::TouchTarget tm = at(target, dm);
+  TouchTarget tm = at(target, dm);
   const double stray = ik_.evaluate(tm, qm).position_error;
   const double rate = (q1 - q0).cwiseAbs().maxCoeff() / std::max(std::abs(d1 - d0), 1e-12);
   if (stray <= options_.path_tolerance && rate <= options_.max_joint_rate) {
@@ -167,9 +166,9 @@ bool TouchPlanner::refine(const control::TouchTarget& target, const Eigen::Vecto
          refine(target, home, dm, qm, d1, q1, depth + 1, path, detail);
 }
 
-bool TouchPlanner::sweep(const control::TouchTarget& target, const Eigen::VectorXd& home,
-                         double d_from, const std::vector<double>& ds, Eigen::VectorXd q,
-                         TouchPath& path, std::string& detail) {
+bool TouchPlanner::sweep(const TouchTarget& target, const Eigen::VectorXd& home, double d_from,
+                         const std::vector<double>& ds, Eigen::VectorXd q, TouchPath& path,
+                         std::string& detail) {
   double d_prev = d_from;
   for (double d : ds) {
     const Eigen::VectorXd q_prev = q;
@@ -180,7 +179,7 @@ bool TouchPlanner::sweep(const control::TouchTarget& target, const Eigen::Vector
   return true;
 }
 
-PlanResult TouchPlanner::plan(const control::TouchTarget& target, const Eigen::VectorXd& home,
+PlanResult TouchPlanner::plan(const TouchTarget& target, const Eigen::VectorXd& home,
                               const Eigen::VectorXd& from, TouchPath& path, std::string& detail) {
   const double d_in = -options_.press_depth, d_out = options_.start_distance;
   bool collision = false;
@@ -237,4 +236,4 @@ PlanResult TouchPlanner::plan(const control::TouchTarget& target, const Eigen::V
   return collision ? PlanResult::kCollision : PlanResult::kUnreachable;
 }
 
-}  // namespace somasim::plugins
+}  // namespace somasim::control
