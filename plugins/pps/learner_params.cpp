@@ -11,14 +11,7 @@ void LearnerConfig::visit(V& v) {
           "d_ttc: (D, TTC) maps (paper); distance_only: maps over D alone, TTC ignored in "
           "learning and activation (the paper's S2 ablation: static and receding stimuli "
           "activate too)");
-  v.field("d_min", d_min).unit("m").range(-1, 1).doc("lower edge of the D range");
-  v.field("d_max", d_max).unit("m").range(-1, 1).doc("upper edge of the D range");
-  v.field("d_bins", d_bins).range(1, 32).doc("number of D bins");
-  v.field("ttc_max", ttc_max)
-      .unit("s")
-      .range(0.01, 100)
-      .doc("upper edge of the TTC range (paper text 3 s; released robot code 1.2 s)");
-  v.field("ttc_bins", ttc_bins).range(1, 32).doc("number of TTC bins");
+  v.block(grid);
   v.field("ttc", ttc)
       .doc(
           "signed: TTC = -|p|^2/(p.v), receding stimuli dropped (paper, robot code); "
@@ -59,19 +52,9 @@ void LearnerConfig::visit(V& v) {
 }
 template void LearnerConfig::visit(ConfigFields&);
 
-void LearnerConfig::validate(ConfigChecks& checks) const {
-  checks.require(d_max > d_min, d_max,
-                 "must be greater than d_min (" + std::to_string(d_min) + ")");
-}
-
 pps::LearnerParams LearnerConfig::to_params() const {
   pps::LearnerParams p;
-  p.grid.d_min = d_min;
-  p.grid.d_max = d_max;
-  p.grid.d_bins = d_bins;
-  p.grid.ttc_min = 0.0;
-  p.grid.ttc_max = ttc_max;
-  p.grid.ttc_bins = ttc_bins;
+  p.grid = grid;
   p.ttc = ttc;
   p.parzen.sigma_scale = sigma_scale;
   p.parzen.anchor = kernel_anchor;

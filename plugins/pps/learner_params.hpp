@@ -12,11 +12,7 @@ namespace somasim::plugins {
 
 struct LearnerConfig {
   pps::PpsModel model = paper().model;
-  double d_min = paper().grid.d_min;  // [m]
-  double d_max = paper().grid.d_max;  // [m]
-  int d_bins = paper().grid.d_bins;
-  double ttc_max = paper().grid.ttc_max;  // [s]
-  int ttc_bins = paper().grid.ttc_bins;
+  pps::GridSpec grid = paper().grid;  // d_min, d_max, d_bins, ttc_max, ttc_bins
   pps::TtcDefinition ttc = paper().ttc;
   double sigma_scale = paper().parzen.sigma_scale;
   pps::KernelAnchor kernel_anchor = paper().parzen.anchor;
@@ -30,8 +26,6 @@ struct LearnerConfig {
 
   template <class V>
   void visit(V& v);
-  /// d_max > d_min.
-  void validate(ConfigChecks& checks) const;
   /// The library's parameters (TTC from 0, angles in radians).
   pps::LearnerParams to_params() const;
 

@@ -72,16 +72,7 @@ void MarkerTracker::Config::visit(V& v) {
   v.field("reset_after_lost", reset_after_lost)
       .at_least(1)
       .doc("frames without a fix after which the Kalman filter starts afresh");
-  v.field("motion_model", motion_model).doc("the Kalman filter's motion model");
-  v.field("process_noise", process_noise)
-      .at_least(1e-9)
-      .doc(
-          "spectral density of the white acceleration [m²/s³] (constant_velocity) or jerk "
-          "[m²/s⁵] (constant_acceleration) that drives the model");
-  v.field("measurement_sigma", measurement_sigma)
-      .unit("m")
-      .at_least(1e-6)
-      .doc("σ of a triangulated position per axis [m]");
+  v.block(kalman);
 }
 
 template <class V>
@@ -152,9 +143,7 @@ void MarkerTracker::configure(NodeContext& ctx) {
                  fmt::format("'{}' is neither a frame nor a link of robot '{}'", marker_frame,
                              model_->name()));
   marker_ref_ = model_->frame_ref(marker_frame);
-  kalman_options_.model = config_.motion_model;
-  kalman_options_.process_noise = config_.process_noise;
-  kalman_options_.measurement_sigma_m = config_.measurement_sigma;
+  kalman_options_ = config_.kalman;
   kalman_ = vision::KalmanTracker(kalman_options_);
 
   left_ = &ports_.left_eye_rgb.get();

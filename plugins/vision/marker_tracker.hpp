@@ -51,9 +51,10 @@ class MarkerTracker : public Plugin {
     double max_reprojection_px = 3.0;  // [px]
     int no_colour_frames_error = 10;
     int reset_after_lost = 5;
-    vision::MotionModel motion_model = vision::MotionModel::kConstantVelocity;
-    double process_noise = 1.0;
-    double measurement_sigma = 0.003;  // [m]
+    // the Kalman filter (motion_model, process_noise, measurement_sigma), with this
+    // tracker's defaults
+    vision::KalmanOptions kalman{.model = vision::MotionModel::kConstantVelocity,
+                                 .measurement_sigma_m = 0.003};
     template <class V>
     void visit(V& v);
   };

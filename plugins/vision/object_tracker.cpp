@@ -155,17 +155,7 @@ void ObjectTracker::Config::visit(V& v) {
           "projected): an object that moves farther in a frame than its window is wide (about "
           "1 m/s at 0.45 m and 20 Hz for a 1.2 cm ball) is met instead of lost; at 0.05-0.30 "
           "m/s it changed no avoidance metric");
-  v.field("motion_model", motion_model)
-      .doc("the Kalman filter's motion model (the paper's: a higher-order one)");
-  v.field("process_noise", process_noise)
-      .at_least(1e-9)
-      .doc(
-          "spectral density of the white acceleration [m²/s³] (constant_velocity) or jerk "
-          "[m²/s⁵] (constant_acceleration) that drives the model");
-  v.field("measurement_sigma", measurement_sigma)
-      .unit("m")
-      .at_least(1e-6)
-      .doc("σ of a triangulated position per axis [m]");
+  v.block(kalman);
 }
 
 template <class V>
@@ -232,11 +222,7 @@ void ObjectTracker::configure(NodeContext& ctx) {
   if (radius_max_ < radius_min_)
     config_error(ctx, config_, config_.radius_max,
                  fmt::format("{} is below radius_min {}", radius_max_, radius_min_));
-  vision::KalmanOptions kalman;
-  kalman.model = config_.motion_model;
-  kalman.process_noise = config_.process_noise;
-  kalman.measurement_sigma_m = config_.measurement_sigma;
-  kalman_ = vision::KalmanTracker(kalman);
+  kalman_ = vision::KalmanTracker(config_.kalman);
 
   left_ = &ports_.left_eye_rgb.get();
   right_ = &ports_.right_eye_rgb.get();

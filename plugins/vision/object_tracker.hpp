@@ -65,9 +65,10 @@ class ObjectTracker : public Plugin {
     double radius_min = 0.005;  // [m]
     double radius_max = 0.2;    // [m]
     bool predict_windows = false;
-    vision::MotionModel motion_model = vision::MotionModel::kConstantAcceleration;
-    double process_noise = 1.0;
-    double measurement_sigma = 0.005;  // [m]
+    // the Kalman filter (motion_model, process_noise, measurement_sigma), with this
+    // tracker's defaults
+    vision::KalmanOptions kalman{.model = vision::MotionModel::kConstantAcceleration,
+                                 .measurement_sigma_m = 0.005};
     template <class V>
     void visit(V& v);
   };

@@ -28,6 +28,11 @@ std::string GridSpec::validate() const {
   return os.str();
 }
 
+void GridSpec::validate(ConfigChecks& checks) const {
+  checks.require(d_max > d_min, d_max,
+                 "must be greater than d_min (" + std::to_string(d_min) + ")");
+}
+
 std::string ParzenSpec::validate() const {
   if (!(std::isfinite(sigma_scale) && sigma_scale > 0.0)) {
     std::ostringstream os;

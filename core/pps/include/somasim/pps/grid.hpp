@@ -9,6 +9,7 @@
 #include <span>
 #include <string>
 
+#include "somasim/config.hpp"
 #include "somasim/name_table.hpp"
 
 namespace somasim::pps {
@@ -38,6 +39,21 @@ struct GridSpec {
 
   /// Empty string when valid, else a description of what is wrong.
   std::string validate() const;
+
+  /// The grid as a config block (somasim/config.hpp): d_min, d_max, d_bins, ttc_max, ttc_bins
+  /// (TTC starts at ttc_min, not a parameter). Cross-field check: d_max > d_min.
+  template <class V>
+  void visit(V& v) {
+    v.field("d_min", d_min).unit("m").range(-1, 1).doc("lower edge of the D range");
+    v.field("d_max", d_max).unit("m").range(-1, 1).doc("upper edge of the D range");
+    v.field("d_bins", d_bins).range(1, kMaxBinsPerAxis).doc("number of D bins");
+    v.field("ttc_max", ttc_max)
+        .unit("s")
+        .range(0.01, 100)
+        .doc("upper edge of the TTC range (paper text 3 s; released robot code 1.2 s)");
+    v.field("ttc_bins", ttc_bins).range(1, kMaxBinsPerAxis).doc("number of TTC bins");
+  }
+  void validate(ConfigChecks& checks) const;
 
   /// Paper text variant: TTC in [0, 3] s.
   static GridSpec paper() { return GridSpec{}; }

@@ -7,6 +7,7 @@
 #include <span>
 
 #include <memory>
+#include "somasim/config.hpp"
 #include "somasim/name_table.hpp"
 
 #include <Eigen/Core>
@@ -37,6 +38,23 @@ struct KalmanOptions {
   double measurement_sigma_m = 0.002;       ///< σ of a measured position, per axis [m]
   double initial_velocity_sigma = 0.5;      ///< σ of the unknown velocity at the first fix [m/s]
   double initial_acceleration_sigma = 2.0;  ///< same for the acceleration [m/s²]
+
+  /// The options a tracker plugin exposes, as a config block (somasim/config.hpp): the model,
+  /// the process noise and the measurement σ; a plugin sets its own defaults by initialising
+  /// the embedded member. The initial σ stay at the values above.
+  template <class V>
+  void visit(V& v) {
+    v.field("motion_model", model).doc("the Kalman filter's motion model");
+    v.field("process_noise", process_noise)
+        .at_least(1e-9)
+        .doc(
+            "spectral density of the white acceleration [m²/s³] (constant_velocity) or jerk "
+            "[m²/s⁵] (constant_acceleration) that drives the model");
+    v.field("measurement_sigma", measurement_sigma_m)
+        .unit("m")
+        .at_least(1e-6)
+        .doc("σ of a triangulated position per axis [m]");
+  }
 };
 
 class KalmanTracker {
