@@ -9,8 +9,11 @@
 
 #include "somasim/config.hpp"
 #include "somasim/plugin.hpp"
+#include "somasim/plugin_ports.hpp"
 #include "somasim/render/camera.hpp"
+#include "somasim/render/ports.hpp"
 #include "somasim/robot/kinematics.hpp"
+#include "somasim/robot/ports.hpp"
 #include "somasim/robot/robot_model.hpp"
 
 namespace somasim::plugins {
@@ -33,6 +36,22 @@ class BelievedEyes {
           .doc(
               "believed-kinematics error, 'joint: value, ...' [deg] added to the encoder values "
               "before the cameras are posed (as proprioception's joint_offsets_deg)");
+    }
+  };
+  /// The inputs both trackers take: the two eyes' images and the encoders that pose them; a port
+  /// block (somasim/plugin_ports.hpp) embedded first in their port structs.
+  struct Inputs {
+    In<RgbImage> left_eye_rgb;
+    In<RgbImage> right_eye_rgb;
+    In<JointState> joint_state;
+    template <class V>
+    void visit(V& v) {
+      v.port("left_eye_rgb", left_eye_rgb,
+             "rgb8 image of the first camera (e.g. cam.left_eye_rgb)");
+      v.port("right_eye_rgb", right_eye_rgb,
+             "rgb8 image of the second camera (e.g. cam.right_eye_rgb)");
+      v.port("joint_state", joint_state,
+             "encoder values: the head and eye joints pose the cameras (e.g. world.joint_state)");
     }
   };
   /// Sets up `config` for `model`; a camera not in the model or a bad offsets text is a

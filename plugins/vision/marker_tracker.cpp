@@ -77,12 +77,7 @@ void MarkerTracker::Config::visit(V& v) {
 
 template <class V>
 void MarkerTracker::Ports::visit(V& v) {
-  v.port("left_eye_rgb", left_eye_rgb, "rgb8 image of the first camera (e.g. cam.left_eye_rgb)");
-  v.port("right_eye_rgb", right_eye_rgb,
-         "rgb8 image of the second camera (e.g. cam.right_eye_rgb)");
-  v.port("joint_state", joint_state,
-         "encoder values: the head and eye joints pose the cameras (e.g. "
-         "world.joint_state)");
+  v.block(eyes);
   v.port("true_link_poses", true_link_poses,
          "optional ground truth (e.g. world.link_poses): the true marker_frame gives "
          "the metrics position_rms_m and velocity_rms_m_s");
@@ -146,9 +141,9 @@ void MarkerTracker::configure(NodeContext& ctx) {
   kalman_options_ = config_.kalman;
   kalman_ = vision::KalmanTracker(kalman_options_);
 
-  left_ = &ports_.left_eye_rgb.get();
-  right_ = &ports_.right_eye_rgb.get();
-  joints_ = &ports_.joint_state.get();
+  left_ = &ports_.eyes.left_eye_rgb.get();
+  right_ = &ports_.eyes.right_eye_rgb.get();
+  joints_ = &ports_.eyes.joint_state.get();
   truth_ = ports_.true_link_poses.get();
   stimulus_ = &ports_.stimulus.get();
   pixels_ = &ports_.marker_pixels.get();

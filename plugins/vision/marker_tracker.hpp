@@ -59,9 +59,7 @@ class MarkerTracker : public Plugin {
     void visit(V& v);
   };
   struct Ports {
-    In<RgbImage> left_eye_rgb;
-    In<RgbImage> right_eye_rgb;
-    In<JointState> joint_state;
+    BelievedEyes::Inputs eyes;  // left_eye_rgb, right_eye_rgb, joint_state
     OptionalIn<LinkPoses> true_link_poses;
     Out<pps::Stimulus> stimulus;
     Out<StereoPixels> marker_pixels;

@@ -160,12 +160,7 @@ void ObjectTracker::Config::visit(V& v) {
 
 template <class V>
 void ObjectTracker::Ports::visit(V& v) {
-  v.port("left_eye_rgb", left_eye_rgb, "rgb8 image of the first camera (e.g. cam.left_eye_rgb)");
-  v.port("right_eye_rgb", right_eye_rgb,
-         "rgb8 image of the second camera (e.g. cam.right_eye_rgb)");
-  v.port("joint_state", joint_state,
-         "encoder values: the head and eye joints pose the cameras (e.g. "
-         "world.joint_state)");
+  v.block(eyes);
   v.port("truth", truth,
          "optional ground truth (e.g. object_thrower.truth): metrics position_rms_m, "
          "velocity_rms_m_s, latency_s, tracked shares");
@@ -224,9 +219,9 @@ void ObjectTracker::configure(NodeContext& ctx) {
                  fmt::format("{} is below radius_min {}", radius_max_, radius_min_));
   kalman_ = vision::KalmanTracker(config_.kalman);
 
-  left_ = &ports_.left_eye_rgb.get();
-  right_ = &ports_.right_eye_rgb.get();
-  joints_ = &ports_.joint_state.get();
+  left_ = &ports_.eyes.left_eye_rgb.get();
+  right_ = &ports_.eyes.right_eye_rgb.get();
+  joints_ = &ports_.eyes.joint_state.get();
   truth_ = ports_.truth.get();
   stimulus_ = &ports_.stimulus.get();
   pixels_ = &ports_.object_pixels.get();

@@ -73,9 +73,7 @@ class ObjectTracker : public Plugin {
     void visit(V& v);
   };
   struct Ports {
-    In<RgbImage> left_eye_rgb;
-    In<RgbImage> right_eye_rgb;
-    In<JointState> joint_state;
+    BelievedEyes::Inputs eyes;  // left_eye_rgb, right_eye_rgb, joint_state
     OptionalIn<pps::Stimulus> truth;
     Out<pps::Stimulus> stimulus;
     Out<StereoPixels> object_pixels;

@@ -232,10 +232,11 @@ std::optional<ParamValue> to_param_value(const YAML::Node& node, const ParamSpec
     case ParamType::Int:
       if (auto i = parse_int(text)) {
         if ((spec.int_min && *i < *spec.int_min) || (spec.int_max && *i > *spec.int_max)) {
-          problem = fmt::format("value {} does not fit the parameter's integer type; expected {} "
-                                "in [{}, {}]",
-                                text, expectation(spec), spec.int_min.value_or(INT64_MIN),
-                                spec.int_max.value_or(INT64_MAX));
+          problem = fmt::format(
+              "value {} does not fit the parameter's integer type; expected {} "
+              "in [{}, {}]",
+              text, expectation(spec), spec.int_min.value_or(INT64_MIN),
+              spec.int_max.value_or(INT64_MAX));
           return std::nullopt;
         }
         if (!check_number(static_cast<double>(*i), spec, text, problem)) return std::nullopt;

@@ -78,9 +78,9 @@ TEST(Config, TheSchemaComesFromTheVisitInOrderWithTheMembersDefaults) {
   const auto specs = config_schema<TestConfig>();
   std::vector<std::string> names;
   for (const auto& s : specs) names.push_back(s.name);
-  EXPECT_EQ(names, (std::vector<std::string>{"enabled", "count", "particles", "speed", "label",
-                                             "gains", "parts", "shape", "sigma_m", "warmup",
-                                             "csv"}));
+  EXPECT_EQ(names,
+            (std::vector<std::string>{"enabled", "count", "particles", "speed", "label", "gains",
+                                      "parts", "shape", "sigma_m", "warmup", "csv"}));
   EXPECT_EQ(specs[1].type, ParamType::Int);
   EXPECT_EQ(std::get<std::int64_t>(*specs[1].default_value), 7);
   EXPECT_EQ(specs[1].min, 1.0);

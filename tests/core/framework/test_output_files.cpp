@@ -21,7 +21,8 @@ TEST(OutputFiles, TheRunsOwnFilesCannotBeNamed) {
        {"metrics.json", "log.txt", "experiment.resolved.yaml", "manifest.json", "./metrics.json",
         "sub/../log.txt", "pps.activations.csv", "thrower.stimulus.csv", "figures",
         "figures/map.png"}) {
-    const CliResult r = validate_with("pps_single_taxel.yaml", "nodes.pps.params.save=" + name, dir);
+    const CliResult r =
+        validate_with("pps_single_taxel.yaml", "nodes.pps.params.save=" + name, dir);
     EXPECT_EQ(r.code, 2) << name;
     EXPECT_NE(r.err.find("node 'pps', key 'params.save': output file '" + name + "'"),
               std::string::npos)

@@ -13,6 +13,7 @@
 ///       v.port("command", command, "position commands");
 ///     }
 ///   };
+///   // Ports several plugins share are a struct of their own, embedded with v.block(member).
 ///   // in configure(): bind_ports(ctx, ports_); then *ports_.state, ports_.command->...
 /// @endcode
 #include <string>
@@ -84,6 +85,11 @@ class PortDeclarer {
   void port(const std::string& name, Out<T>&, const std::string& doc) {
     spec_.output<T>(name, doc);
   }
+  /// Ports of a shared block (a struct with its own visit), in its visit order.
+  template <class B>
+  void block(B& b) {
+    b.visit(*this);
+  }
 
  private:
   PluginSpec& spec_;
@@ -104,6 +110,10 @@ class PortBinder {
   template <class T>
   void port(const std::string& name, Out<T>& p, const std::string&) {
     p.value_ = &ctx_.output<T>(name);
+  }
+  template <class B>
+  void block(B& b) {
+    b.visit(*this);
   }
 
  private:
