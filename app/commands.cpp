@@ -218,6 +218,7 @@ int cmd_describe(const CommonOptions& common, const std::string& name) {
       line += fmt::format(", range [{}, {}]", p.min ? fmt::format("{}", *p.min) : "-inf",
                           p.max ? fmt::format("{}", *p.max) : "inf");
     if (!p.choices.empty()) line += ", one of: " + join_names(p.choices);
+    if (p.max_list_size) line += fmt::format(", at most {} elements", *p.max_list_size);
     fmt::print("{}\n      {}\n", line, p.doc);
   }
   for (auto dir : {PortDirection::Input, PortDirection::Output}) {

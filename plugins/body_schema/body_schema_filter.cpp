@@ -45,8 +45,7 @@ void BodySchemaFilter::Config::visit(V& v) {
       .unit("deg")
       .doc(
           "floor of σ_s instead of the schedule's (0: the preset's, e.g. 0.08 for paper); a "
-          "higher floor keeps the particles moving (measured with 0.5: estimates noisier, and "
-          "filters locked onto a wrong mode did not leave it; see plugins/body_schema/README.md)");
+          "higher floor keeps the particles moving (plugins/body_schema/README.md)");
   v.field("jump_fraction", jump_fraction)
       .range(0.0, 1.0)
       .doc(
@@ -105,6 +104,7 @@ void BodySchemaFilter::Config::visit(V& v) {
           "reinflate_factor, or stop the run");
   v.field("reinflate_factor", reinflate_factor).at_least(1.0).doc("see on_no_match");
   v.field("compare_particles", compare_particles)
+      .max_size(16)
       .doc(
           "sizes M of further filters run on the same images for the particle study "
           "(metrics particles_<M>_*, figures/body_schema_particles.png); [] = none");

@@ -68,6 +68,7 @@ void CameraPlugin::Config::visit(V& v) {
           "write every N-th frame's images as PNG under frames/NODE.PORT/ in the run folder "
           "(encodings as when recorded: somasim/render/ports.hpp); 0 = never");
   v.field("sheet_times", sheet_times)
+      .max_size(64)
       .doc(
           "[s] sim times of the rows of the contact sheet figures/stereo_frames.png (the RGB "
           "views side by side); empty = no sheet");

@@ -33,10 +33,12 @@ void PpsLearner::Config::visit(V& v) {
           "file name of the learned state written into the run folder, all parts in one file: "
           "*.json (somasim) or *.ini (the iCub's taxels2D format, d_ttc model only) ('' = none)");
   v.field("figure_taxels", figure_taxels)
+      .max_size(100)
       .doc(
           "taxel ids whose landscapes are drawn, in every part that has them (empty: the first "
           "four of each part; for the snapshots, the first four touched so far)");
   v.field("snapshot_events", snapshot_events)
+      .max_size(100)
       .doc(
           "also draw a part's landscapes after it learned from these many events (e.g. [1, 4] "
           "as in Fig 9); a drawn taxel without positive samples yet is named in the log");

@@ -43,6 +43,7 @@ void PpsEvaluator::Config::visit(V& v) {
           "space-separated skin parts, the i-th is the part whose controller's velocity is "
           "wired to velocity_i (e.g. 'left_forearm right_palm'); '-' skips an input");
   v.field("figure_presentations", figure_presentations)
+      .max_size(100)
       .at_least(1)
       .doc("ids of the presentations drawn as Fig 10/11-style figures");
   v.field("figure_taxels", figure_taxels)

@@ -153,8 +153,7 @@ void ObjectTracker::Config::visit(V& v) {
           "before each CamShift step, move each eye's search window by the image motion the "
           "Kalman filter predicts for the object (its velocity over the frame interval, "
           "projected): an object that moves farther in a frame than its window is wide (about "
-          "1 m/s at 0.45 m and 20 Hz for a 1.2 cm ball) is met instead of lost; at 0.05-0.30 "
-          "m/s it changed no avoidance metric");
+          "1 m/s at 0.45 m and 20 Hz for a 1.2 cm ball) is met instead of lost");
   v.block(kalman);
 }
 

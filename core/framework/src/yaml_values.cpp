@@ -154,8 +154,7 @@ std::optional<ParamValue> to_string_list(const YAML::Node& node, const ParamSpec
     return std::nullopt;
   }
   if (spec.max_list_size && list.size() > *spec.max_list_size) {
-    problem = fmt::format("expected {} of at most {} words, got {}", expectation(spec),
-                          *spec.max_list_size, list.size());
+    problem = fmt::format("expected at most {} words, got {}", *spec.max_list_size, list.size());
     return std::nullopt;
   }
   return list;
@@ -198,8 +197,8 @@ std::optional<ParamValue> to_param_value(const YAML::Node& node, const ParamSpec
       return std::nullopt;
     }
     if (spec.max_list_size && list.size() > *spec.max_list_size) {
-      problem = fmt::format("expected {} of at most {} numbers, got {}", expectation(spec),
-                            *spec.max_list_size, list.size());
+      problem =
+          fmt::format("expected at most {} numbers, got {}", *spec.max_list_size, list.size());
       return std::nullopt;
     }
     return list;
@@ -233,8 +232,7 @@ std::optional<ParamValue> to_param_value(const YAML::Node& node, const ParamSpec
       if (auto i = parse_int(text)) {
         if ((spec.int_min && *i < *spec.int_min) || (spec.int_max && *i > *spec.int_max)) {
           problem = fmt::format(
-              "value {} does not fit the parameter's integer type; expected {} "
-              "in [{}, {}]",
+              "value {} is out of range; expected {} (the parameter holds integers in [{}, {}])",
               text, expectation(spec), spec.int_min.value_or(INT64_MIN),
               spec.int_max.value_or(INT64_MAX));
           return std::nullopt;

@@ -6,6 +6,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -107,7 +108,11 @@ T Params::get(const std::string& name) const {
   const ParamValue& v = raw(name);
   if constexpr (std::is_same_v<T, int>) {
     SOMASIM_CHECK(std::holds_alternative<std::int64_t>(v), "parameter is not an integer");
-    return static_cast<int>(std::get<std::int64_t>(v));
+    const std::int64_t i = std::get<std::int64_t>(v);
+    if (!std::in_range<int>(i))
+      throw InputError("parameter '" + name + "': value " + std::to_string(i) +
+                       " does not fit a 32-bit integer");
+    return static_cast<int>(i);
   } else {
     SOMASIM_CHECK(std::holds_alternative<T>(v), "parameter read with the wrong type");
     return std::get<T>(v);
