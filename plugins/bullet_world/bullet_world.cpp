@@ -202,10 +202,10 @@ void BulletWorld::configure(NodeContext& ctx) {
                                              ObjectMaterial{friction, rolling, restitution}, guide);
   physics_->world().updateAabbs();
 
-  if (const std::string scene = config_.scene; !scene.empty()) {
+  if (config_.scene.given()) {
     std::vector<robot::SceneObject> objects;
     try {
-      objects = robot::load_scene(ctx.resolve_input_path(scene));
+      objects = robot::load_scene(config_.scene.path);
     } catch (const InputError& e) {
       config_error(ctx, config_, config_.scene, e.what());
     }

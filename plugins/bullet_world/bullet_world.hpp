@@ -56,7 +56,7 @@ class BulletWorld : public Plugin {
     double velocity_gain = 1.0;
     double max_torque = 20.0;  // [N*m]
     int solver_iterations = 20;
-    std::string scene;
+    InputFile scene;
     double friction = 0.8;
     double rolling_friction = 0.0005;  // [m]
     double restitution = 0.0;

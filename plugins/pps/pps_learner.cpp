@@ -102,7 +102,7 @@ void PpsLearner::configure(NodeContext& ctx) {
   true_offsets_ = ports_.true_offsets.get();
   activations_ = &ports_.activations.get();
   max_activation_ = &ports_.max_activation.get();
-  if (const std::string load = config_.load; !load.empty()) this->load(ctx, load);
+  if (config_.load.given()) this->load(ctx, config_.load.path);
 }
 
 void PpsLearner::parse_body_parts(NodeContext& ctx) {
@@ -116,8 +116,8 @@ void PpsLearner::parse_body_parts(NodeContext& ctx) {
     config_error(ctx, config_, config_.body_part, "is empty, expected one or more skin parts");
 }
 
-void PpsLearner::load(NodeContext& ctx, const std::string& file) {
-  load_path_ = ctx.resolve_input_path(file).string();
+void PpsLearner::load(NodeContext& ctx, const std::filesystem::path& file) {
+  load_path_ = file.string();
   pps::PartsExpectations expect;
   for (const LearnerPart& p : parts_) expect.body_parts.push_back(p.name);
   expect.model = params_.model;

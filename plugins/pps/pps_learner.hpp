@@ -26,7 +26,7 @@ class PpsLearner : public Plugin {
     std::vector<std::string> body_part{"taxel"};
     LearnerConfig learning;
     bool learn = true;
-    std::string load;
+    InputFile load;
     OutputFile save{"pps_map.json", {}};
     std::vector<double> figure_taxels;
     std::vector<double> snapshot_events;
@@ -54,7 +54,7 @@ class PpsLearner : public Plugin {
   Config config_;
   Ports ports_;
   void parse_body_parts(NodeContext& ctx);
-  void load(NodeContext& ctx, const std::string& file);
+  void load(NodeContext& ctx, const std::filesystem::path& file);
   void bind_parts(NodeContext& ctx);
   void add_geometry(LearnerPart& p, const SkinPart& part);
   std::vector<double> snapshot_taxels(NodeContext& ctx, const LearnerPart& p) const;

@@ -41,9 +41,14 @@ void FieldTraits<InputFile>::assign(const ParamValue& v, InputFile& out, const s
   const fs::file_status status = fs::status(path, ec);
   if (ec || !fs::exists(status))
     source.error(key, "input file '" + out.name + "' does not exist (" + path.string() + ")");
-  if (!fs::is_regular_file(status))
+  if (!fs::is_regular_file(status)) {
+    const char* what = fs::is_directory(status)                                     ? "a folder"
+                       : fs::is_fifo(status)                                        ? "a FIFO"
+                       : fs::is_character_file(status) || fs::is_block_file(status) ? "a device"
+                                                                                    : "a socket";
     source.error(key, "input file '" + out.name + "' is not a regular file (" + path.string() +
-                          " is a folder, FIFO, device or socket)");
+                          " is " + what + ")");
+  }
   const std::uintmax_t size = fs::file_size(path, ec);
   if (ec || size > kMaxInputFileBytes)
     source.error(key, "input file '" + out.name + "' is larger than the " +
