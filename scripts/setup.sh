@@ -26,5 +26,5 @@ if ((${#missing[@]})); then
 fi
 
 echo "== building (build/)"
-cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DSOMASIM_WERROR=ON
 cmake --build build --parallel "$(nproc)"

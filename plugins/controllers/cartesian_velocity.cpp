@@ -150,8 +150,9 @@ void CartesianVelocity::step(NodeContext& ctx) {
 }
 
 void CartesianVelocity::finish(NodeContext& ctx) {
-  ctx.report_metric("limited_fraction",
-                    steps_ > 0 ? static_cast<double>(limited_steps_) / steps_ : 0.0);
+  ctx.report_metric(
+      "limited_fraction",
+      steps_ > 0 ? static_cast<double>(limited_steps_) / static_cast<double>(steps_) : 0.0);
 }
 
 }  // namespace somasim::plugins

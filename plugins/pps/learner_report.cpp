@@ -46,7 +46,7 @@ struct Summary {
     max = n ? std::max(max, v) : v;
     ++n;
   }
-  json mean_json() const { return n ? json(sum / n) : json(); }
+  json mean_json() const { return n ? json(sum / static_cast<double>(n)) : json(); }
   json max_json() const { return n ? json(max) : json(); }
 };
 
@@ -97,7 +97,8 @@ json sample_metrics(const pps::LearningStats& t) {
   return {{"samples", counted},
           {"positive_samples", t.positives},
           {"negative_samples", t.negatives},
-          {"negative_d_share", counted ? static_cast<double>(t.behind_skin) / counted : 0.0}};
+          {"negative_d_share",
+           counted ? static_cast<double>(t.behind_skin) / static_cast<double>(counted) : 0.0}};
 }
 
 }  // namespace

@@ -306,19 +306,24 @@ void MarkerTracker::score_against_truth(double dt_s) {
 void MarkerTracker::finish(NodeContext& ctx) {
   ctx.report_metric("frames", frames_);
   ctx.report_metric("frames_tracked", tracked_);
-  ctx.report_metric("tracked_share", frames_ ? static_cast<double>(tracked_) / frames_ : 0.0);
+  ctx.report_metric("tracked_share",
+                    frames_ ? static_cast<double>(tracked_) / static_cast<double>(frames_) : 0.0);
   ctx.report_metric("frames_in_view", expected_);
-  ctx.report_metric("in_view_tracked_share",
-                    expected_ ? static_cast<double>(expected_tracked_) / expected_ : 0.0);
-  ctx.report_metric("reprojection_mean_px", tracked_ ? reprojection_sum_ / tracked_ : 0.0);
+  ctx.report_metric(
+      "in_view_tracked_share",
+      expected_ ? static_cast<double>(expected_tracked_) / static_cast<double>(expected_) : 0.0);
+  ctx.report_metric("reprojection_mean_px",
+                    tracked_ ? reprojection_sum_ / static_cast<double>(tracked_) : 0.0);
   ctx.report_metric("reprojection_max_px", reprojection_max_);
   if (max_distance_from_believed_ > 0)
     ctx.report_metric("far_from_believed_rejections", far_rejections_);
   if (truth_) {
-    ctx.report_metric("position_rms_m",
-                      position_count_ ? std::sqrt(position_sq_sum_ / position_count_) : 0.0);
-    ctx.report_metric("velocity_rms_m_s",
-                      velocity_count_ ? std::sqrt(velocity_sq_sum_ / velocity_count_) : 0.0);
+    ctx.report_metric(
+        "position_rms_m",
+        position_count_ ? std::sqrt(position_sq_sum_ / static_cast<double>(position_count_)) : 0.0);
+    ctx.report_metric(
+        "velocity_rms_m_s",
+        velocity_count_ ? std::sqrt(velocity_sq_sum_ / static_cast<double>(velocity_count_)) : 0.0);
     ctx.report_metric("latency_s", lag_.seconds());
   }
 }

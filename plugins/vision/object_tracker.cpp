@@ -463,7 +463,8 @@ void ObjectTracker::finish(NodeContext& ctx) {
   ctx.report_metric("refused_acquisitions", refused_);
   ctx.report_metric("own_colour_refusals", own_colour_refused_);
   ctx.report_metric("pose_time_offset_max_s", pose_time_offset_max_s_);
-  ctx.report_metric("reprojection_mean_px", tracked_ ? reprojection_sum_ / tracked_ : 0.0);
+  ctx.report_metric("reprojection_mean_px",
+                    tracked_ ? reprojection_sum_ / static_cast<double>(tracked_) : 0.0);
   if (!truth_) return;
   ctx.report_metric("frames_with_object", truth_frames_);
   ctx.report_metric("object_tracked_share", share(truth_tracked_, truth_frames_));

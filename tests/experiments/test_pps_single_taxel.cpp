@@ -39,8 +39,8 @@ std::vector<double> reference_distribution(const fs::path& csv, const std::strin
     for (std::string cell; std::getline(ss, cell, ',');) f.push_back(cell);
     if (f.size() < 11 || f[0] != source) continue;
     const int i = std::stoi(f[3]) * 4 + std::stoi(f[4]);
-    pos[i] = std::stoul(f[9]);
-    neg[i] = std::stoul(f[10]);
+    pos[i] = static_cast<unsigned>(std::stoul(f[9]));
+    neg[i] = static_cast<unsigned>(std::stoul(f[10]));
   }
   return count_distribution(pos, neg);
 }

@@ -44,7 +44,8 @@ void draw_legend(cv::Mat& img, const AxesFrame& f, const std::vector<LegendEntry
       std::size_t n = 0;
       for (const auto& p : data_px)
         if (std::isfinite(p.x) && std::isfinite(p.y) &&
-            r.contains(cv::Point(std::floor(p.x), std::floor(p.y))))
+            r.contains(
+                cv::Point(static_cast<int>(std::floor(p.x)), static_cast<int>(std::floor(p.y)))))
           ++n;
       if (n < best) {
         best = n;
@@ -57,7 +58,7 @@ void draw_legend(cv::Mat& img, const AxesFrame& f, const std::vector<LegendEntry
   cv::rectangle(img, box, bgr(Color{160, 160, 160}), 1);
   for (std::size_t i = 0; i < entries.size(); ++i) {
     const auto& e = entries[i];
-    const double cy = box.y + pad / 2.0 + row_h * (i + 0.5);
+    const double cy = box.y + pad / 2.0 + row_h * (static_cast<double>(i) + 0.5);
     const double x0 = box.x + pad, x1 = x0 + sample_w;
     if (e.line) {
       if (e.halo)

@@ -614,15 +614,15 @@ Experiment load_experiment_file(const fs::path& file, PluginRegistry& registry,
   return load_experiment_text(buffer.str(), file.string(), dir, registry, options);
 }
 
-const NodeSpec* Experiment::find_node(const std::string& name) const {
+const NodeSpec* Experiment::find_node(const std::string& node_name) const {
   for (const auto& n : nodes)
-    if (n.name == name) return &n;
+    if (n.name == node_name) return &n;
   return nullptr;
 }
 
-const RobotSpec* Experiment::find_robot(const std::string& name) const {
+const RobotSpec* Experiment::find_robot(const std::string& robot_name) const {
   for (const auto& r : robots)
-    if (r.name == name) return &r;
+    if (r.name == robot_name) return &r;
   return nullptr;
 }
 

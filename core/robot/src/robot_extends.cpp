@@ -92,7 +92,8 @@ void RobotLoader::apply_set(YAML::Node base, const YAML::Node& key, const YAML::
         fmt::format("{}", fmt::join(parts.begin(), parts.begin() + static_cast<long>(i) + 1, "."));
     if (node.IsSequence()) {
       const auto index = detail::parse_number(parts[i]);
-      if (!index || *index < 0 || *index != std::floor(*index) || *index >= node.size()) {
+      if (!index || *index < 0 || *index != std::floor(*index) ||
+          *index >= static_cast<double>(node.size())) {
         reader_.error(key, "", shown,
                       fmt::format("'{}' is a list of {} items in {}; expected an index 0..{}",
                                   walked.substr(0, walked.rfind('.')), node.size(), base_file,

@@ -22,8 +22,9 @@ TEST(ParticleShare, RanksCoverEveryParticleOnceInOrderAndBalanced) {
       next += s.count;
       smallest = std::min(smallest, s.count);
       largest = std::max(largest, s.count);
-      if (r > 0)  // the larger shares come first
+      if (r > 0) {  // the larger shares come first
         EXPECT_LE(s.count, particle_share(particles, ranks, r - 1).count);
+      }
     }
     EXPECT_EQ(next, particles);
     EXPECT_LE(largest - smallest, 1);

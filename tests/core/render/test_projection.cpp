@@ -236,6 +236,6 @@ TEST_P(Projection, EveryVisibleLinksMaskIsInsideItsProjectedBounds) {
 }
 
 INSTANTIATE_TEST_SUITE_P(HeadPostures, Projection, ::testing::ValuesIn(kPostures),
-                         [](const ::testing::TestParamInfo<HeadPosture>& info) {
-                           return info.param.name;
+                         [](const ::testing::TestParamInfo<HeadPosture>& posture) {
+                           return posture.param.name;
                          });

@@ -248,12 +248,15 @@ TEST(MarkerTracker, FixesFarFromTheBelievedFingertipAreRefused) {
         ASSERT_TRUE(s.present) << off;
         EXPECT_LT((s.position - tip).norm(), 0.002);
       }
-      if (refused) EXPECT_FALSE(s.present) << off;
+      if (refused) {
+        EXPECT_FALSE(s.present) << off;
+      }
       h.finish();
-      if (gate > 0.0)
+      if (gate > 0.0) {
         EXPECT_EQ(h.metric("track", "far_from_believed_rejections"), refused ? 2 : 0) << off;
-      else
+      } else {
         EXPECT_TRUE(h.metric("track", "far_from_believed_rejections").is_null());
+      }
     }
   }
 }
