@@ -66,6 +66,15 @@ void ReachController::Ports::visit(V& v) {
   v.port("phase", phase, "movement, stage and frame (wire to the filter's phase)");
 }
 
+void ReachController::Config::validate(ConfigChecks& checks) const {
+  checks.require(!targets.empty() && targets.size() % 6 == 0, targets,
+                 fmt::format("expected 6 numbers per target (x y z [m], rx ry rz [deg]), got {} "
+                             "numbers",
+                             targets.size()));
+  checks.require(start_distance[0] >= 0 && start_distance[0] <= start_distance[1], start_distance,
+                 "expected 0 <= lo <= hi");
+}
+
 PluginSpec ReachController::spec() {
   return make_plugin_spec<Config, Ports>(
       "reach_controller",
@@ -86,18 +95,11 @@ void ReachController::configure(NodeContext& ctx) {
     config_error(ctx, config_, config_.palm_frame, e.what());
   }
   const auto targets = config_.targets;
-  if (targets.empty() || targets.size() % 6 != 0)
-    config_error(ctx, config_, config_.targets,
-                 fmt::format("expected 6 numbers per target (x y z [m], rx ry rz "
-                             "[deg]), got {} numbers",
-                             targets.size()));
   for (std::size_t i = 0; i < targets.size(); i += 6)
     targets_.push_back({pose_from(targets, i), {}, {}});
   starts_per_target_ = config_.starts_per_target;
   repetitions_ = config_.repetitions;
   start_distance_ = config_.start_distance;
-  if (!(start_distance_[0] >= 0 && start_distance_[0] <= start_distance_[1]))
-    config_error(ctx, config_, config_.start_distance, "expected 0 <= lo <= hi");
   start_rotation_deg_ = config_.start_rotation_deg;
   to_start_frames_ = config_.to_start_frames;
   open_frames_ = config_.open_loop_frames;

@@ -38,6 +38,7 @@ class ReachController : public Plugin {
     OutputFile csv{"reach_frames.csv", {}};
     template <class V>
     void visit(V& v);
+    void validate(ConfigChecks& checks) const;  // cross-field checks
   };
   struct Ports {
     In<JointState> joint_state;

@@ -62,6 +62,15 @@ void CartesianVelocity::Ports::visit(V& v) {
   v.port("limited", limited, "1 when a joint or velocity limit changed the command, else 0");
 }
 
+void CartesianVelocity::Config::validate(ConfigChecks& checks) const {
+  checks.require(!chain.empty() || !tip.empty(), chain,
+                 "expected a chain: give `chain` (a named chain of the robot) or `tip` "
+                 "(and optionally `base`)");
+  checks.require(chain.empty() || tip.empty(), tip,
+                 "give either `chain` or `tip` (and `base`), not both");
+  checks.require(chain.empty() || base.empty(), base, "`base` goes with `tip`, not with `chain`");
+}
+
 PluginSpec CartesianVelocity::spec() {
   return make_plugin_spec<Config, Ports>(
       "cartesian_velocity",
@@ -76,14 +85,6 @@ void CartesianVelocity::configure(NodeContext& ctx) {
   const auto chain_name = config_.chain;
   const auto tip = config_.tip;
   const auto base = config_.base;
-  if (chain_name.empty() && tip.empty())
-    config_error(ctx, config_, config_.chain,
-                 "expected a chain: give `chain` (a named chain of the robot) or `tip` "
-                 "(and optionally `base`)");
-  if (!chain_name.empty() && !tip.empty())
-    config_error(ctx, config_, config_.tip, "give either `chain` or `tip` (and `base`), not both");
-  if (!chain_name.empty() && !base.empty())
-    config_error(ctx, config_, config_.base, "`base` goes with `tip`, not with `chain`");
   control::ChainSelection chain;
   try {
     chain = chain_name.empty() ? control::select_chain(*model, tip, base)

@@ -32,6 +32,7 @@ class CartesianVelocity : public Plugin {
     double orientation_gain = 2.0;  // [1/s]
     template <class V>
     void visit(V& v);
+    void validate(ConfigChecks& checks) const;  // cross-field checks
   };
   struct Ports {
     In<JointState> state;

@@ -48,7 +48,6 @@ void DoubleTouch::configure(NodeContext& ctx) {
     config_error(ctx, config_, config_.effector, e.what());
   }
   const Eigen::Vector3d axis = vec3(config_.effector_axis);
-  if (axis.norm() < 1e-9) config_error(ctx, config_, config_.effector_axis, "must not be zero");
   effector_axis_link_ = effector_.pose.linear() * axis.normalized();
   const Eigen::Vector3d side = vec3(config_.effector_side);
   limb_axis_ = vec3(config_.limb_axis);
@@ -58,8 +57,6 @@ void DoubleTouch::configure(NodeContext& ctx) {
   touches_ = config_.touches;
   speed_min_ = config_.speed_min;
   speed_max_ = config_.speed_max;
-  if (speed_max_ < speed_min_)
-    config_error(ctx, config_, config_.speed_max, "must not be less than speed_min");
   position_jitter_ = config_.position_jitter;
   normal_jitter_ = config_.normal_jitter_deg * kDeg;
   move_duration_ = config_.move_duration;

@@ -96,6 +96,7 @@ class DoubleTouch : public Plugin {
     double marker_radius = 0.007;  // [m]
     template <class V>
     void visit(V& v);
+    void validate(ConfigChecks& checks) const;  // cross-field checks
   };
   struct Ports {
     In<JointState> state;

@@ -128,6 +128,13 @@ void DoubleTouch::Ports::visit(V& v) {
 template void DoubleTouch::Config::visit(ConfigFields&);
 template void DoubleTouch::Ports::visit(PortBinder&);
 
+void DoubleTouch::Config::validate(ConfigChecks& checks) const {
+  checks.require(
+      Eigen::Vector3d(effector_axis[0], effector_axis[1], effector_axis[2]).norm() >= 1e-9,
+      effector_axis, "must not be zero");
+  checks.require(speed_max >= speed_min, speed_max, "must not be less than speed_min");
+}
+
 PluginSpec DoubleTouch::spec() {
   return make_plugin_spec<Config, Ports>(
       "double_touch",

@@ -72,6 +72,13 @@ void TaxelThrower::Ports::visit(V& v) {
   v.port("distance", distance, "true distance of the object centre from the taxel centre [m]");
 }
 
+void TaxelThrower::Config::validate(ConfigChecks& checks) const {
+  checks.require(list3(taxel_normal).norm() >= 1e-9, taxel_normal, "must not be the zero vector");
+  checks.require(start_distance_max >= start_distance_min, start_distance_max,
+                 "must not be less than start_distance_min");
+  checks.require(speed_max >= speed_min, speed_max, "must not be less than speed_min");
+}
+
 PluginSpec TaxelThrower::spec() {
   return make_plugin_spec<Config, Ports>(
       "taxel_thrower",
@@ -85,8 +92,6 @@ void TaxelThrower::configure(NodeContext& ctx) {
   throws_ = config_.throws;
   taxel_position_ = list3(config_.taxel_position);
   taxel_normal_ = list3(config_.taxel_normal);
-  if (taxel_normal_.norm() < 1e-9)
-    config_error(ctx, config_, config_.taxel_normal, "must not be the zero vector");
   taxel_normal_.normalize();
   // Any orthonormal pair spanning the skin plane.
   tangent_u_ = taxel_normal_.unitOrthogonal();
@@ -94,15 +99,10 @@ void TaxelThrower::configure(NodeContext& ctx) {
   body_part_ = config_.body_part;
   start_distance_min_ = config_.start_distance_min;
   start_distance_max_ = config_.start_distance_max;
-  if (start_distance_max_ < start_distance_min_)
-    config_error(ctx, config_, config_.start_distance_max,
-                 "must not be less than start_distance_min");
   start_cone_rad_ = deg_to_rad(config_.start_cone_deg);
   landing_sigma_ = config_.landing_sigma;
   speed_min_ = config_.speed_min;
   speed_max_ = config_.speed_max;
-  if (speed_max_ < speed_min_)
-    config_error(ctx, config_, config_.speed_max, "must not be less than speed_min");
   hit_radius_ = config_.hit_radius;
   radius_ = config_.object_radius;
   position_noise_ = config_.position_noise;

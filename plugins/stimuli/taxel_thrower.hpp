@@ -40,6 +40,7 @@ class TaxelThrower : public Plugin {
     double offset = 0.0;               // [m]
     template <class V>
     void visit(V& v);
+    void validate(ConfigChecks& checks) const;  // cross-field checks
   };
   struct Ports {
     Out<pps::Stimulus> stimulus;

@@ -34,9 +34,11 @@ if(NOT JOBS OR JOBS LESS 1)
   set(JOBS 2)
 endif()
 message(STATUS "clang-tidy on ${n_files} files, ${JOBS} at a time")
+# -Wno-error: the build's -Werror (CI) must not turn the compiler warnings clang sees with GCC's
+# flags into clang-tidy errors; the checks of .clang-tidy decide what is a finding.
 execute_process(
   COMMAND ${RUN_CLANG_TIDY} -clang-tidy-binary ${CLANG_TIDY} -p ${BUILD_DIR} -j ${JOBS} -quiet
-          ${pattern}
+          -extra-arg=-Wno-error ${pattern}
   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 # run-clang-tidy 14 always asks clang-tidy for colours: drop the escape sequences.
 string(ASCII 27 esc)
