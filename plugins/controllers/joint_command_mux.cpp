@@ -2,6 +2,13 @@
 
 namespace somasim::plugins {
 
+namespace {
+// The name of input port i: in0 .. in3.
+std::string input_port(int i) {
+  return "in" + std::to_string(i);
+}
+}  // namespace
+
 template <class V>
 void JointCommandMux::Config::visit(V& v) {
   v.field("conflict", conflict)
@@ -13,7 +20,7 @@ void JointCommandMux::Config::visit(V& v) {
 template <class V>
 void JointCommandMux::Ports::visit(V& v) {
   for (int i = 0; i < kInputs; ++i)
-    v.port("in" + std::to_string(i), in[static_cast<std::size_t>(i)],
+    v.port(input_port(i), in[static_cast<std::size_t>(i)],
            "joint commands of a controller (optional; later inputs win)");
   v.port("command", command, "the merged commands");
 }
@@ -28,7 +35,7 @@ void JointCommandMux::configure(NodeContext& ctx) {
   bind_ports(ctx, ports_);
   for (int i = 0; i < kInputs; ++i) {
     inputs_.push_back(ports_.in[static_cast<std::size_t>(i)].get());
-    names_.push_back("in" + std::to_string(i));
+    names_.push_back(input_port(i));
   }
 }
 

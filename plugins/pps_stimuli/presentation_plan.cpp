@@ -51,20 +51,6 @@ std::optional<PlannedObject> plan_presentation(PresentationMotion motion,
   return out;
 }
 
-const char* cylinder_axis_name(CylinderAxis axis) {
-  return enum_name(axis).data();
-}
-
-CylinderAxis parse_cylinder_axis(const std::string& name) {
-  if (const auto axis = parse_enum<CylinderAxis>(name)) return *axis;
-  throw std::invalid_argument("unknown cylinder axis '" + name + "' (expected " +
-                              enum_names_joined<CylinderAxis>() + ")");
-}
-
-std::vector<std::string> cylinder_axis_names() {
-  return enum_names<CylinderAxis>();
-}
-
 Eigen::Vector3d part_long_axis(const std::vector<Eigen::Vector3d>& taxel_positions) {
   if (taxel_positions.size() < 2) return Eigen::Vector3d::Zero();
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();

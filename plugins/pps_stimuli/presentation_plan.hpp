@@ -73,11 +73,6 @@ inline constexpr NamedValue<CylinderAxis> kCylinderAxisNames[] = {
 constexpr std::span<const NamedValue<CylinderAxis>> name_table(CylinderAxis) {
   return kCylinderAxisNames;
 }
-/// "any", "across_part", "along_part"; parse_cylinder_axis throws std::invalid_argument on
-/// another name; cylinder_axis_names lists them all (the parameter's choices).
-const char* cylinder_axis_name(CylinderAxis axis);
-CylinderAxis parse_cylinder_axis(const std::string& name);
-std::vector<std::string> cylinder_axis_names();
 
 /// The long axis of a skin part: the unit direction of largest spread of its taxel positions
 /// [root frame] (sign arbitrary); zero for fewer than two distinct positions.

@@ -185,7 +185,11 @@ void SkinPlugin::load_layouts(NodeContext& ctx) {
       config_error(ctx, config_, config_.layout_files,
                    "body part '" + part + "' has no skin in this node" + did_you_mean(part, names) +
                        "; parts: " + join_names(names));
-    files[part] = ctx.resolve_input_path(trim(item.substr(eq + 1))).string();
+    const std::string file = trim(item.substr(eq + 1));
+    const std::filesystem::path path = ctx.resolve_input_path(file);
+    if (const std::string why = input_file_problem(path); !why.empty())
+      config_error(ctx, config_, config_.layout_files, "layout file '" + file + "' " + why);
+    files[part] = path.string();
   }
   for (auto& p : parts_) {
     const auto it = files.find(p.patch->body_part);

@@ -17,16 +17,38 @@ void ConfigFields::fill(ConfigSource& source) const {
   for (const auto& validate : validators_) validate(checks);
 }
 
-const std::string* ConfigFields::key_of(const void* member) const {
+const std::string* ConfigFields::key_of(const void* member, const std::type_info& type) const {
   for (const Entry& e : entries_)
-    if (e.member == member) return &e.spec.name;
+    if (e.member == member && *e.type == type) return &e.spec.name;
   return nullptr;
 }
 
-void ConfigChecks::fail_at(const void* member, const std::string& message) const {
-  const std::string* key = fields_.key_of(member);
+void ConfigChecks::fail_at(const void* member, const std::type_info& type,
+                           const std::string& message) const {
+  const std::string* key = fields_.key_of(member, type);
   SOMASIM_CHECK(key != nullptr, "ConfigChecks::fail: not a field of this config");
   source_.error(*key, message);
+}
+
+std::string input_file_problem(const fs::path& path) {
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);
+  if (status.type() == fs::file_type::not_found) return "does not exist (" + path.string() + ")";
+  if (ec) return "cannot be read (" + path.string() + ": " + ec.message() + ")";
+  if (!fs::is_regular_file(status)) {
+    const char* what = fs::is_directory(status)                                     ? "a folder"
+                       : fs::is_fifo(status)                                        ? "a FIFO"
+                       : fs::is_character_file(status) || fs::is_block_file(status) ? "a device"
+                       : fs::is_socket(status)                                      ? "a socket"
+                                               : "a special file";
+    return "is not a regular file (" + path.string() + " is " + what + ")";
+  }
+  const std::uintmax_t size = fs::file_size(path, ec);
+  if (ec) return "cannot be read (" + path.string() + ": " + ec.message() + ")";
+  if (size > kMaxInputFileBytes)
+    return "is larger than the " + std::to_string(kMaxInputFileBytes >> 20) +
+           " MiB an input may have (" + path.string() + ")";
+  return "";
 }
 
 namespace detail {
@@ -37,22 +59,8 @@ void FieldTraits<InputFile>::assign(const ParamValue& v, InputFile& out, const s
   out.path.clear();
   if (out.name.empty()) return;
   const fs::path path = source.resolve_input_file(out.name);
-  std::error_code ec;
-  const fs::file_status status = fs::status(path, ec);
-  if (ec || !fs::exists(status))
-    source.error(key, "input file '" + out.name + "' does not exist (" + path.string() + ")");
-  if (!fs::is_regular_file(status)) {
-    const char* what = fs::is_directory(status)                                     ? "a folder"
-                       : fs::is_fifo(status)                                        ? "a FIFO"
-                       : fs::is_character_file(status) || fs::is_block_file(status) ? "a device"
-                                                                                    : "a socket";
-    source.error(key, "input file '" + out.name + "' is not a regular file (" + path.string() +
-                          " is " + what + ")");
-  }
-  const std::uintmax_t size = fs::file_size(path, ec);
-  if (ec || size > kMaxInputFileBytes)
-    source.error(key, "input file '" + out.name + "' is larger than the " +
-                          std::to_string(kMaxInputFileBytes >> 20) + " MiB an input may have");
+  if (const std::string why = input_file_problem(path); !why.empty())
+    source.error(key, "input file '" + out.name + "' " + why);
   out.path = path;
 }
 

@@ -265,13 +265,17 @@ namespace {
 // Why `relative` (normalised, relative to the run folder) is one of the run's own files, or "".
 std::string run_file_problem(const std::string& relative, const Experiment& exp) {
   static const char* const kRunFiles[] = {"metrics.json", "log.txt", "experiment.resolved.yaml",
-                                          "manifest.json", "figures"};
+                                          "manifest.json"};
   for (const char* f : kRunFiles)
     if (relative == f) return "is one of the run folder's own files";
-  if (relative.rfind("figures/", 0) == 0) return "is inside the run's figures/ folder";
-  for (const RecordSpec& r : exp.records)
-    if (relative == r.node + "." + r.port + ".csv")
-      return "is the recorder file of '" + r.node + "." + r.port + "'";
+  for (const char* folder : {"figures", "frames"})  // figures; cameras' saved frames
+    if (relative == folder || relative.rfind(std::string(folder) + "/", 0) == 0)
+      return std::string("is the run's ") + folder + "/ folder or inside it";
+  for (const RecordSpec& r : exp.records) {
+    const std::string stem = r.node + "." + r.port;  // a CSV, or a folder of images
+    if (relative == stem + ".csv" || relative == stem || relative.rfind(stem + "/", 0) == 0)
+      return "is written by the recorder of '" + stem + "'";
+  }
   return "";
 }
 }  // namespace

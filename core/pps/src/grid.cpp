@@ -1,5 +1,7 @@
 #include "somasim/pps/grid.hpp"
 
+#include "somasim/config.hpp"
+
 #include <cmath>
 #include <sstream>
 

@@ -20,7 +20,8 @@ TEST(OutputFiles, TheRunsOwnFilesCannotBeNamed) {
   for (const std::string name :
        {"metrics.json", "log.txt", "experiment.resolved.yaml", "manifest.json", "./metrics.json",
         "sub/../log.txt", "pps.activations.csv", "thrower.stimulus.csv", "figures",
-        "figures/map.png"}) {
+        "figures/map.png", "frames", "frames/cam.left_eye_rgb/000001.png", "pps.activations",
+        "pps.activations/index.csv"}) {
     const CliResult r =
         validate_with("pps_single_taxel.yaml", "nodes.pps.params.save=" + name, dir);
     EXPECT_EQ(r.code, 2) << name;

@@ -5,13 +5,13 @@
 /// and documentation. From that one list come the parameter schema (`plugins describe`,
 /// validation of experiment files), the filled struct a node configures from, and the docs:
 /// @code
-///   struct KalmanOptions {
-///     double measurement_sigma_m = 0.003;
-///     int warmup_frames = 2;
+///   struct TrackerOptions {
+///     double measurement_sigma_m = 0.003;  // [m]
+///     int lost_frames = 5;
 ///     template <class V> void visit(V& v) {
-///       v.field("measurement_sigma_m", measurement_sigma_m).unit("m").at_least(0)
-///           .doc("standard deviation of a position measurement");
-///       v.field("warmup_frames", warmup_frames).range(0, 100).doc("frames before ...");
+///       v.field("measurement_sigma", measurement_sigma_m).unit("m").at_least(1e-6)
+///           .doc("σ of a measured position per axis");
+///       v.field("lost_frames", lost_frames).range(1, 100).doc("frames before a track is lost");
 ///     }
 ///     void validate(ConfigChecks& checks) const;  // optional: cross-field checks
 ///   };
@@ -30,6 +30,7 @@
 #include <memory>
 #include <string>
 #include <type_traits>
+#include <typeinfo>
 #include <utility>
 #include <vector>
 
@@ -43,9 +44,11 @@ class ConfigFields;
 class ConfigChecks;
 
 /// A file the node writes, named by a parameter relative to the run folder. When the config is
-/// filled, the name is checked (it stays inside the run folder, is not one of the run's own
-/// files — metrics.json, log.txt, experiment.resolved.yaml, manifest.json, a recorder CSV —
-/// and no other parameter of the run names the same file) and `path` is set.
+/// filled in a run (NodeContext), the name is checked (it stays inside the run folder, is not
+/// one of the run's own files — metrics.json, log.txt, experiment.resolved.yaml, manifest.json,
+/// a recorder's CSV or folder, figures/, frames/ — and no other parameter of the run names the
+/// same file) and `path` is set. ParamsSource (tests, tools) checks only containment and
+/// collisions.
 struct OutputFile {
   std::string name;            ///< as given; "" means "not written" where the default is ""
   std::filesystem::path path;  ///< the file in the run folder; empty when `name` is empty
@@ -63,6 +66,11 @@ struct InputFile {
 
 /// The largest input file a parameter may name [bytes] (1 GiB).
 inline constexpr std::uintmax_t kMaxInputFileBytes = std::uintmax_t{1} << 30;
+
+/// Why `path` cannot be read as an input file ("" when it can): missing or unreadable (the
+/// system's reason), not a regular file (a folder, FIFO, device or socket), or over
+/// kMaxInputFileBytes. For file names that are not InputFile fields (e.g. inside a text list).
+std::string input_file_problem(const std::filesystem::path& path);
 
 /// Where a config's values come from while it is filled: the validated parameters, located
 /// errors, and the run folder's file bookkeeping. NodeContext provides one (`read_config`);
@@ -285,15 +293,16 @@ class ConfigChecks {
       : source_(source), fields_(fields) {}
   template <class T>
   [[noreturn]] void fail(const T& member, const std::string& message) const {
-    fail_at(&member, message);
+    fail_at(&member, typeid(T), message);
   }
   template <class T>
   void require(bool condition, const T& member, const std::string& message) const {
-    if (!condition) fail_at(&member, message);
+    if (!condition) fail_at(&member, typeid(T), message);
   }
 
  private:
-  [[noreturn]] void fail_at(const void* member, const std::string& message) const;
+  [[noreturn]] void fail_at(const void* member, const std::type_info& type,
+                            const std::string& message) const;
   const ConfigSource& source_;
   const ConfigFields& fields_;
 };
@@ -304,7 +313,8 @@ class ConfigFields {
  public:
   struct Entry {
     ParamSpec spec;
-    const void* member = nullptr;  ///< the visited member (for located errors)
+    const void* member = nullptr;          ///< the visited member (for located errors)
+    const std::type_info* type = nullptr;  ///< its type (a block shares its first field's address)
     std::function<void(const ParamValue&, ConfigSource&)> assign;
   };
 
@@ -320,6 +330,7 @@ class ConfigFields {
     if constexpr (requires(ParamSpec & s) { Traits::choices(s); }) Traits::choices(e.spec);
     T* member = &value;
     e.member = member;
+    e.type = &typeid(T);
     e.assign = [member, name](const ParamValue& v, ConfigSource& source) {
       Traits::assign(v, *member, name, source);
     };
@@ -337,8 +348,8 @@ class ConfigFields {
   }
 
   const std::deque<Entry>& entries() const { return entries_; }
-  /// The parameter name of a visited member, or nullptr.
-  const std::string* key_of(const void* member) const;
+  /// The parameter name of a visited member of type `type`, or nullptr.
+  const std::string* key_of(const void* member, const std::type_info& type) const;
   /// Fills every visited member from `source` (values already validated against the schema),
   /// then runs the embedded blocks' validate().
   void fill(ConfigSource& source) const;
@@ -394,8 +405,8 @@ std::string config_key(const C& config, const T& member) {
   C& visited = const_cast<C&>(config);  // the visit only takes the members' addresses
   ConfigFields fields;
   visited.visit(fields);
-  const std::string* key = fields.key_of(&member);
-  SOMASIM_CHECK(key != nullptr, "config_key: not a field of this config");
+  const std::string* key = fields.key_of(&member, typeid(T));
+  SOMASIM_CHECK(key != nullptr, "config_key: not a field of this config (a block is no field)");
   return *key;
 }
 

@@ -45,8 +45,8 @@ struct TouchPlannerOptions {
 
 /// The approach: postures (full model vectors) at decreasing distances.
 struct TouchPath {
-  std::vector<double> distance;
-  std::vector<Eigen::VectorXd> posture;
+  std::vector<double> distance;          ///< along the target's normal [m], decreasing
+  std::vector<Eigen::VectorXd> posture;  ///< full model vectors [rad, m], one per distance
 
   /// Posture at distance d (clamped to the path), piecewise linear; `dq_dd` (optional): its
   /// derivative with respect to d [rad/m].

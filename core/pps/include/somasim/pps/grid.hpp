@@ -9,8 +9,11 @@
 #include <span>
 #include <string>
 
-#include "somasim/config.hpp"
 #include "somasim/name_table.hpp"
+
+namespace somasim {
+class ConfigChecks;  // somasim/config.hpp
+}  // namespace somasim
 
 namespace somasim::pps {
 

@@ -11,7 +11,7 @@
 
 namespace somasim::robot {
 
-/// What the evaluator knows of an object's geometry.
+/// What is known of an object's geometry.
 struct ObjectGeometry {
   ObjectShape shape = ObjectShape::kMesh;          ///< kMesh here: unknown, use `bounding_radius`
   Eigen::Vector3d size = Eigen::Vector3d::Zero();  ///< as ObjectSpawn::size [m]

@@ -7,7 +7,6 @@
 #include <span>
 
 #include <memory>
-#include "somasim/config.hpp"
 #include "somasim/name_table.hpp"
 
 #include <Eigen/Core>
