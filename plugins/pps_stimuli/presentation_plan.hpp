@@ -10,17 +10,16 @@
 //   static:   placed at target + d·dir, d in distance_min..max, still for static_duration.
 //   receding: starts at target + s·dir, s in receding_start_min..max, moves at +speed·dir and is
 //             removed after travelling distance_max.
-#include <span>
-
 #include <functional>
 #include <optional>
 #include <random>
+#include <span>
 #include <string>
 #include <vector>
-#include "somasim/name_table.hpp"
 
 #include <Eigen/Geometry>
 
+#include "somasim/name_table.hpp"
 #include "somasim/pps/ports.hpp"
 #include "somasim/robot/ports.hpp"
 

@@ -6,15 +6,14 @@
 // approaching object is checked until it is `until` from the skin (the last stretch may leave
 // the image as the object meets the skin), a static one where it stands, a receding one along
 // its whole path. Points and poses in the root frame [m].
-#include <span>
-
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
-#include "somasim/name_table.hpp"
 
 #include <Eigen/Geometry>
 
+#include "somasim/name_table.hpp"
 #include "somasim/pps/ports.hpp"
 #include "somasim/robot/robot_model.hpp"
 

@@ -12,19 +12,18 @@
 ///
 /// Frames and units: joint values [rad] in model dof order; particles [deg] (one row per offset
 /// joint); cameras posed in the root frame; observations full-size images of each camera.
-#include <span>
-
 #include <chrono>
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
-#include "somasim/name_table.hpp"
 
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 
 #include "somasim/body_schema/likelihood.hpp"
+#include "somasim/name_table.hpp"
 #include "somasim/render/hypothesis_batch.hpp"
 #include "somasim/robot/kinematics.hpp"
 #include "somasim/robot/robot_model.hpp"

@@ -14,13 +14,13 @@
 ///
 /// Edges: d̄ = mean of the observed distance map (edge_distance_map, [px]) under the
 /// hypothesis's contour pixels; L = exp(−λ d̄) with λ [1/px] (text 0.01, code 25/255).
-#include <span>
-
 #include <cstdint>
+#include <span>
 #include <string_view>
-#include "somasim/name_table.hpp"
 
 #include <opencv2/core.hpp>
+
+#include "somasim/name_table.hpp"
 
 namespace somasim::body_schema {
 

@@ -2,11 +2,10 @@
 /// @file
 /// Merging the JointCommands of several controllers into one (joint_command_mux).
 #include <span>
-
 #include <string>
 #include <vector>
-#include "somasim/name_table.hpp"
 
+#include "somasim/name_table.hpp"
 #include "somasim/robot/ports.hpp"
 
 namespace somasim::control {

@@ -8,10 +8,9 @@
 /// taxel_rotation().
 #include <span>
 
-#include <span>
-#include "somasim/name_table.hpp"
-
 #include <Eigen/Core>
+
+#include "somasim/name_table.hpp"
 
 namespace somasim::pps {
 

@@ -15,13 +15,12 @@
 ///
 /// Rendering goes to framebuffer objects: a context's own default framebuffer (1 × 1 for OSMesa,
 /// none for EGL) is never used. The library logs nothing: callers log renderer() and version().
-#include <span>
-
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
-#include "somasim/name_table.hpp"
 
+#include "somasim/name_table.hpp"
 #include "somasim/render/gl_api.hpp"
 
 namespace somasim::render {

@@ -13,13 +13,12 @@
 /// than `min_taxels` physical taxels are over `pressure_threshold`. One event per contact episode:
 /// it fires at the first touched update, and the episode lasts until no taxel of the part has been
 /// over threshold for `release_s` (so a persistent or bouncing contact does not fire again).
-#include <span>
-
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
-#include "somasim/name_table.hpp"
 
+#include "somasim/name_table.hpp"
 #include "somasim/skin/skin_layout.hpp"
 
 namespace somasim::skin {

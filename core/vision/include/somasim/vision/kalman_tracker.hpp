@@ -4,12 +4,12 @@
 /// from measured positions, with a constant-velocity or constant-acceleration motion model
 /// (continuous white-noise acceleration or jerk). Positions [m], velocities [m/s], times [s];
 /// any frame, as long as the measurements share it.
+#include <memory>
 #include <span>
 
-#include <memory>
-#include "somasim/name_table.hpp"
-
 #include <Eigen/Core>
+
+#include "somasim/name_table.hpp"
 
 namespace cv {
 class KalmanFilter;
