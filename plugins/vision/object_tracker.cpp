@@ -10,12 +10,9 @@
 #include "somasim/render/robot_scene.hpp"
 #include "somasim/robot/experiment_robot.hpp"
 #include "somasim/robot/joint_text.hpp"
-#include "somasim/vision/stereo_object.hpp"
 
 namespace somasim::plugins {
 namespace {
-
-constexpr int kMaxAreaRatio = 3;  // of the two eyes' object areas for one object
 
 bool inside(const render::Camera& c, const Eigen::Vector3d& p) {
   const auto uv = c.project(p);
@@ -43,6 +40,11 @@ std::vector<cv::Vec3b> rendered_colours(const robot::RobotModel& model) {
 }
 
 }  // namespace
+
+const vision::StereoTrackerOptions& ObjectTracker::Config::defaults() {
+  static const vision::StereoTrackerOptions options;
+  return options;
+}
 
 template <class V>
 void ObjectTracker::Config::visit(V& v) {
@@ -157,6 +159,11 @@ void ObjectTracker::Config::visit(V& v) {
   v.block(kalman);
 }
 
+void ObjectTracker::Config::validate(ConfigChecks& checks) const {
+  checks.require(radius_max >= radius_min, radius_max,
+                 fmt::format("{} is below radius_min {}", radius_max, radius_min));
+}
+
 template <class V>
 void ObjectTracker::Ports::visit(V& v) {
   v.block(eyes);
@@ -189,34 +196,29 @@ void ObjectTracker::configure(NodeContext& ctx) {
   bind_ports(ctx, ports_);
   model_ = robot::experiment_robot(ctx);
   eyes_believed_.configure(ctx, config_.eyes, model_);
-  motion_.min_flow_px = config_.min_flow_px;
-  motion_.min_area_px = config_.min_motion_px;
-  compensate_ego_motion_ = config_.compensate_ego_motion;
-  max_motion_fraction_ = config_.max_motion_fraction;
-  still_frames_lost_ = config_.still_frames_lost;
-  still_px_ = config_.still_px;
-  vision::ColourTrackerOptions colour;
-  colour.min_saturation = config_.min_saturation;
-  colour.min_value = config_.min_value;
-  colour.min_object_px = config_.min_object_px;
-  colour.lost_fraction = config_.lost_fraction;
-  colour.max_background_ratio = config_.max_background_ratio;
-  if (config_.refuse_own_colours) colour.own_colours = rendered_colours(*model_);
-  for (Eye& eye : eyes_) eye.tracker = vision::ColourTracker(colour);
-  max_reprojection_px_ = config_.max_reprojection_px;
-  inconsistent_frames_lost_ = config_.inconsistent_frames_lost;
-  unfixed_frames_lost_ = config_.unfixed_frames_lost;
-  max_distance_ = config_.max_distance_m;
-  max_jump_ = config_.max_jump_m;
-  max_colour_distance_ = config_.max_colour_distance;
-  reset_after_lost_ = config_.reset_after_lost;
-  predict_windows_ = config_.predict_windows;
-  radius_min_ = config_.radius_min;
-  radius_max_ = config_.radius_max;
-  if (radius_max_ < radius_min_)
-    config_error(ctx, config_, config_.radius_max,
-                 fmt::format("{} is below radius_min {}", radius_max_, radius_min_));
-  kalman_ = vision::KalmanTracker(config_.kalman);
+  vision::StereoTrackerOptions options;
+  options.motion.min_flow_px = config_.min_flow_px;
+  options.motion.min_area_px = config_.min_motion_px;
+  options.colour.min_saturation = config_.min_saturation;
+  options.colour.min_value = config_.min_value;
+  options.colour.min_object_px = config_.min_object_px;
+  options.colour.lost_fraction = config_.lost_fraction;
+  options.colour.max_background_ratio = config_.max_background_ratio;
+  if (config_.refuse_own_colours) options.colour.own_colours = rendered_colours(*model_);
+  options.max_motion_fraction = config_.max_motion_fraction;
+  options.compensate_ego_motion = config_.compensate_ego_motion;
+  options.still_frames_lost = config_.still_frames_lost;
+  options.still_px = config_.still_px;
+  options.max_reprojection_px = config_.max_reprojection_px;
+  options.max_jump_m = config_.max_jump_m;
+  options.max_distance_m = config_.max_distance_m;
+  options.max_colour_distance = config_.max_colour_distance;
+  options.inconsistent_frames_lost = config_.inconsistent_frames_lost;
+  options.unfixed_frames_lost = config_.unfixed_frames_lost;
+  options.reset_after_lost = config_.reset_after_lost;
+  options.predict_windows = config_.predict_windows;
+  options.kalman = config_.kalman;
+  tracker_ = vision::StereoObjectTracker(options);
 
   left_ = &ports_.eyes.left_eye_rgb.get();
   right_ = &ports_.eyes.right_eye_rgb.get();
@@ -224,85 +226,6 @@ void ObjectTracker::configure(NodeContext& ctx) {
   truth_ = ports_.truth.get();
   stimulus_ = &ports_.stimulus.get();
   pixels_ = &ports_.object_pixels.get();
-}
-
-void ObjectTracker::track_eye(Eye& eye, const Image& image, const render::Camera& camera,
-                              double dt_s) {
-  const auto& k = camera.intrinsics;
-  const cv::Matx33d ego =
-      compensate_ego_motion_ && !eye.previous.empty()
-          ? vision::rotation_homography(eye.previous_rotation, camera.pose_root.linear(), k.fx,
-                                        k.fy, k.cx, k.cy)
-          : cv::Matx33d::eye();
-  if (eye.tracker.tracking()) {
-    cv::Matx33d shift = ego;  // the head's own turn
-    if (predict_windows_ && kalman_.initialised() && lost_ < reset_after_lost_ && dt_s > 0)
-      shift = vision::predicted_image_shift(camera, kalman_.position(), kalman_.velocity(),
-                                            dt_s) *
-              ego;  // and the object's own motion
-    eye.tracker.shift_window(shift);
-  }
-  eye.track = eye.tracker.tracking() ? eye.tracker.track(image.data) : vision::ColourTrack{};
-  if (!eye.track.tracked && !eye.tracker.tracking() && eye.track.window.area() > 0) ++losses_;
-  if (eye.track.tracked) {
-    // Motion consistency: a static thing of the object's colour is not the object.
-    const cv::Vec3d a = ego * cv::Vec3d(eye.anchor_px.x(), eye.anchor_px.y(), 1.0);
-    const Eigen::Vector2d anchor(a[0] / a[2], a[1] / a[2]);
-    if ((eye.track.centre_px - anchor).norm() > still_px_ ||
-        std::abs(eye.track.radius_px - eye.anchor_radius_px) > still_px_) {
-      eye.anchor_px = eye.track.centre_px;
-      eye.anchor_radius_px = eye.track.radius_px;
-      eye.still_frames = 0;
-    } else if (++eye.still_frames >= still_frames_lost_) {
-      eye.tracker.lose();
-      eye.track.tracked = false;
-      ++still_drops_;
-    } else {
-      eye.anchor_px = anchor;
-    }
-  }
-  if (!eye.track.tracked && !eye.previous.empty()) {
-    const vision::MotionBlob m = vision::detect_motion(eye.previous, image.data, motion_, ego);
-    const double image_px = static_cast<double>(image.data.total());
-    if (m.found && m.area_px <= max_motion_fraction_ * image_px) {
-      if (eye.tracker.acquire(image.data, m.mask)) {
-        ++acquisitions_;
-        eye.track = eye.tracker.track(image.data);
-        eye.anchor_px = eye.track.centre_px;
-        eye.anchor_radius_px = eye.track.radius_px;
-        eye.still_frames = 0;
-      } else {
-        ++refused_;
-        if (eye.tracker.last_refusal() == vision::Refusal::kOwnColour) ++own_colour_refused_;
-      }
-    } else if (m.found) {
-      ++refused_;
-    }
-  }
-  image.data.copyTo(eye.previous);
-  eye.previous_rotation = camera.pose_root.linear();
-}
-
-void ObjectTracker::drop_unfixed(bool fixed) {
-  for (Eye& eye : eyes_) {
-    eye.unfixed_frames = fixed || !eye.tracker.tracking() ? 0 : eye.unfixed_frames + 1;
-    if (eye.unfixed_frames >= unfixed_frames_lost_) {
-      eye.tracker.lose();
-      eye.unfixed_frames = 0;
-      ++unfixed_drops_;
-    }
-  }
-}
-
-void ObjectTracker::lose(double dt_s) {
-  stimulus_->present = false;
-  ++lost_;
-  if (lost_ >= reset_after_lost_)
-    kalman_.reset();
-  else if (dt_s > 0)
-    kalman_.predict(dt_s);
-  stimulus_->position = kalman_.position();
-  stimulus_->velocity = kalman_.velocity();
 }
 
 const Eigen::VectorXd& ObjectTracker::joints_at(double time_s) {
@@ -334,97 +257,30 @@ void ObjectTracker::step(NodeContext& ctx) {
   const double dt = last_frame_ == 0 ? 0.0 : left_->time_s - last_time_s_;
   last_frame_ = left_->frame;
   last_time_s_ = left_->time_s;
-  ++frames_;
 
   // The cameras where the believed head and eye kinematics put them when the images were
   // rendered (the head may be moving).
-  const std::vector<render::Camera> cams = eyes_believed_.pose(joints_at(left_->time_s));
-  track_eye(eyes_[0], *left_, cams[0], dt);
-  track_eye(eyes_[1], *right_, cams[1], dt);
+  const std::vector<render::Camera> posed = eyes_believed_.pose(joints_at(left_->time_s));
+  const std::array<render::Camera, 2> cams{posed[0], posed[1]};
+  const vision::StereoFix fix =
+      tracker_.update(left_->data, right_->data, cams, dt, ctx.period_s());
 
-  const auto pixels = [](const vision::ColourTrack& t) {
+  const auto pixels = [&](const vision::ColourTrack& t) {
     if (!t.tracked) return StereoPixels::Eye{};
-    return StereoPixels::Eye{true, t.centre_px, t.centre_px, t.object_px};
+    return StereoPixels::Eye{fix.fixed, t.centre_px, t.centre_px, t.object_px};
   };
-  pixels_->left = pixels(eyes_[0].track);
-  pixels_->right = pixels(eyes_[1].track);
+  pixels_->left = pixels(fix.tracks[0]);
+  pixels_->right = pixels(fix.tracks[1]);
   pixels_->frame = left_->frame;
-
-  const vision::ColourTrack& l = eyes_[0].track;
-  const vision::ColourTrack& r = eyes_[1].track;
-  vision::StereoObject object;
-  // A track cut by the image border has an unknown centre; two tracks of very different areas
-  // are not the same object (or one of them is mostly hidden): no fix, but no loss either.
-  const auto at_border = [](const vision::ColourTrack& t, const Image& image) {
-    const Eigen::Vector2d& c = t.centre_px;
-    return c.x() - t.radius_px < 1 || c.y() - t.radius_px < 1 ||
-           c.x() + t.radius_px > image.data.cols - 2 || c.y() + t.radius_px > image.data.rows - 2;
-  };
-  const bool comparable =
-      l.tracked && r.tracked &&
-      std::max(l.object_px, r.object_px) <= kMaxAreaRatio * std::min(l.object_px, r.object_px);
-  const bool border = l.tracked && r.tracked && (at_border(l, *left_) || at_border(r, *right_));
-  if (l.tracked && r.tracked && (border || !comparable)) {
-    ++partial_;
-    partial_border_ += border ? 1 : 0;
-    // Unlike areas, neither cut by the border: one eye holds something else (e.g. clutter
-    // its tracker slid onto when the last object went). The smaller track is dropped and its
-    // eye re-acquires by motion; the object, if that was it, is moving and is found again.
-    if (!border) {
-      eyes_[l.object_px < r.object_px ? 0 : 1].tracker.lose();
-      ++area_drops_;
-    }
-  } else if (l.tracked && r.tracked) {
-    object = vision::triangulate_object(cams[0], l.centre_px, l.radius_px, cams[1], r.centre_px,
-                                        r.radius_px);
-    const bool same_colours =
-        vision::colour_distance(eyes_[0].tracker, eyes_[1].tracker) <= max_colour_distance_;
-    if (!same_colours) ++colour_mismatches_;
-    if (!object.centre.valid || object.centre.reprojection_error_px > max_reprojection_px_ ||
-        !same_colours) {
-      object.centre.valid = false;
-      if (++inconsistent_ >= inconsistent_frames_lost_) {  // re-acquire both by motion
-        for (Eye& eye : eyes_) eye.tracker.lose();
-        ++inconsistent_drops_;
-        inconsistent_ = 0;
-      }
-    } else if ((object.centre.point -
-                0.5 * (cams[0].pose_root.translation() + cams[1].pose_root.translation()))
-                   .norm() > max_distance_) {
-      object.centre.valid = false;  // the backdrop, not an object near the body
-      for (Eye& eye : eyes_) eye.tracker.lose();
-      ++far_drops_;
-      inconsistent_ = 0;
-    } else if (lost_ == 0 && kalman_.initialised() && dt > 0.0 &&
-               (object.centre.point - (kalman_.position() + dt * kalman_.velocity())).norm() >
-                   max_jump_) {
-      object.centre.valid = false;  // not the object of the previous frame
-      for (Eye& eye : eyes_) eye.tracker.lose();
-      ++jump_drops_;
-      inconsistent_ = 0;
-    } else {
-      inconsistent_ = 0;
-    }
-  }
-  drop_unfixed(object.centre.valid);
-  if (!object.centre.valid) {
-    pixels_->left.found = pixels_->right.found = false;
-    lose(dt);
-  } else {
-    if (dt <= 0.0 || lost_ >= reset_after_lost_) kalman_.reset();
-    kalman_.update(object.centre.point, dt > 0.0 ? dt : ctx.period_s());
-    lost_ = 0;
-    ++tracked_;
-    reprojection_sum_ += object.centre.reprojection_error_px;
-    stimulus_->present = true;
-    stimulus_->position = kalman_.position();
-    stimulus_->velocity = kalman_.velocity();
-    stimulus_->radius = std::clamp(object.radius_m, radius_min_, radius_max_);
-  }
+  stimulus_->present = fix.fixed;
+  stimulus_->position = fix.position;
+  stimulus_->velocity = fix.velocity;
+  if (fix.fixed)
+    stimulus_->radius = std::clamp(fix.radius_m, config_.radius_min, config_.radius_max);
   if (truth_) score_against_truth(cams);
 }
 
-void ObjectTracker::score_against_truth(const std::vector<render::Camera>& cameras) {
+void ObjectTracker::score_against_truth(const std::array<render::Camera, 2>& cameras) {
   if (!truth_->present) {
     if (stimulus_->present) ++false_fixes_;
     return;
@@ -446,25 +302,26 @@ void ObjectTracker::finish(NodeContext& ctx) {
   const auto share = [](std::int64_t n, std::int64_t of) {
     return of ? static_cast<double>(n) / static_cast<double>(of) : 0.0;
   };
-  ctx.report_metric("frames", frames_);
-  ctx.report_metric("frames_tracked", tracked_);
-  ctx.report_metric("tracked_share", share(tracked_, frames_));
-  ctx.report_metric("acquisitions", acquisitions_);
-  ctx.report_metric("losses", losses_);
-  ctx.report_metric("inconsistent_drops", inconsistent_drops_);
-  ctx.report_metric("unfixed_drops", unfixed_drops_);
-  ctx.report_metric("area_drops", area_drops_);
-  ctx.report_metric("partial_frames", partial_);
-  ctx.report_metric("partial_border_frames", partial_border_);
-  ctx.report_metric("still_drops", still_drops_);
-  ctx.report_metric("far_drops", far_drops_);
-  ctx.report_metric("jump_drops", jump_drops_);
-  ctx.report_metric("colour_mismatches", colour_mismatches_);
-  ctx.report_metric("refused_acquisitions", refused_);
-  ctx.report_metric("own_colour_refusals", own_colour_refused_);
+  const vision::StereoTrackerCounts& n = tracker_.counts();
+  ctx.report_metric("frames", n.frames);
+  ctx.report_metric("frames_tracked", n.fixes);
+  ctx.report_metric("tracked_share", share(n.fixes, n.frames));
+  ctx.report_metric("acquisitions", n.acquisitions);
+  ctx.report_metric("losses", n.losses);
+  ctx.report_metric("inconsistent_drops", n.inconsistent_drops);
+  ctx.report_metric("unfixed_drops", n.unfixed_drops);
+  ctx.report_metric("area_drops", n.area_drops);
+  ctx.report_metric("partial_frames", n.partial);
+  ctx.report_metric("partial_border_frames", n.partial_border);
+  ctx.report_metric("still_drops", n.still_drops);
+  ctx.report_metric("far_drops", n.far_drops);
+  ctx.report_metric("jump_drops", n.jump_drops);
+  ctx.report_metric("colour_mismatches", n.colour_mismatches);
+  ctx.report_metric("refused_acquisitions", n.refused);
+  ctx.report_metric("own_colour_refusals", n.own_colour_refused);
   ctx.report_metric("pose_time_offset_max_s", pose_time_offset_max_s_);
   ctx.report_metric("reprojection_mean_px",
-                    tracked_ ? reprojection_sum_ / static_cast<double>(tracked_) : 0.0);
+                    n.fixes ? n.reprojection_sum_px / static_cast<double>(n.fixes) : 0.0);
   if (!truth_) return;
   ctx.report_metric("frames_with_object", truth_frames_);
   ctx.report_metric("object_tracked_share", share(truth_tracked_, truth_frames_));

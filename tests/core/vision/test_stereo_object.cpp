@@ -14,58 +14,16 @@
 #include "somasim/vision/kalman_tracker.hpp"
 #include "somasim/vision/motion_detection.hpp"
 #include "somasim/vision/stereo_object.hpp"
+#include "stereo_scene.hpp"
 
 namespace render = somasim::render;
 namespace vision = somasim::vision;
 
 namespace {
 
-// Two eyes 68 mm apart, verged on a point 0.4 m ahead, looking along root +x.
-render::Camera eye(double y) {
-  render::Camera c;
-  c.intrinsics = {320, 240, 257.34, 257.34, 159.5, 119.5, 0.04, 100};
-  const Eigen::Vector3d origin(0, y, 0.3), target(0.4, 0, 0.25);
-  const Eigen::Vector3d z = (target - origin).normalized();
-  const Eigen::Vector3d x = z.cross(Eigen::Vector3d::UnitZ()).normalized();
-  c.pose_root.linear() << x, z.cross(x), z;
-  c.pose_root.translation() = origin;
-  return c;
-}
-
-const render::Camera kEyes[2] = {eye(0.034), eye(-0.034)};
-
-cv::Mat backdrop() {
-  cv::Mat image(240, 320, CV_8UC3, cv::Scalar(110, 110, 110));
-  cv::RNG rng(11);
-  for (int i = 0; i < 50; ++i) {
-    // One draw per statement: the order of evaluation of function arguments is unspecified.
-    const int hue = rng.uniform(25, 155);
-    const int saturation = rng.uniform(0, 255);
-    const int value = rng.uniform(40, 255);
-    cv::Mat hsv(1, 1, CV_8UC3, cv::Scalar(hue, saturation, value));
-    cv::Mat rgb;
-    cv::cvtColor(hsv, rgb, cv::COLOR_HSV2RGB);
-    const int x = rng.uniform(0, 320);
-    const int y = rng.uniform(0, 240);
-    const int w = rng.uniform(8, 50);
-    const int h = rng.uniform(8, 50);
-    cv::rectangle(image, cv::Rect(x, y, w, h), cv::Scalar(rgb.at<cv::Vec3b>(0, 0)), cv::FILLED);
-  }
-  return image;
-}
-
-// The sphere (centre p [m], radius r [m]) as camera `c` sees it: a disc of radius f r / z.
-cv::Mat view(const cv::Mat& bg, const render::Camera& c, const Eigen::Vector3d& p, double r) {
-  cv::Mat image = bg.clone();
-  const Eigen::Vector2d uv = *c.project(p);
-  const double radius_px = c.intrinsics.fx * r / c.to_camera(p).z();
-  cv::circle(image,
-             cv::Point(static_cast<int>(std::lround(uv.x() * 16)),
-                       static_cast<int>(std::lround(uv.y() * 16))),
-             static_cast<int>(std::lround(radius_px * 16)), cv::Scalar(210, 35, 30), cv::FILLED,
-             cv::LINE_AA, 4);
-  return image;
-}
+using vision::test::backdrop;
+using vision::test::view;
+const render::Camera kEyes[2] = {vision::test::kLeftEye, vision::test::kRightEye};
 
 }  // namespace
 
