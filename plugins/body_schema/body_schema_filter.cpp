@@ -56,27 +56,8 @@ void BodySchemaFilter::Config::visit(V& v) {
       .at_least(0.0)
       .unit("deg")
       .doc("σ of a jump (with jump_fraction > 0)");
-  v.field("kde_sigma_deg", kde_sigma_deg).unit("deg").doc("σ_KDE of the estimate");
-  v.field("kde_alpha", kde_alpha).at_least(0.0).doc("α of the estimate's KDE");
-  v.field("likelihood", likelihood)
-      .doc(
-          "silhouette: Jaccard index of colour-segmented and rendered hand masks; edges: "
-          "mean distance-transform value under the rendered contours");
-  v.field("silhouette_form", silhouette_form)
-      .doc("L = J (paper) or L = J^silhouette_power, per camera, multiplied over cameras");
-  v.field("silhouette_power", silhouette_power).at_least(0.0).doc("k of L = J^k");
-  v.field("edge_lambda", edge_lambda)
-      .unit("1/px")
-      .at_least(0.0)
-      .doc("λ of L = exp(−λ d̄): 0.01 in the paper's text, 25/255 = 0.098 in its code");
-  v.field("edge_orientation_weight", edge_orientation_weight)
-      .unit("px")
-      .range(0.0, 255.0)
-      .doc(
-          "edges: oriented chamfer - each contour pixel also costs this much times the angle "
-          "between its normal and the nearest observed edge's normal over 90 deg (a "
-          "perpendicular edge counts as this many pixels farther); 0: the paper's plain "
-          "chamfer distance");
+  v.block(kde);
+  v.block(scorer);
   v.field("canny", canny).size(2).doc("Canny thresholds");
   v.field("hand_hsv_low", hand_hsv_low)
       .size(3)
@@ -85,8 +66,6 @@ void BodySchemaFilter::Config::visit(V& v) {
   v.field("proxy_resolution", proxy_resolution)
       .range(3, 256)
       .doc("segments around the hypotheses' curved primitives (low-poly internal model)");
-  v.field("margin_px", margin_px).range(0, 1000).doc("ROI margin [px]");
-  v.field("contour_width", contour_width).range(1, 2).doc("edges: [px]");
   v.field("distribute", distribute)
       .doc(
           "mpi: under `mpirun -n K somasim run`, every rank renders and scores its share of the "
@@ -117,6 +96,14 @@ void BodySchemaFilter::Config::visit(V& v) {
       .map_as_text()
       .doc("the truth ('joint: deg, ...'), for the CSV's offset errors; empty = unknown");
   v.field("csv", csv).doc("per-frame CSV in the run folder ('' = none)");
+}
+
+void BodySchemaFilter::Config::validate(ConfigChecks& checks) const {
+  checks.require(!cameras.empty() && cameras.size() <= 2, cameras,
+                 fmt::format("expected 1 or 2 camera names, got {}", cameras.size()));
+  for (double m : compare_particles)
+    checks.require(m >= 1.0 && m == std::floor(m) && m <= 1.0e6, compare_particles,
+                   fmt::format("expected whole numbers of particles >= 1, got {}", m));
 }
 
 template <class V>
@@ -179,16 +166,8 @@ void BodySchemaFilter::configure_scorer(NodeContext& ctx) {
   } catch (const InputError& e) {
     config_error(ctx, config_, config_.links, e.what());
   }
-  body_schema::ScorerOptions options;
-  options.kind = config_.likelihood;
-  options.form = config_.silhouette_form;
-  options.power = config_.silhouette_power;
-  options.edge_lambda = config_.edge_lambda;
-  options.edge_orientation_weight = config_.edge_orientation_weight;
-  options.margin_px = config_.margin_px;
-  options.contour_width = config_.contour_width;
   scorer_ = std::make_unique<body_schema::HypothesisScorer>(
-      model_, arm, offset_dofs_, config_.render_threads, options, config_.backend);
+      model_, arm, offset_dofs_, config_.render_threads, config_.scorer, config_.backend);
 }
 
 void BodySchemaFilter::configure(NodeContext& ctx) {
@@ -197,9 +176,6 @@ void BodySchemaFilter::configure(NodeContext& ctx) {
   model_ = robot::experiment_robot(ctx);
   configure_joints(ctx);
   cameras_ = config_.cameras;
-  if (cameras_.empty() || cameras_.size() > 2)
-    config_error(ctx, config_, config_.cameras,
-                 fmt::format("expected 1 or 2 camera names, got {}", cameras_.size()));
   for (const std::string& c : cameras_)
     if (model_->find_camera(c) < 0)
       config_error(ctx, config_, config_.cameras,
@@ -207,9 +183,7 @@ void BodySchemaFilter::configure(NodeContext& ctx) {
   if (cameras_.size() == 2 && !ports_.right_eye_rgb.wired())
     config_error(ctx, config_, config_.cameras, "two cameras need the input right_eye_rgb wired");
 
-  body_schema::KdeOptions kde{config_.kde_sigma_deg, config_.kde_alpha};
-  if (!(kde.sigma_deg > 0.0))
-    config_error(ctx, config_, config_.kde_sigma_deg, "expected a value > 0");
+  const body_schema::KdeOptions& kde = config_.kde;
   body_schema::NoiseSchedule schedule = body_schema::noise_schedule_preset(config_.schedule);
   if (const double floor = config_.sigma_floor_deg; floor > 0.0) {
     if (floor > schedule.max_sigma_deg)
@@ -241,12 +215,7 @@ void BodySchemaFilter::configure(NodeContext& ctx) {
   eye_hand_ = std::make_unique<body_schema::EyeHand>(model_, cameras_[0], config_.palm_frame,
                                                      model_->link(chain->base_link).name);
   std::vector<int> sizes;
-  for (double m : config_.compare_particles) {
-    if (!(m >= 1.0) || m != std::floor(m) || m > 1.0e6)
-      config_error(ctx, config_, config_.compare_particles,
-                   fmt::format("expected whole numbers of particles >= 1, got {}", m));
-    sizes.push_back(static_cast<int>(m));
-  }
+  for (double m : config_.compare_particles) sizes.push_back(static_cast<int>(m));  // validated
   if (!sizes.empty())
     comparison_ =
         std::make_unique<ParticleComparison>(sizes, static_cast<int>(offset_dofs_.size()), schedule,
@@ -274,7 +243,7 @@ void BodySchemaFilter::configure(NodeContext& ctx) {
       columns_.emplace_back(c);
   ctx.log().info("body_schema_filter: M = {}, {} joints, links {}, {} likelihood, schedule {}",
                  filter_->size(), joint_names_.size(), fmt::join(link_names_, " "),
-                 enum_name(config_.likelihood), config_.schedule);
+                 enum_name(config_.scorer.kind), config_.schedule);
 }
 
 void BodySchemaFilter::configure_ranks(NodeContext& ctx, const std::vector<int>& compared_sizes) {

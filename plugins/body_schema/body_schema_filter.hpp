@@ -59,19 +59,14 @@ class BodySchemaFilter : public Plugin {
     double sigma_floor_deg = 0.0;  // [deg]
     double jump_fraction = 0.0;
     double jump_sigma_deg = 1.5;  // [deg]
-    double kde_sigma_deg = 1.0;   // [deg]
-    double kde_alpha = 500.0;
-    body_schema::LikelihoodKind likelihood = body_schema::LikelihoodKind::kSilhouette;
-    body_schema::SilhouetteForm silhouette_form = body_schema::SilhouetteForm::kJaccard;
-    double silhouette_power = 1.0;
-    double edge_lambda = 0.01;             // [1/px]
-    double edge_orientation_weight = 0.0;  // [px]
+    body_schema::KdeOptions kde;  // kde_sigma_deg, kde_alpha
+    // likelihood, silhouette_form, silhouette_power, edge_lambda, edge_orientation_weight,
+    // margin_px, contour_width
+    body_schema::ScorerOptions scorer;
     std::vector<double> canny{65, 195};
     std::vector<double> hand_hsv_low{0, 40, 60};
     std::vector<double> hand_hsv_high{30, 255, 255};
     int proxy_resolution = 8;
-    int margin_px = 8;
-    int contour_width = 1;
     ParticleDistribution distribute = ParticleDistribution::kNone;
     int render_threads = 2;
     render::RenderBackend backend = render::RenderBackend::kOsmesa;
@@ -84,6 +79,7 @@ class BodySchemaFilter : public Plugin {
     OutputFile csv{"body_schema_filter.csv", {}};
     template <class V>
     void visit(V& v);
+    void validate(ConfigChecks& checks) const;  // cross-field checks
   };
   struct Ports {
     In<JointState> joint_state;

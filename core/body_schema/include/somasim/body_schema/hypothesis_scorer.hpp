@@ -60,6 +60,34 @@ struct ScorerOptions {
   /// edges: cost of a perpendicular nearest edge [px] (oriented chamfer, oriented_edges.hpp,
   /// on CV_8UC2 observations from oriented_edge_map); 0: the plain chamfer distance.
   double edge_orientation_weight = 0.0;
+
+  /// The options as configuration fields (somasim/config.hpp), for plugins that embed them:
+  /// likelihood, silhouette_form, silhouette_power, edge_lambda, edge_orientation_weight,
+  /// margin_px, contour_width.
+  template <class V>
+  void visit(V& v) {
+    v.field("likelihood", kind)
+        .doc(
+            "silhouette: Jaccard index of colour-segmented and rendered hand masks; edges: "
+            "mean distance-transform value under the rendered contours");
+    v.field("silhouette_form", form)
+        .doc("L = J (paper) or L = J^silhouette_power, per camera, multiplied over cameras");
+    v.field("silhouette_power", power).at_least(0.0).doc("k of L = J^k");
+    v.field("edge_lambda", edge_lambda)
+        .unit("1/px")
+        .at_least(0.0)
+        .doc("λ of L = exp(−λ d̄): 0.01 in the paper's text, 25/255 = 0.098 in its code");
+    v.field("edge_orientation_weight", edge_orientation_weight)
+        .unit("px")
+        .range(0.0, 255.0)
+        .doc(
+            "edges: oriented chamfer - each contour pixel also costs this much times the angle "
+            "between its normal and the nearest observed edge's normal over 90 deg (a "
+            "perpendicular edge counts as this many pixels farther); 0: the paper's plain "
+            "chamfer distance");
+    v.field("margin_px", margin_px).range(0, 1000).doc("ROI margin [px]");
+    v.field("contour_width", contour_width).range(1, 2).doc("edges: [px]");
+  }
 };
 
 /// Timing of the last score() call [ms].

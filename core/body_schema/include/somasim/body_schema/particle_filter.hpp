@@ -21,8 +21,15 @@ namespace somasim::body_schema {
 /// KDE smoothing of the estimate: ω'_i = ω_i + α (1/M) Σ_m ω_m K(β_i, β_m) with the Gaussian
 /// kernel K = exp(−½ ‖β_i − β_m‖² / σ²) / |Σ|, Σ = σ² I (σ in degrees; paper: σ = 1°, α = 500).
 struct KdeOptions {
-  double sigma_deg = 1.0;
+  double sigma_deg = 1.0;  ///< σ_KDE [deg]
   double alpha = 500.0;
+
+  /// The options as configuration fields (somasim/config.hpp): kde_sigma_deg, kde_alpha.
+  template <class V>
+  void visit(V& v) {
+    v.field("kde_sigma_deg", sigma_deg).unit("deg").at_least(1e-9).doc("σ_KDE of the estimate");
+    v.field("kde_alpha", alpha).at_least(0.0).doc("α of the estimate's KDE");
+  }
 };
 
 /// What one update() saw and did.

@@ -1,0 +1,102 @@
+// The body_schema plugins' configuration errors through the public harness: each names the
+// node, the key and what was expected (cross-field checks in the configs' validate(), checks
+// against the robot model at configure). Every case fails before the filter renders anything.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "somasim/error.hpp"
+#include "somasim/testing/harness.hpp"
+
+using somasim::testing::Harness;
+
+namespace {
+
+const std::string kRobot = SOMASIM_SOURCE_DIR "/assets/robots/icub_v1.yaml";
+
+std::string filter_graph(const std::string& params) {
+  return "seed: 1\nbase_rate_hz: 10\nrobots: {icub: " + kRobot +
+         "}\nnodes:\n  filter:\n    plugin: body_schema_filter\n    params: {" + params +
+         "}\n    inputs: {joint_state: harness.q, left_eye_rgb: harness.left, right_eye_rgb: "
+         "harness.right}\n";
+}
+
+std::string reach_graph(const std::string& params) {
+  return "seed: 1\nbase_rate_hz: 10\nrobots: {icub: " + kRobot +
+         "}\nnodes:\n  reach:\n    plugin: reach_controller\n    params: {" +
+         (params.find("targets") == std::string::npos  // one valid target unless given
+              ? "targets: [0.02, 0.01, 0.2, 36, -62, -106]" + (params.empty() ? "" : ", " + params)
+              : params) +
+         "}\n    inputs: {joint_state: harness.q, estimate: harness.estimate, true_link_poses: "
+         "harness.poses}\n";
+}
+
+// The message of the InputError that building `graph` throws ("" when none).
+std::string error_of(const std::string& graph) {
+  try {
+    Harness h(graph);
+  } catch (const somasim::InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(BodySchemaFilterConfig, CrossFieldChecksAreLocated) {
+  EXPECT_EQ(error_of(filter_graph("cameras: []")),
+            "<inline>:7:23: node 'filter', key 'params.cameras': expected 1 or 2 camera names, "
+            "got 0");
+  EXPECT_EQ(error_of(filter_graph("compare_particles: [50, 2.5]")),
+            "<inline>:7:33: node 'filter', key 'params.compare_particles': expected whole numbers "
+            "of particles >= 1, got 2.5");
+  EXPECT_EQ(error_of(filter_graph("compare_particles: [2000000]")),
+            "<inline>:7:33: node 'filter', key 'params.compare_particles': expected whole numbers "
+            "of particles >= 1, got 2000000");
+}
+
+TEST(BodySchemaFilterConfig, EmbeddedBlocksAreCheckedByTheirOwnFields) {
+  EXPECT_NE(error_of(filter_graph("kde_sigma_deg: 0"))
+                .find("key 'params.kde_sigma_deg': value 0 "
+                      "is out of range"),
+            std::string::npos);
+  EXPECT_NE(error_of(filter_graph("contour_width: 3"))
+                .find("key 'params.contour_width': value 3 "
+                      "is out of range"),
+            std::string::npos);
+  EXPECT_NE(
+      error_of(filter_graph("likelihood: edge"))
+          .find("key 'params.likelihood': expected a string: one of silhouette, edges, got 'edge'"),
+      std::string::npos);
+}
+
+TEST(BodySchemaFilterConfig, ChecksAgainstTheRobotModel) {
+  EXPECT_EQ(error_of(filter_graph("joints: [r_elbow, l_elbow]")),
+            "<inline>:7:22: node 'filter', key 'params.joints': joint 'l_elbow' is not in the arm "
+            "chain 'right_arm' (joints: torso_pitch, torso_roll, torso_yaw, r_shoulder_pitch, "
+            "r_shoulder_roll, r_shoulder_yaw, "
+            "r_elbow, r_wrist_prosup, r_wrist_pitch, r_wrist_yaw)");
+  EXPECT_NE(error_of(filter_graph("cameras: [left_eye, nose]"))
+                .find("camera 'nose' is not in "
+                      "robot 'icub_v1'"),
+            std::string::npos);
+  EXPECT_NE(error_of(filter_graph("true_offsets_deg: 'r_elbw: 5'"))
+                .find("key "
+                      "'params.true_offsets_"
+                      "deg'"),
+            std::string::npos);
+  EXPECT_NE(error_of(filter_graph("palm_frame: r_paw")).find("key 'params.palm_frame'"),
+            std::string::npos);
+}
+
+TEST(ReachControllerConfig, TargetsAndStartDistance) {
+  EXPECT_NE(error_of(reach_graph("targets: [0.1, 0.2, 0.3]")).find("key 'params.targets'"),
+            std::string::npos);
+  EXPECT_EQ(error_of(reach_graph("")), "");
+  EXPECT_NE(error_of(reach_graph("start_distance: [0.05, 0.01]"))
+                .find("key "
+                      "'params.start_distance'"),
+            std::string::npos);
+  EXPECT_NE(error_of(reach_graph("palm_frame: r_paw")).find("key 'params.palm_frame'"),
+            std::string::npos);
+}
