@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "somasim/numeric.hpp"
 #include "somasim/robot/camera_view.hpp"
 
 namespace somasim::plugins {
@@ -13,6 +14,7 @@ namespace {
 // Spacing of the path points tested against the images [m]; the body is tested at the first,
 // the middle and the last of them (the costly part of the test).
 constexpr double kImageStep = 0.02;
+constexpr int kMaxImageSteps = 100000;  // 2 km of path
 }  // namespace
 
 PresentationView::PresentationView(const robot::RobotModel& model, std::vector<int> cameras,
@@ -26,7 +28,7 @@ std::optional<std::string> PresentationView::unseen(
   double checked = 0.0;  // length of the path that must be seen [m]
   if (motion == PresentationMotion::kApproach) checked = std::max(0.0, length - until_);
   if (motion == PresentationMotion::kReceding) checked = length;
-  const int steps = static_cast<int>(std::ceil(checked / kImageStep));
+  const int steps = to_integer_clamped<int>(checked / kImageStep, 0, kMaxImageSteps, Rounding::kUp);
   const Eigen::Vector3d direction =
       length > 0 ? Eigen::Vector3d((end - start) / length) : Eigen::Vector3d::Zero();
   const auto point = [&](int i) {

@@ -11,6 +11,7 @@
 #include "somasim/diagnostics.hpp"
 #include "somasim/error.hpp"
 #include "somasim/experiment.hpp"
+#include "somasim/numeric.hpp"
 #include "somasim/plugin_registry.hpp"
 #include "yaml_values.hpp"
 
@@ -271,6 +272,11 @@ class Loader {
       error(root["duration_s"] ? root["duration_s"] : root, "", "duration_s",
             fmt::format("duration_s × base_rate_hz is {:g} ticks; at most {:g} (2^53) can run",
                         ticks, kMaxTicks));
+    else if (std::floor(ticks + 1e-9) < 1.0)
+      error(root["duration_s"] ? root["duration_s"] : root, "", "duration_s",
+            fmt::format("duration_s × base_rate_hz is {:g} ticks; a run needs at least one tick "
+                        "(1 / base_rate_hz = {:g} s)",
+                        ticks, 1.0 / exp_.base_rate_hz));
   }
   static constexpr double kMaxTicks = 9007199254740992.0;  // 2^53
 
@@ -457,7 +463,7 @@ class Loader {
         ns.rate_hz = *v;
     }
     const double ratio = exp_.base_rate_hz / ns.rate_hz;
-    ns.period_ticks = static_cast<int>(std::lround(ratio));
+    ns.period_ticks = to_integer<int>(ratio).value_or(0);
     if (ns.period_ticks < 1 || std::abs(ratio - ns.period_ticks) > 1e-9 * ratio)
       error(node["rate_hz"], name, "rate_hz",
             fmt::format("rate {} Hz does not divide the base rate {} Hz (base_rate_hz / rate_hz "

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "somasim/numeric.hpp"
+
 namespace somasim::robot {
 
 bool point_clear_of_robot(const RobotModel& model, const std::vector<Eigen::Isometry3d>& link_poses,
@@ -63,8 +65,10 @@ bool segment_clear_of_robot(const RobotModel& model,
                             const Eigen::Vector3d& from, const Eigen::Vector3d& to, double margin,
                             std::span<const int> ignored_links) {
   if (link_poses.size() != static_cast<std::size_t>(model.num_links())) return true;
-  constexpr double kStep = 0.002;  // [m]
-  const int samples = 1 + static_cast<int>(std::ceil((to - from).norm() / kStep));
+  constexpr double kStep = 0.002;       // [m]
+  constexpr int kMaxSamples = 1000000;  // 2 km of path
+  const int samples =
+      1 + to_integer_clamped<int>((to - from).norm() / kStep, 0, kMaxSamples, Rounding::kUp);
   for (int l = 0; l < model.num_links(); ++l) {
     if (std::find(ignored_links.begin(), ignored_links.end(), l) != ignored_links.end()) continue;
     const Eigen::Isometry3d link_from_root = link_poses[static_cast<std::size_t>(l)].inverse();
@@ -92,7 +96,7 @@ std::vector<CoverSphere> sphere_cover(ObjectShape shape, const Eigen::Vector3d& 
       break;
     case ObjectShape::kCylinder: {
       const double r = size.x(), half = size.y();
-      const int n = std::max(1, static_cast<int>(std::ceil(2.0 * half / r)));
+      const int n = to_integer_clamped<int>(2.0 * half / r, 1, 10000, Rounding::kUp);
       const double piece = 2.0 * half / n;  // length each sphere holds
       for (int i = 0; i < n; ++i)
         out.push_back(

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "somasim/error.hpp"
+#include "somasim/numeric.hpp"
 #include "somasim/units.hpp"
 
 namespace somasim::skin {
@@ -27,9 +28,13 @@ double patch_param_or(const robot::SkinPatch& patch, const std::string& key, dou
   return it == patch.params.end() ? fallback : it->second;
 }
 
-// Number of grid points exactly `spacing` apart that fit in `extent` (at least 1).
+constexpr double kMaxTaxels = 5e6;  // per patch
+
+// Number of grid points exactly `spacing` apart that fit in `extent` (at least 1; counts above
+// kMaxTaxels are held at kMaxTaxels + 1, which the patch's taxel count refuses).
 int points_along(double extent, double spacing) {
-  return 1 + static_cast<int>(std::floor(extent / spacing + 1e-9));
+  return 1 + to_integer_clamped<int>(extent / spacing + 1e-9, 0, static_cast<int>(kMaxTaxels),
+                                     Rounding::kDown);
 }
 
 // Offset of point i of n, `spacing` apart, centred on 0.
@@ -61,14 +66,13 @@ void group_grid(SkinLayout& layout, int n_around, int n_along, int group_size) {
 SkinLayout generate_layout(const robot::SkinPatch& patch, const LayoutOptions& options) {
   const std::string who = "skin patch '" + patch.body_part + "'";
   const double spacing = options.spacing > 0 ? options.spacing : patch_param(patch, "spacing");
-  const int group_size =
-      options.group_size > 0
-          ? options.group_size
-          : static_cast<int>(std::lround(patch_param_or(patch, "group_size", 1.0)));
+  const double group_value = options.group_size > 0 ? static_cast<double>(options.group_size)
+                                                    : patch_param_or(patch, "group_size", 1.0);
+  const int group_size = to_integer<int>(group_value).value_or(0);
   if (!(spacing > 0) || !std::isfinite(spacing))
     throw InputError(fmt::format("{}: spacing {} m; expected a spacing > 0 [m]", who, spacing));
   if (group_size < 1)
-    throw InputError(fmt::format("{}: group_size {}; expected an integer >= 1", who, group_size));
+    throw InputError(fmt::format("{}: group_size {}; expected an integer >= 1", who, group_value));
 
   SkinLayout layout;
   layout.body_part = patch.body_part;
@@ -77,9 +81,11 @@ SkinLayout generate_layout(const robot::SkinPatch& patch, const LayoutOptions& o
   int n_around = 0, n_along = 0;
   const auto reserve = [&] {
     const double n = double(n_around) * n_along;
-    if (n > 5e6)
-      throw InputError(
-          fmt::format("{}: spacing {} m gives {} taxels; expected at most 5e6", who, spacing, n));
+    if (n > kMaxTaxels) {
+      const bool counted = n_around <= kMaxTaxels && n_along <= kMaxTaxels;  // not held
+      throw InputError(fmt::format("{}: spacing {} m gives {} taxels; expected at most 5e6", who,
+                                   spacing, counted ? fmt::format("{}", n) : "more than 5e6"));
+    }
     layout.positions.reserve(static_cast<std::size_t>(n));
     layout.normals.reserve(static_cast<std::size_t>(n));
   };
@@ -96,8 +102,7 @@ SkinLayout generate_layout(const robot::SkinPatch& patch, const LayoutOptions& o
     const double arc = r * (a1 - a0);
     const bool full_turn = a1 - a0 > 2 * std::numbers::pi - 1e-9;
     // A full turn closes on itself: n columns spaced 2πr / n >= spacing apart.
-    n_around = full_turn ? std::max(1, static_cast<int>(std::floor(arc / spacing + 1e-9)))
-                         : points_along(arc, spacing);
+    n_around = full_turn ? std::max(1, points_along(arc, spacing) - 1) : points_along(arc, spacing);
     const double step = full_turn ? (a1 - a0) / n_around : spacing / r;
     n_along = points_along(z1 - z0, spacing);
     reserve();

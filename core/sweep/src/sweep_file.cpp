@@ -14,6 +14,7 @@
 
 #include "somasim/diagnostics.hpp"
 #include "somasim/error.hpp"
+#include "somasim/numeric.hpp"
 #include "somasim/yaml_text.hpp"
 #include "yaml_value_text.hpp"
 
@@ -356,9 +357,9 @@ class SweepReader {
     const double scale = std::max(std::abs(*from), std::abs(*to));
     for (double x : values) {
       if (std::abs(x) < 1e-12 * scale) x = 0.0;
-      a.values.push_back({integers ? fmt::format("{}", static_cast<std::int64_t>(std::llround(x)))
-                                   : fmt::format("{:.12g}", x),
-                          loc(v)});
+      const std::optional<std::int64_t> whole = to_integer<std::int64_t>(x);
+      a.values.push_back(
+          {integers && whole ? fmt::format("{}", *whole) : fmt::format("{:.12g}", x), loc(v)});
     }
   }
 

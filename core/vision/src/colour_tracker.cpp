@@ -11,6 +11,7 @@
 #include <opencv2/video/tracking.hpp>
 
 #include "somasim/error.hpp"
+#include "somasim/numeric.hpp"
 
 namespace somasim::vision {
 namespace {
@@ -164,8 +165,10 @@ void ColourTracker::shift_window(const cv::Matx33d& h) {
   const double cy = window_.y + 0.5 * window_.height;
   const cv::Vec3d c = h * cv::Vec3d(cx, cy, 1.0);
   if (std::abs(c[2]) < 1e-12) return;
-  window_.x = static_cast<int>(std::lround(c[0] / c[2] - 0.5 * window_.width));
-  window_.y = static_cast<int>(std::lround(c[1] / c[2] - 0.5 * window_.height));
+  // Far outside the image the window finds nothing either way; held where an int holds it.
+  constexpr int kFar = 1 << 20;  // [px]
+  window_.x = to_integer_clamped<int>(c[0] / c[2] - 0.5 * window_.width, -kFar, kFar);
+  window_.y = to_integer_clamped<int>(c[1] / c[2] - 0.5 * window_.height, -kFar, kFar);
 }
 
 cv::Mat ColourTracker::back_projection(const cv::Mat& rgb) const {

@@ -183,6 +183,28 @@ TEST_F(BadInputs, TickCountsThatOverflowAreRefused) {
             "at most 9.0072e+15 (2^53) can run\n");
 }
 
+TEST_F(BadInputs, RunsOfNoTickAreRefused) {
+  const CliResult r =
+      run("experiment: x\nduration_s: 1\nbase_rate_hz: 1e-9\nnodes:\n  c: {plugin: counter, "
+          "params: {start: 0}}\n");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(r.err,
+            "error: exp.yaml:2:13: key 'duration_s': duration_s × base_rate_hz is 1e-09 ticks; a "
+            "run needs at least one tick (1 / base_rate_hz = 1e+09 s)\n");
+}
+
+// Node rates whose period in base ticks is beyond any integer (or below one tick) are refused,
+// whatever their magnitude.
+TEST_F(BadInputs, NodeRatesFarOffTheBaseRateAreRefused) {
+  for (const char* rate : {"1e-300", "1e-12", "4.9e-324", "1e300", "2000"}) {
+    const CliResult r = run(std::string("experiment: x\nduration_s: 0.01\nnodes:\n  c: {plugin: "
+                                        "counter, rate_hz: ") +
+                            rate + ", params: {start: 0}}\n");
+    EXPECT_EQ(r.code, 2) << rate;
+    EXPECT_NE(r.err.find("key 'rate_hz'"), std::string::npos) << rate << ": " << r.err;
+  }
+}
+
 TEST_F(BadInputs, HugeFilesAreRefusedBeforeTheyAreRead) {
   write_file(dir / "huge.yaml", kCounter);
   fs::resize_file(dir / "huge.yaml", 3u << 20);  // 3 MiB (sparse: NUL bytes after the text)

@@ -243,3 +243,24 @@ TEST(SkinLayout, IcubPatchesGenerate) {
     EXPECT_EQ(l.link, patch.link);
   }
 }
+
+// Spacings down to the smallest double and group sizes of any magnitude: refused with an error
+// (too many taxels, no integer group size) on every surface, never a wrapped count.
+TEST(SkinLayout, ExtremeSpacingsAndGroupSizesAreRefused) {
+  for (double spacing = 1e-5; spacing > 0; spacing /= 1e7) {
+    for (const SkinPatch& p : {forearm(spacing), palm(spacing)}) {
+      try {
+        generate_layout(p);
+        ADD_FAILURE() << p.surface << " spacing " << spacing << ": no error";
+      } catch (const somasim::InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("expected at most 5e6"), std::string::npos)
+            << e.what();
+      }
+    }
+  }
+  for (const double g : {0.0, -3.0, 1e10, 1e300, -1e300, std::nan("")}) {
+    SkinPatch p = palm(0.01);
+    p.params["group_size"] = g;
+    EXPECT_THROW(generate_layout(p), somasim::InputError) << g;
+  }
+}
