@@ -49,7 +49,7 @@ PluginSpec BimanualReport::spec() {
 void BimanualReport::configure(NodeContext& ctx) {
   config_ = read_config<Config>(ctx);
   bind_ports(ctx, ports_);
-  model_ = robot::experiment_robot(ctx);
+  model_ = robot::experiment_robot(ctx, config_.robot);
   const auto tips = config_.fingertips;
   const auto palms = config_.palms;
   for (int k = 0; k < 2; ++k) {
@@ -64,7 +64,6 @@ void BimanualReport::configure(NodeContext& ctx) {
       config_error(ctx, config_, config_.palms, e.what());
     }
   }
-  palm_distance_ = config_.palm_distance;
   open_frames_ = config_.open_loop_frames;
   closed_frames_ = config_.closed_loop_frames;
   poses_ = &ports_.true_link_poses.get();
@@ -81,7 +80,8 @@ void BimanualReport::step(NodeContext&) {
     return (poses_->poses[static_cast<std::size_t>(f.link)] * f.pose).translation();
   };
   const double gap = (at(tips_[0]) - at(tips_[1])).norm() * 1e3;
-  const double palm = std::abs((at(palms_[0]) - at(palms_[1])).norm() - palm_distance_) * 1e3;
+  const double palm =
+      std::abs((at(palms_[0]) - at(palms_[1])).norm() - config_.palm_distance) * 1e3;
   (end_open ? gap_open_ : gap_closed_).push_back(gap);
   (end_open ? palm_open_ : palm_closed_).push_back(palm);
 }

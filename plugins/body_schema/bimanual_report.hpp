@@ -45,7 +45,6 @@ class BimanualReport : public Plugin {
   Ports ports_;
   std::shared_ptr<const robot::RobotModel> model_;
   robot::FrameRef tips_[2], palms_[2];
-  double palm_distance_ = 0.12;
   int open_frames_ = 120, closed_frames_ = 50;
   const LinkPoses* poses_ = nullptr;
   const ReachPhase* phase_ = nullptr;

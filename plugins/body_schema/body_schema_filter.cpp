@@ -99,6 +99,7 @@ void BodySchemaFilter::Config::visit(V& v) {
 }
 
 void BodySchemaFilter::Config::validate(ConfigChecks& checks) const {
+  checks.require(!joints.empty(), joints, "expected at least one joint");
   checks.require(!cameras.empty() && cameras.size() <= 2, cameras,
                  fmt::format("expected 1 or 2 camera names, got {}", cameras.size()));
   for (double m : compare_particles)
@@ -133,10 +134,7 @@ void BodySchemaFilter::configure_joints(NodeContext& ctx) {
   if (chain == nullptr)
     config_error(ctx, config_, config_.chain,
                  fmt::format("no chain '{}' in robot '{}'", chain_name, model_->name()));
-  joint_names_ = config_.joints;
-  if (joint_names_.empty())
-    config_error(ctx, config_, config_.joints, "expected at least one joint");
-  for (const std::string& j : joint_names_) {
+  for (const std::string& j : config_.joints) {
     if (std::find(chain->joints.begin(), chain->joints.end(), j) == chain->joints.end())
       config_error(ctx, config_, config_.joints,
                    fmt::format("joint '{}' is not in the arm chain '{}' (joints: {})", j,
@@ -159,10 +157,9 @@ void BodySchemaFilter::configure_joints(NodeContext& ctx) {
 }
 
 void BodySchemaFilter::configure_scorer(NodeContext& ctx) {
-  link_names_ = config_.links;
   body_schema::ArmHypothesisModel arm;
   try {
-    arm = body_schema::arm_hypothesis_model(*model_, link_names_, config_.proxy_resolution);
+    arm = body_schema::arm_hypothesis_model(*model_, config_.links, config_.proxy_resolution);
   } catch (const InputError& e) {
     config_error(ctx, config_, config_.links, e.what());
   }
@@ -173,14 +170,13 @@ void BodySchemaFilter::configure_scorer(NodeContext& ctx) {
 void BodySchemaFilter::configure(NodeContext& ctx) {
   config_ = read_config<Config>(ctx);
   bind_ports(ctx, ports_);
-  model_ = robot::experiment_robot(ctx);
+  model_ = robot::experiment_robot(ctx, config_.robot);
   configure_joints(ctx);
-  cameras_ = config_.cameras;
-  for (const std::string& c : cameras_)
+  for (const std::string& c : config_.cameras)
     if (model_->find_camera(c) < 0)
       config_error(ctx, config_, config_.cameras,
                    fmt::format("camera '{}' is not in robot '{}'", c, model_->name()));
-  if (cameras_.size() == 2 && !ports_.right_eye_rgb.wired())
+  if (config_.cameras.size() == 2 && !ports_.right_eye_rgb.wired())
     config_error(ctx, config_, config_.cameras, "two cameras need the input right_eye_rgb wired");
 
   const body_schema::KdeOptions& kde = config_.kde;
@@ -204,36 +200,33 @@ void BodySchemaFilter::configure(NodeContext& ctx) {
   const auto canny = config_.canny;
   canny_low_ = canny[0];
   canny_high_ = canny[1];
-  image_noise_ = config_.image_noise;
   stop_when_lost_ = config_.on_no_match == OnNoMatch::kStop;
-  reinflate_factor_ = config_.reinflate_factor;
   csv_name_ = config_.csv.name;
   if (!csv_name_.empty()) csv_path_ = config_.csv.path;
 
   configure_scorer(ctx);
   const robot::ChainInfo* chain = model_->find_chain(config_.chain);
-  eye_hand_ = std::make_unique<body_schema::EyeHand>(model_, cameras_[0], config_.palm_frame,
+  eye_hand_ = std::make_unique<body_schema::EyeHand>(model_, config_.cameras[0], config_.palm_frame,
                                                      model_->link(chain->base_link).name);
   std::vector<int> sizes;
   for (double m : config_.compare_particles) sizes.push_back(static_cast<int>(m));  // validated
   if (!sizes.empty())
     comparison_ =
         std::make_unique<ParticleComparison>(sizes, static_cast<int>(offset_dofs_.size()), schedule,
-                                             kde, ctx.rng()(), reinflate_factor_);
+                                             kde, ctx.rng()(), config_.reinflate_factor);
   main_record_.particles = filter_->size();
   configure_ranks(ctx, sizes);
-  evaluate_frame_ = config_.evaluate_frame;
 
   joint_state_ = &ports_.joint_state.get();
   images_.push_back(&ports_.left_eye_rgb.get());
-  if (cameras_.size() == 2) images_.push_back(ports_.right_eye_rgb.get());
+  if (config_.cameras.size() == 2) images_.push_back(ports_.right_eye_rgb.get());
   phase_ = ports_.phase.get();
   true_poses_ = ports_.true_link_poses.get();
   estimate_ = &ports_.estimate.get();
   estimate_->offsets = Eigen::VectorXd::Zero(model_->num_dofs());
 
   columns_ = {"time [s]", "movement", "frame"};
-  for (const std::string& j : joint_names_) columns_.push_back(fmt::format("beta_{} [deg]", j));
+  for (const std::string& j : config_.joints) columns_.push_back(fmt::format("beta_{} [deg]", j));
   for (const char* c : {"sigma_s [deg]", "best likelihood", "mean likelihood", "ess", "resampled"})
     columns_.emplace_back(c);
   if (true_offsets_.size() > 0) columns_.emplace_back("offset error max [deg]");
@@ -242,7 +235,7 @@ void BodySchemaFilter::configure(NodeContext& ctx) {
                           "nominal error [deg]"})
       columns_.emplace_back(c);
   ctx.log().info("body_schema_filter: M = {}, {} joints, links {}, {} likelihood, schedule {}",
-                 filter_->size(), joint_names_.size(), fmt::join(link_names_, " "),
+                 filter_->size(), config_.joints.size(), fmt::join(config_.links, " "),
                  enum_name(config_.scorer.kind), config_.schedule);
 }
 
@@ -296,21 +289,21 @@ std::vector<cv::Mat> BodySchemaFilter::observe(NodeContext& ctx) {
   for (std::size_t c = 0; c < images_.size(); ++c) {
     const Image& image = *images_[c];
     const robot::Camera& cam =
-        model_->cameras()[static_cast<std::size_t>(model_->find_camera(cameras_[c]))];
+        model_->cameras()[static_cast<std::size_t>(model_->find_camera(config_.cameras[c]))];
     if (image.frame == 0 || image.encoding != ImageEncoding::kRgb8)
       throw RunError(fmt::format(
           "body_schema_filter: no rgb8 image of camera '{}' at t = {:.3f} s (wire a camera "
           "node's {}_rgb output running at least as often as this node, earlier in the graph)",
-          cameras_[c], ctx.time_s(), c == 0 ? "left_eye" : "right_eye"));
+          config_.cameras[c], ctx.time_s(), c == 0 ? "left_eye" : "right_eye"));
     if (image.data.cols != cam.width || image.data.rows != cam.height)
       throw RunError(
           fmt::format("body_schema_filter: camera '{}' is {}x{} in the robot model "
                       "but its image is {}x{}",
-                      cameras_[c], cam.width, cam.height, image.data.cols, image.data.rows));
+                      config_.cameras[c], cam.width, cam.height, image.data.cols, image.data.rows));
     cv::Mat rgb = image.data;
-    if (image_noise_ > 0.0) {
+    if (config_.image_noise > 0.0) {
       cv::Mat noise(rgb.size(), CV_32FC3);
-      std::normal_distribution<float> gauss(0.0f, static_cast<float>(image_noise_));
+      std::normal_distribution<float> gauss(0.0f, static_cast<float>(config_.image_noise));
       for (auto it = noise.begin<cv::Vec3f>(); it != noise.end<cv::Vec3f>(); ++it)
         *it = cv::Vec3f(gauss(ctx.rng()), gauss(ctx.rng()), gauss(ctx.rng()));
       cv::Mat noisy;
@@ -342,7 +335,7 @@ void BodySchemaFilter::step(NodeContext& ctx) {
   robot::RobotData data(*model_);
   robot::forward_kinematics(*model_, data, joint_state_->position);
   std::vector<render::Camera> cameras;
-  for (const std::string& c : cameras_)
+  for (const std::string& c : config_.cameras)
     cameras.push_back(render::camera_for(*model_, c, data.link_poses));
 
   filter_->predict();
@@ -353,7 +346,7 @@ void BodySchemaFilter::step(NodeContext& ctx) {
     throw RunError(
         fmt::format("body_schema_filter: movement {}: the hypothesis links ({}) are "
                     "not visible: {}",
-                    movement_, fmt::join(link_names_, " "), e.what()));
+                    movement_, fmt::join(config_.links, " "), e.what()));
   }
   const body_schema::FilterUpdate update = filter_->update(likelihoods);
   if (!(update.best_likelihood > 0.0)) on_no_match(ctx, update);
@@ -366,7 +359,8 @@ void BodySchemaFilter::step(NodeContext& ctx) {
       return score(joint_state_->position, particles, cameras, observations);
     });
   publish(ctx, update);
-  if (phase_ != nullptr && phase_->frame == evaluate_frame_) evaluate(joint_state_->position);
+  if (phase_ != nullptr && phase_->frame == config_.evaluate_frame)
+    evaluate(joint_state_->position);
 }
 
 void BodySchemaFilter::on_no_match(NodeContext& ctx, const body_schema::FilterUpdate&) {
@@ -380,9 +374,9 @@ void BodySchemaFilter::on_no_match(NodeContext& ctx, const body_schema::FilterUp
     ctx.request_stop(what);
     return;
   }
-  filter_->inflate_sigma(reinflate_factor_);
+  filter_->inflate_sigma(config_.reinflate_factor);
   if (lost_frames_ <= 5)
-    ctx.log().warn("{}; particles kept, σ_s × {} = {:.3g} deg", what, reinflate_factor_,
+    ctx.log().warn("{}; particles kept, σ_s × {} = {:.3g} deg", what, config_.reinflate_factor,
                    filter_->sigma_deg());
 }
 

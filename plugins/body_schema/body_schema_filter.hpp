@@ -113,10 +113,7 @@ class BodySchemaFilter : public Plugin {
   void evaluate(const Eigen::VectorXd& q);
 
   std::shared_ptr<const robot::RobotModel> model_;
-  std::vector<std::string> joint_names_;
   std::vector<int> offset_dofs_;
-  std::vector<std::string> link_names_;
-  std::vector<std::string> cameras_;
   std::unique_ptr<body_schema::OffsetParticleFilter> filter_;
   std::unique_ptr<body_schema::HypothesisScorer> scorer_;
   std::unique_ptr<body_schema::EyeHand> eye_hand_;
@@ -126,12 +123,9 @@ class BodySchemaFilter : public Plugin {
   bool distribute_ = false;        // distribute: mpi (one rank without MPI)
   std::vector<double> gather_ms_;  // MPI_Allgatherv wall time of each step [ms]
   SizeRecord main_record_;         // the main filter's errors at evaluate_frame and step times
-  int evaluate_frame_ = 120;
   body_schema::HsvRange hand_colour_;
   double canny_low_ = 65.0, canny_high_ = 195.0;
-  double image_noise_ = 0.0;
   bool stop_when_lost_ = false;
-  double reinflate_factor_ = 2.0;
   Eigen::VectorXd true_offsets_;  // [rad] per dof; empty when not given
 
   const JointState* joint_state_ = nullptr;

@@ -87,7 +87,7 @@ PluginSpec ReachController::spec() {
 void ReachController::configure(NodeContext& ctx) {
   config_ = read_config<Config>(ctx);
   bind_ports(ctx, ports_);
-  model_ = robot::experiment_robot(ctx);
+  model_ = robot::experiment_robot(ctx, config_.robot);
   try {
     eye_hand_ = std::make_unique<body_schema::EyeHand>(model_, config_.camera, config_.palm_frame,
                                                        config_.arm_base);
@@ -99,13 +99,9 @@ void ReachController::configure(NodeContext& ctx) {
     targets_.push_back({pose_from(targets, i), {}, {}});
   starts_per_target_ = config_.starts_per_target;
   repetitions_ = config_.repetitions;
-  start_distance_ = config_.start_distance;
-  start_rotation_deg_ = config_.start_rotation_deg;
   to_start_frames_ = config_.to_start_frames;
   open_frames_ = config_.open_loop_frames;
   closed_frames_ = config_.closed_loop_frames;
-  gain_ = config_.gain;
-  adapt_ = config_.adaptation;
   csv_name_ = config_.csv.name;
   if (!csv_name_.empty()) csv_path_ = config_.csv.path;
   movements_ = static_cast<int>(targets_.size()) * starts_per_target_ * repetitions_;
@@ -132,8 +128,9 @@ Eigen::VectorXd ReachController::draw_start(NodeContext& ctx, const Target& targ
     const Eigen::Vector3d axis =
         Eigen::Vector3d(gauss(ctx.rng()), gauss(ctx.rng()), gauss(ctx.rng())).normalized();
     const double distance =
-        start_distance_[0] + (start_distance_[1] - start_distance_[0]) * uniform(ctx.rng());
-    const double angle = start_rotation_deg_ * kDegToRad * uniform(ctx.rng());
+        config_.start_distance[0] +
+        (config_.start_distance[1] - config_.start_distance[0]) * uniform(ctx.rng());
+    const double angle = config_.start_rotation_deg * kDegToRad * uniform(ctx.rng());
     Eigen::Isometry3d start = target.pose_eye;
     start.translation() += distance * dir;
     start.linear() = Eigen::AngleAxisd(angle, axis).toRotationMatrix() * start.linear();
@@ -259,8 +256,9 @@ void ReachController::step(NodeContext& ctx) {
       command(from_ + (static_cast<double>(frame_) / open_frames_) * (goal_ - from_));
       break;
     case ReachStage::kClosedLoop:
-      command(eye_hand_->servo_step(q, adapt_ ? adapted_offsets() : Eigen::VectorXd::Zero(q.size()),
-                                    phase_->target_eye, gain_, ctx.period_s()));
+      command(eye_hand_->servo_step(
+          q, config_.adaptation ? adapted_offsets() : Eigen::VectorXd::Zero(q.size()),
+          phase_->target_eye, config_.gain, ctx.period_s()));
       break;
     case ReachStage::kIdle:
       break;

@@ -75,10 +75,6 @@ class ReachController : public Plugin {
   std::vector<Target> targets_;
   int starts_per_target_ = 10, repetitions_ = 3;
   int to_start_frames_ = 20, open_frames_ = 120, closed_frames_ = 50;
-  double gain_ = 5.0;
-  bool adapt_ = true;
-  std::vector<double> start_distance_;
-  double start_rotation_deg_ = 15.0;
   int visible_margin_px_ = 30;
 
   const JointState* joint_state_ = nullptr;

@@ -147,7 +147,7 @@ PluginSpec BulletWorld::spec() {
 void BulletWorld::configure(NodeContext& ctx) {
   config_ = read_config<Config>(ctx);
   bind_ports(ctx, ports_);
-  model_ = robot::experiment_robot(ctx);
+  model_ = robot::experiment_robot(ctx, config_.robot);
   Eigen::VectorXd q0;
   try {
     q0 = robot::parse_posture_deg(*model_, config_.initial_posture_deg);
@@ -167,11 +167,6 @@ void BulletWorld::configure(NodeContext& ctx) {
     config_error(ctx, config_, config_.locked_joints, e.what());
   }
   dt_ = ctx.period_s();
-  contact_distance_ = config_.contact_distance;
-  contact_history_ = config_.contact_history;
-  kinematic_stiffness_ = config_.kinematic_contact_stiffness;
-  spawn_tolerance_ = config_.spawn_tolerance;
-  world_radius_ = config_.world_radius;
   limits_ = {config_.max_joint_speed, config_.max_object_speed, config_.max_penetration};
   const auto g = config_.gravity;
   const double friction = config_.friction;
@@ -219,7 +214,7 @@ void BulletWorld::configure(NodeContext& ctx) {
       }
       const RobotOverlap overlap =
           deepest_robot_overlap(physics_->world(), *robot_, objects_->body(i));
-      if (overlap.link >= 0 && overlap.depth > spawn_tolerance_)
+      if (overlap.link >= 0 && overlap.depth > config_.spawn_tolerance)
         throw InputError(
             fmt::format("{}: object '{}' starts inside the robot: it overlaps link "
                         "'{}' by {:.1f} mm",
@@ -258,7 +253,7 @@ void BulletWorld::spawn_from_port(NodeContext& ctx, double t) {
     }
     const RobotOverlap overlap =
         deepest_robot_overlap(physics_->world(), *robot_, objects_->body(i));
-    if (overlap.link >= 0 && overlap.depth > spawn_tolerance_)
+    if (overlap.link >= 0 && overlap.depth > config_.spawn_tolerance)
       throw RunError(fmt::format("{} starts inside the robot: it overlaps link '{}' by {:.1f} mm",
                                  what, model_->link(overlap.link).name, overlap.depth * 1e3));
     ++objects_spawned_;
@@ -297,14 +292,14 @@ void BulletWorld::publish(double t) {
   robot_->link_poses(link_poses_->poses);
   const Penetration deepest =
       extract_contacts(physics_->dispatcher(), *robot_, link_poses_->poses, *objects_, dt_,
-                       contact_distance_, kinematic_stiffness_, *contacts_);
-  record_contact_history(*contacts_, t, contact_history_);
+                       config_.contact_distance, config_.kinematic_contact_stiffness, *contacts_);
+  record_contact_history(*contacts_, t, config_.contact_history);
   max_penetration_ = std::max(max_penetration_, deepest.depth);
   const auto n = static_cast<std::int64_t>(contacts_->points.size());
   contact_points_ += n;
   max_contact_points_ = std::max(max_contact_points_, n);
   check_blowup(*robot_, *objects_, *contacts_, deepest, limits_, t);
-  objects_out_of_bounds_ += objects_->remove_beyond(world_radius_);
+  objects_out_of_bounds_ += objects_->remove_beyond(config_.world_radius);
   objects_->write_states(*object_states_);
 }
 

@@ -108,11 +108,6 @@ class BulletWorld : public Plugin {
   std::unique_ptr<ObjectManager> objects_;
 
   double dt_ = 1e-3;
-  double contact_distance_ = 0.0;
-  double contact_history_ = 0.1;      // [s] kept in Contacts::recent
-  double kinematic_stiffness_ = 0.0;  // [N/m] kinematic object vs immovable robot geometry
-  double spawn_tolerance_ = 0.0;
-  double world_radius_ = 0.0;
   BlowupLimits limits_;
   std::set<std::uint64_t> seen_spawns_;
 

@@ -48,7 +48,8 @@ void CameraPlugin::Config::visit(V& v) {
           "1 or 2 cameras of the robot model; the first feeds the ports left_eye_*, the second "
           "right_eye_*");
   v.field("outputs", outputs)
-      .doc("images to render: any of rgb, depth, mask (the others stay empty)");
+      .one_of({kRgb, kDepth, kMask})
+      .doc("images to render (the others stay empty)");
   v.field("background", background)
       .doc(
           "'R G B' in [0, 1], a name (black, white, grey, blue) or 'textured': clutter "
@@ -82,9 +83,9 @@ void CameraPlugin::Ports::visit(V& v) {
   v.port("objects", objects, "the world's objects (drawn with their shapes)");
   for (std::size_t i = 0; i < kSlots.size(); ++i) {
     const std::string slot = kSlots[i];
-    v.port(slot + "_rgb", rgb[i], "rgb8 view of that camera (somasim/render/ports.hpp)");
-    v.port(slot + "_depth", depth[i], "depth32f [m] along the optical axis");
-    v.port(slot + "_mask", mask[i], "id32s: what each pixel shows");
+    v.port(slot + "_" + kRgb, rgb[i], "rgb8 view of that camera (somasim/render/ports.hpp)");
+    v.port(slot + "_" + kDepth, depth[i], "depth32f [m] along the optical axis");
+    v.port(slot + "_" + kMask, mask[i], "id32s: what each pixel shows");
   }
 }
 
@@ -127,18 +128,13 @@ void CameraPlugin::parse_background(NodeContext& ctx) {
 void CameraPlugin::configure(NodeContext& ctx) {
   config_ = read_config<Config>(ctx);
   bind_ports(ctx, ports_);
-  model_ = robot::experiment_robot(ctx);
-  for (const std::string& o : config_.outputs) {
-    if (o == "rgb")
-      want_rgb_ = true;
-    else if (o == "depth")
-      want_depth_ = true;
-    else if (o == "mask")
-      want_mask_ = true;
-    else
-      config_error(ctx, config_, config_.outputs,
-                   fmt::format("unknown output '{}' (expected rgb, depth, mask)", o));
-  }
+  model_ = robot::experiment_robot(ctx, config_.robot);
+  const auto wants = [&](const char* kind) {
+    return std::find(config_.outputs.begin(), config_.outputs.end(), kind) != config_.outputs.end();
+  };
+  want_rgb_ = wants(kRgb);
+  want_depth_ = wants(kDepth);
+  want_mask_ = wants(kMask);
   const auto cameras = config_.cameras;
   if (cameras.empty() || cameras.size() > kSlots.size())
     config_error(ctx, config_, config_.cameras,
@@ -162,9 +158,7 @@ void CameraPlugin::configure(NodeContext& ctx) {
     views_.push_back(v);
   }
   parse_background(ctx);
-  save_every_ = config_.save_every;
-  sheet_times_ = config_.sheet_times;
-  if (!sheet_times_.empty() && !want_rgb_)
+  if (!config_.sheet_times.empty() && !want_rgb_)
     config_error(ctx, config_, config_.sheet_times,
                  "the contact sheet needs the rgb output (outputs: rgb ...)");
   options_.read_rgb = want_rgb_;
@@ -210,8 +204,8 @@ void CameraPlugin::configure(NodeContext& ctx) {
 void CameraPlugin::step(NodeContext& ctx) {
   const auto& poses = link_poses_->poses.empty() ? rest_poses_ : link_poses_->poses;
   ++frame_;
-  const bool sheet_row =
-      sheet_.size() < sheet_times_.size() && ctx.time_s() + 1e-9 >= sheet_times_[sheet_.size()];
+  const bool sheet_row = sheet_.size() < config_.sheet_times.size() &&
+                         ctx.time_s() + 1e-9 >= config_.sheet_times[sheet_.size()];
   if (sheet_row) sheet_.push_back({ctx.time_s(), {}});
   for (const View& v : views_) {
     const render::Camera camera = render::camera_for(*model_, v.camera, poses);
@@ -231,7 +225,8 @@ void CameraPlugin::step(NodeContext& ctx) {
     if (want_rgb_) fill(v.rgb, images.rgb, ImageEncoding::kRgb8);
     if (want_depth_) fill(v.depth, images.depth, ImageEncoding::kDepth32f);
     if (want_mask_) fill(v.mask, images.ids, ImageEncoding::kId32s);
-    if (save_every_ > 0 && (frame_ - 1) % static_cast<std::uint64_t>(save_every_) == 0)
+    if (config_.save_every > 0 &&
+        (frame_ - 1) % static_cast<std::uint64_t>(config_.save_every) == 0)
       save_frames(ctx, v);
     if (sheet_row) sheet_.back().views.push_back(images.rgb.clone());
   }
@@ -239,7 +234,7 @@ void CameraPlugin::step(NodeContext& ctx) {
 
 void CameraPlugin::save_frames(NodeContext& ctx, const View& view) {
   for (const auto& [image, kind] :
-       {std::pair{view.rgb, "rgb"}, std::pair{view.depth, "depth"}, std::pair{view.mask, "mask"}}) {
+       {std::pair{view.rgb, kRgb}, std::pair{view.depth, kDepth}, std::pair{view.mask, kMask}}) {
     if (image->frame != frame_) continue;
     render::write_png(*image,
                       ctx.output_path(fmt::format("frames/{}.{}_{}/{:06d}.png", ctx.node_name(),

@@ -50,6 +50,10 @@ class CameraPlugin : public Plugin {
 
   /// Port slots: the i-th camera of `cameras` feeds the ports `<slot>_rgb|depth|mask`.
   static constexpr std::array<const char*, 2> kSlots = {"left_eye", "right_eye"};
+  /// What a view renders: the names in `outputs` and the ports' suffixes.
+  static constexpr const char* kRgb = "rgb";
+  static constexpr const char* kDepth = "depth";
+  static constexpr const char* kMask = "mask";
 
  private:
   Config config_;
@@ -71,10 +75,8 @@ class CameraPlugin : public Plugin {
   std::vector<render::DrawItem> backdrop_;
   render::RenderOptions options_;
   bool want_rgb_ = false, want_depth_ = false, want_mask_ = false;
-  int save_every_ = 0;
   std::uint64_t frame_ = 0;
   std::vector<View> views_;
-  std::vector<double> sheet_times_;
   std::vector<SheetRow> sheet_;
   std::vector<render::DrawItem> items_;  // reused every frame
 

@@ -81,7 +81,7 @@ PluginSpec CartesianVelocity::spec() {
 void CartesianVelocity::configure(NodeContext& ctx) {
   config_ = read_config<Config>(ctx);
   bind_ports(ctx, ports_);
-  auto model = robot::experiment_robot(ctx);
+  auto model = robot::experiment_robot(ctx, config_.robot);
   const auto chain_name = config_.chain;
   const auto tip = config_.tip;
   const auto base = config_.base;

@@ -44,6 +44,19 @@ void JointTrajectoryController::Config::visit(V& v) {
       .doc("> 0: `done` also waits until every measured joint is this close to the last waypoint");
 }
 
+void JointTrajectoryController::Config::validate(ConfigChecks& checks) const {
+  for (auto it = joints.begin(); it != joints.end(); ++it)
+    checks.require(std::find(joints.begin(), it, *it) == it, joints,
+                   "joint '" + *it + "' is listed twice");
+  checks.require(durations.empty() || !joints.empty(), joints,
+                 "waypoints are given (durations) but no joints");
+  const std::size_t nj = joints.size();
+  checks.require(targets_deg.size() == durations.size() * nj, targets_deg,
+                 "expected " + std::to_string(durations.size() * nj) + " values (" +
+                     std::to_string(durations.size()) + " waypoints x " + std::to_string(nj) +
+                     " joints, waypoint-major), got " + std::to_string(targets_deg.size()));
+}
+
 template <class V>
 void JointTrajectoryController::Ports::visit(V& v) {
   v.port("state", state, "measured joint state (the start of the trajectory)");
@@ -62,8 +75,7 @@ PluginSpec JointTrajectoryController::spec() {
 
 void JointTrajectoryController::configure(NodeContext& ctx) {
   config_ = read_config<Config>(ctx);
-  model_ = robot::experiment_robot(ctx);
-  profile_ = config_.profile;
+  model_ = robot::experiment_robot(ctx, config_.robot);
   tolerance_ = deg_to_rad(config_.done_tolerance_deg);
   read_waypoints(ctx);
   bind_ports(ctx, ports_);
@@ -75,8 +87,7 @@ void JointTrajectoryController::configure(NodeContext& ctx) {
 }
 
 void JointTrajectoryController::read_waypoints(const NodeContext& ctx) {
-  const Config& c = config_;
-  std::set<int> seen;
+  const Config& c = config_;  // names unique and list sizes consistent: Config::validate()
   for (const std::string& name : c.joints) {
     int dof = -1;
     try {
@@ -84,20 +95,11 @@ void JointTrajectoryController::read_waypoints(const NodeContext& ctx) {
     } catch (const InputError& e) {
       config_error(ctx, c, c.joints, e.what());
     }
-    if (!seen.insert(dof).second)
-      config_error(ctx, c, c.joints, "joint '" + name + "' is listed twice");
     joint_dofs_.push_back(dof);
   }
   const auto& targets = c.targets_deg;
   const auto& durations = c.durations;
   const std::size_t nj = joint_dofs_.size();
-  if (!durations.empty() && nj == 0)
-    config_error(ctx, c, c.joints, "waypoints are given (durations) but no joints");
-  if (targets.size() != durations.size() * nj)
-    config_error(ctx, c, c.targets_deg,
-                 "expected " + std::to_string(durations.size() * nj) + " values (" +
-                     std::to_string(durations.size()) + " waypoints x " + std::to_string(nj) +
-                     " joints, waypoint-major), got " + std::to_string(targets.size()));
   for (std::size_t w = 0; w < durations.size(); ++w) {
     control::JointTrajectory::Waypoint wp;
     wp.duration_s = durations[w];
@@ -148,7 +150,7 @@ void JointTrajectoryController::start_target(double t, const JointState& state) 
             : start[static_cast<Eigen::Index>(k)];
   }
   active_dofs_ = std::move(next);
-  trajectory_ = control::JointTrajectory(profile_, t, std::move(start), {std::move(goal)});
+  trajectory_ = control::JointTrajectory(config_.profile, t, std::move(start), {std::move(goal)});
   reference_.resize(static_cast<Eigen::Index>(active_dofs_.size()));
   reference_velocity_.resize(reference_.size());
   last_target_id_ = target.id;
@@ -166,7 +168,7 @@ void JointTrajectoryController::step(NodeContext& ctx) {
     Eigen::VectorXd start(static_cast<Eigen::Index>(joint_dofs_.size()));
     for (std::size_t k = 0; k < joint_dofs_.size(); ++k)
       start[static_cast<Eigen::Index>(k)] = state.position[joint_dofs_[k]];
-    trajectory_ = control::JointTrajectory(profile_, t, std::move(start), waypoints_);
+    trajectory_ = control::JointTrajectory(config_.profile, t, std::move(start), waypoints_);
     reference_.resize(static_cast<Eigen::Index>(active_dofs_.size()));
     reference_velocity_.resize(reference_.size());
     trajectory_.sample(t, reference_, reference_velocity_);

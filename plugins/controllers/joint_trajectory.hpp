@@ -39,6 +39,7 @@ class JointTrajectoryController : public Plugin {
     double done_tolerance_deg = 0.0;  // [deg]
     template <class V>
     void visit(V& v);
+    void validate(ConfigChecks& checks) const;  // cross-field checks
   };
   struct Ports {
     In<JointState> state;
@@ -60,7 +61,6 @@ class JointTrajectoryController : public Plugin {
   void write_command(double t, const JointState& state);
 
   std::shared_ptr<const robot::RobotModel> model_;
-  control::Profile profile_ = control::Profile::kMinimumJerk;
   double tolerance_ = 0.0;                                     // [rad]
   std::vector<int> joint_dofs_;                                // from `joints`
   std::vector<control::JointTrajectory::Waypoint> waypoints_;  // in joint_dofs_ order

@@ -27,20 +27,20 @@ Eigen::Vector3d vec3(const std::vector<double>& v) {
 void DoubleTouch::configure(NodeContext& ctx) {
   config_ = read_config<Config>(ctx);
   bind_ports(ctx, ports_);
-  model_ = robot::experiment_robot(ctx);
+  model_ = robot::experiment_robot(ctx, config_.robot);
   true_data_ = std::make_unique<robot::RobotData>(*model_);
   believed_data_ = std::make_unique<robot::RobotData>(*model_);
 
-  body_part_ = config_.body_part;
   const robot::SkinPatch* patch = nullptr;
   std::vector<std::string> parts;
   for (const auto& p : model_->skin_patches()) {
     parts.push_back(p.body_part);
-    if (p.body_part == body_part_) patch = &p;
+    if (p.body_part == config_.body_part) patch = &p;
   }
   if (!patch)
     config_error(ctx, config_, config_.body_part,
-                 "unknown skin part '" + body_part_ + "'" + did_you_mean(body_part_, parts) +
+                 "unknown skin part '" + config_.body_part + "'" +
+                     did_you_mean(config_.body_part, parts) +
                      "; the robot's skin parts: " + join_names(parts));
   try {
     effector_ = model_->frame_ref(config_.effector);
@@ -54,7 +54,6 @@ void DoubleTouch::configure(NodeContext& ctx) {
   const Eigen::Vector3d side_link = effector_.pose.linear() * side;
   finger_tilt_ = config_.finger_tilt_deg * kDeg;
 
-  touches_ = config_.touches;
   speed_min_ = config_.speed_min;
   speed_max_ = config_.speed_max;
   position_jitter_ = config_.position_jitter;
@@ -65,7 +64,6 @@ void DoubleTouch::configure(NodeContext& ctx) {
   position_noise_ = config_.position_noise;
   velocity_noise_ = config_.velocity_noise;
   seen_by_eyes_ = config_.perception == FingertipPerception::kVision;
-  marker_radius_ = config_.marker_radius;
   try {
     home_ = robot::parse_posture_deg(*model_, config_.home_posture_deg);
   } catch (const InputError& e) {
@@ -124,13 +122,13 @@ void DoubleTouch::configure(NodeContext& ctx) {
 
 const SkinPart& DoubleTouch::part(NodeContext&) const {
   for (const auto& p : taxels_->parts)
-    if (p.name == body_part_) {
+    if (p.name == config_.body_part) {
       if (p.taxel_ids.empty() || p.positions_link.size() != p.taxel_ids.size() ||
           p.normals_link.size() != p.taxel_ids.size())
         break;
       return p;
     }
-  throw RunError("skin part '" + body_part_ +
+  throw RunError("skin part '" + config_.body_part +
                  "' (with link-frame taxel poses) is not in the 'taxels' input (is the skin node "
                  "wired?)");
 }
@@ -177,15 +175,15 @@ bool DoubleTouch::plan_touch(NodeContext& ctx) {
     const int id = taxel_list_[static_cast<std::size_t>(next_in_list_++) % taxel_list_.size()];
     const auto it = std::find(p.taxel_ids.begin(), p.taxel_ids.end(), id);
     if (it == p.taxel_ids.end())
-      throw RunError("taxel " + std::to_string(id) + " is not a taxel of '" + body_part_ + "' (" +
-                     std::to_string(p.taxel_ids.size()) + " taxels)");
+      throw RunError("taxel " + std::to_string(id) + " is not a taxel of '" + config_.body_part +
+                     "' (" + std::to_string(p.taxel_ids.size()) + " taxels)");
     const auto k = static_cast<std::size_t>(it - p.taxel_ids.begin());
     for (int a = 0; a < kAttempts; ++a)
       if (plan_at(k, true)) {
         planned_taxel_ = static_cast<int>(k);
         return true;
       }
-    throw RunError("taxel " + std::to_string(id) + " of '" + body_part_ +
+    throw RunError("taxel " + std::to_string(id) + " of '" + config_.body_part +
                    "' cannot be touched from the home posture (" + std::to_string(kAttempts) +
                    " attempts; see the log)");
   }
@@ -194,7 +192,7 @@ bool DoubleTouch::plan_touch(NodeContext& ctx) {
     for (std::size_t k = 0; k < p.taxel_ids.size(); ++k)
       if (plan_at(k, false)) reachable_.push_back(k);
     if (reachable_.empty())
-      throw RunError("no taxel of '" + body_part_ +
+      throw RunError("no taxel of '" + config_.body_part +
                      "' can be touched from the home posture (see the log at debug level)");
   }
   std::uniform_int_distribution<std::size_t> pick(0, reachable_.size() - 1);
@@ -221,7 +219,7 @@ void DoubleTouch::advance(NodeContext& ctx) {
     const double elapsed = now - phase_start_;
     switch (phase_) {
       case Phase::kPlan:
-        if (static_cast<int>(log_.size()) >= touches_) {
+        if (static_cast<int>(log_.size()) >= config_.touches) {
           start_transfer(now, home_);
           phase_ = Phase::kHome;
           continue;
@@ -315,7 +313,7 @@ void DoubleTouch::perceive(NodeContext& ctx) {
   const Eigen::Vector3d pb =
       seen_by_eyes_ ? Eigen::Vector3d(robot::frame_pose(*true_data_, effector_).translation())
                     : centre(*believed_data_);
-  const double perceived_radius = seen_by_eyes_ ? marker_radius_ : finger_radius_;
+  const double perceived_radius = seen_by_eyes_ ? config_.marker_radius : finger_radius_;
   const double dt = ctx.period_s();
   const Eigen::Vector3d vb =
       have_last_ ? Eigen::Vector3d((pb - last_perceived_) / dt) : Eigen::Vector3d::Zero();
@@ -353,7 +351,7 @@ void DoubleTouch::read_contacts(NodeContext&) {
   for (const auto& e : contacts_->recent) {
     if (e.id <= last_event_id_) continue;
     last_event_id_ = e.id;
-    if (e.body_part == body_part_) {
+    if (e.body_part == config_.body_part) {
       ++events_on_part_;
       if (touching && !log_.empty()) {
         Touch& t = log_.back();

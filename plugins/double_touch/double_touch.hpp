@@ -71,15 +71,16 @@ class DoubleTouch : public Plugin {
     double finger_radius = 0.0065;  // [m]
     std::vector<std::string> taxels;
     int touches = 20;
-    double start_distance = 0.20;    // [m]
-    double press_depth = 0.003;      // [m]
-    double align_distance = 0.03;    // [m]
-    double max_tilt_deg = 60.0;      // [deg]
-    double approach_step = 0.01;     // [m]
-    double speed_min = 0.05;         // [m/s]
-    double speed_max = 0.15;         // [m/s]
-    double position_jitter = 0.003;  // [m]
-    double normal_jitter_deg = 5.0;  // [deg]
+    // The planner's defaults (control::TouchPlannerOptions{}; max_tilt there in radians)
+    double start_distance = planner_defaults().start_distance;  // [m]
+    double press_depth = planner_defaults().press_depth;        // [m]
+    double align_distance = planner_defaults().align_distance;  // [m]
+    double max_tilt_deg = 60.0;                                 // [deg]
+    double approach_step = planner_defaults().step;             // [m]
+    double speed_min = 0.05;                                    // [m/s]
+    double speed_max = 0.15;                                    // [m/s]
+    double position_jitter = 0.003;                             // [m]
+    double normal_jitter_deg = 5.0;                             // [deg]
     // A double-touch posture of the iCub: the left forearm in front of the body, turned
     // (prosup) so that most of its skin faces the right hand, the right hand beside it (21 of
     // the 32 forearm taxels of icub_v1 can then be touched).
@@ -87,16 +88,17 @@ class DoubleTouch : public Plugin {
         "l_shoulder_pitch: -60, l_shoulder_roll: 30, l_shoulder_yaw: 30, l_elbow: 55, "
         "l_wrist_prosup: -45, r_shoulder_pitch: -45, r_shoulder_roll: 30, r_shoulder_yaw: 30, "
         "r_elbow: 70";
-    double move_duration = 2.0;   // [s]
-    double hold = 0.3;            // [s]
-    double clearance = 0.002;     // [m]
-    double position_noise = 0.0;  // [m]
-    double velocity_noise = 0.0;  // [m/s]
+    double move_duration = 2.0;                       // [s]
+    double hold = 0.3;                                // [s]
+    double clearance = planner_defaults().clearance;  // [m]
+    double position_noise = 0.0;                      // [m]
+    double velocity_noise = 0.0;                      // [m/s]
     FingertipPerception perception = FingertipPerception::kProprioception;
     double marker_radius = 0.007;  // [m]
     template <class V>
     void visit(V& v);
     void validate(ConfigChecks& checks) const;  // cross-field checks
+    static constexpr control::TouchPlannerOptions planner_defaults() { return {}; }
   };
   struct Ports {
     In<JointState> state;
@@ -144,9 +146,7 @@ class DoubleTouch : public Plugin {
   robot::FrameRef effector_;
   Eigen::Vector3d effector_axis_link_ = Eigen::Vector3d::UnitX();
   Eigen::Vector3d limb_axis_ = Eigen::Vector3d::UnitY();
-  std::string body_part_;
   std::vector<int> taxel_list_;
-  int touches_ = 0;
   double finger_tilt_ = 0, speed_min_ = 0, speed_max_ = 0, position_jitter_ = 0, normal_jitter_ = 0;
   double move_duration_ = 0, hold_ = 0, finger_radius_ = 0, position_noise_ = 0,
          velocity_noise_ = 0;
@@ -180,8 +180,7 @@ class DoubleTouch : public Plugin {
   pps::Stimulus perceived_clean_;  // noise-free perceived stimulus of this tick
   pps::Stimulus truth_clean_;      // true stimulus of this tick (also when not presented)
   Eigen::Vector3d last_perceived_ = Eigen::Vector3d::Zero(), last_true_ = Eigen::Vector3d::Zero();
-  bool seen_by_eyes_ = false;   // perception: vision
-  double marker_radius_ = 0.0;  // [m]
+  bool seen_by_eyes_ = false;  // perception: vision
   bool have_last_ = false;
   std::deque<pps::PathSample> path_history_;  // the last pps::kOffsetMaxBackoff s (true offsets)
   pps::TrueOffsets offsets_;

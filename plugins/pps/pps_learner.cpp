@@ -52,6 +52,13 @@ void PpsLearner::Config::visit(V& v) {
           "the taxels whose outward normal points along +x/-x/+y/-y/+z/-z of its link frame");
 }
 
+void PpsLearner::Config::validate(ConfigChecks& checks) const {
+  checks.require(!body_part.empty(), body_part, "is empty, expected one or more skin parts");
+  for (auto it = body_part.begin(); it != body_part.end(); ++it)
+    checks.require(std::find(body_part.begin(), it, *it) == it, body_part,
+                   "lists '" + *it + "' twice");
+}
+
 template <class V>
 void PpsLearner::Ports::visit(V& v) {
   v.port("stimulus", stimulus, "perceived stimulus (root frame), sampled at this node's rate");
@@ -77,8 +84,7 @@ void PpsLearner::configure(NodeContext& ctx) {
   config_ = read_config<Config>(ctx);
   bind_ports(ctx, ports_);
   params_ = config_.learning.to_params();
-  parse_body_parts(ctx);
-  learn_ = config_.learn;
+  parse_body_parts();
   save_name_ = config_.save.name;
   if (!save_name_.empty()) save_path_ = config_.save.path;
   if (!save_name_.empty() && pps::is_ini_learned_file(save_name_) &&
@@ -86,8 +92,6 @@ void PpsLearner::configure(NodeContext& ctx) {
     config_error(ctx, config_, config_.save,
                  "an .ini file holds (D, TTC) maps; this learner's model is " +
                      std::string(pps::to_string(params_.model)) + " (save as .json)");
-  min_samples_ = config_.min_samples;
-  figure_taxels_ = config_.figure_taxels;
   try {
     std::vector<std::string> names;
     for (const LearnerPart& p : parts_) names.push_back(p.name);
@@ -105,15 +109,9 @@ void PpsLearner::configure(NodeContext& ctx) {
   if (config_.load.given()) this->load(ctx, config_.load.path);
 }
 
-void PpsLearner::parse_body_parts(NodeContext& ctx) {
-  for (const std::string& name : config_.body_part) {
-    for (const LearnerPart& p : parts_)
-      if (p.name == name)
-        config_error(ctx, config_, config_.body_part, "lists '" + name + "' twice");
-    parts_.emplace_back().name = name;
-  }
-  if (parts_.empty())
-    config_error(ctx, config_, config_.body_part, "is empty, expected one or more skin parts");
+void PpsLearner::parse_body_parts() {
+  // Duplicates and an empty list are refused by Config::validate().
+  for (const std::string& name : config_.body_part) parts_.emplace_back().name = name;
 }
 
 void PpsLearner::load(NodeContext& ctx, const std::filesystem::path& file) {
@@ -206,7 +204,7 @@ void PpsLearner::bind_parts(NodeContext& ctx) {
 }
 
 void PpsLearner::check_figure_taxels(NodeContext& ctx) const {
-  for (double id : figure_taxels_) {
+  for (double id : config_.figure_taxels) {
     bool found = false;
     for (const LearnerPart& p : parts_)
       found = found || p.learner->index_of(static_cast<int>(id)) >= 0;
@@ -291,7 +289,7 @@ void PpsLearner::learn_from_events(NodeContext& ctx) {
   for (const auto& e : contacts_->recent) {
     if (e.id <= last_event_id_) continue;
     last_event_id_ = e.id;
-    if (!learn_) continue;
+    if (!config_.learn) continue;
     for (LearnerPart& p : parts_) {
       if (e.body_part != p.name) continue;
       // The contact estimator: where the stimulus was perceived when it touched (before the
@@ -316,7 +314,7 @@ void PpsLearner::learn_from_events(NodeContext& ctx) {
 // listed taxel that has no positive sample yet is drawn blank, and the log says why.
 std::vector<double> PpsLearner::snapshot_taxels(NodeContext& ctx, const LearnerPart& p) const {
   const pps::BodyPartLearner& learner = *p.learner;
-  std::vector<double> ids = figure_taxels_;
+  std::vector<double> ids = config_.figure_taxels;
   if (ids.empty())
     for (std::size_t k = 0; k < learner.taxels().size() && ids.size() < kSnapshotTaxels; ++k)
       if (learner.contact_count(static_cast<int>(k)) > 0) ids.push_back(learner.taxels()[k].id);
@@ -350,13 +348,14 @@ void PpsLearner::update_activations() {
 
 void PpsLearner::finish(NodeContext& ctx) {
   if (!bound_) return;
-  report_learning(ctx, parts_, min_samples_, true_offsets_, offset_groups_);
+  report_learning(ctx, parts_, config_.min_samples, true_offsets_, offset_groups_);
   if (!save_name_.empty()) {
     std::vector<pps::LearnedState> states;
     for (const LearnerPart& p : parts_) states.push_back(pps::learned_state(*p.learner));
     pps::save_learned_file(states, save_path_.string());
   }
-  for (LearnerPart& p : parts_) draw_landscapes(ctx, *p.learner, figure_taxels_, "", true_offsets_);
+  for (LearnerPart& p : parts_)
+    draw_landscapes(ctx, *p.learner, config_.figure_taxels, "", true_offsets_);
 }
 
 }  // namespace somasim::plugins

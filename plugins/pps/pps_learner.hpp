@@ -34,6 +34,7 @@ class PpsLearner : public Plugin {
     std::string offset_groups;
     template <class V>
     void visit(V& v);
+    void validate(ConfigChecks& checks) const;  // cross-field checks
   };
   struct Ports {
     In<pps::Stimulus> stimulus;
@@ -53,7 +54,7 @@ class PpsLearner : public Plugin {
  private:
   Config config_;
   Ports ports_;
-  void parse_body_parts(NodeContext& ctx);
+  void parse_body_parts();
   void load(NodeContext& ctx, const std::filesystem::path& file);
   void bind_parts(NodeContext& ctx);
   void add_geometry(LearnerPart& p, const SkinPart& part);
@@ -68,9 +69,6 @@ class PpsLearner : public Plugin {
   std::string load_path_;
   std::string save_name_;
   std::filesystem::path save_path_;  // in the run folder, checked in configure()
-  bool learn_ = true;
-  int min_samples_ = 0;
-  std::vector<double> figure_taxels_;
   std::vector<OffsetGroup> offset_groups_;
   const pps::Stimulus* stimulus_ = nullptr;
   const SkinTaxels* skin_ = nullptr;

@@ -96,7 +96,7 @@ PluginSpec PpsController::spec() {
 void PpsController::configure(NodeContext& ctx) {
   config_ = read_config<Config>(ctx);
   bind_ports(ctx, ports_);
-  model_ = robot::experiment_robot(ctx);
+  model_ = robot::experiment_robot(ctx, config_.robot);
   control::ChainSelection chain;
   try {
     chain = control::select_chain(*model_, config_.chain);
@@ -110,7 +110,6 @@ void PpsController::configure(NodeContext& ctx) {
       config_error(ctx, config_, config_.base, e.what());
     }
   }
-  body_part_ = config_.body_part;
   reach_ = config_.mode == PpsMode::kReach;
   threshold_ = config_.threshold;
   speed_ = config_.speed;
@@ -162,13 +161,13 @@ void PpsController::configure(NodeContext& ctx) {
 
 const SkinPart& PpsController::find_part(NodeContext& ctx) {
   for (const auto& p : taxels_->parts) {
-    if (p.name != body_part_) continue;
+    if (p.name != config_.body_part) continue;
     if (link_ < 0) {
       try {
         link_ = controller_->chain().require_link(*model_, p.link);
       } catch (const InputError& e) {
         config_error(ctx, config_, config_.body_part,
-                     "skin part '" + body_part_ + "': " + e.what());
+                     "skin part '" + config_.body_part + "': " + e.what());
       }
     }
     return p;
@@ -176,8 +175,8 @@ const SkinPart& PpsController::find_part(NodeContext& ctx) {
   std::vector<std::string> names;
   for (const auto& p : taxels_->parts) names.push_back(p.name);
   config_error(ctx, config_, config_.body_part,
-               "no skin part '" + body_part_ + "' in the 'taxels' input" +
-                   did_you_mean(body_part_, names) + "; parts: " + join_names(names));
+               "no skin part '" + config_.body_part + "' in the 'taxels' input" +
+                   did_you_mean(config_.body_part, names) + "; parts: " + join_names(names));
 }
 
 void PpsController::hold(const Eigen::VectorXd& q) {
@@ -259,7 +258,7 @@ void PpsController::step(NodeContext& ctx) {
   const std::span<const double> a = part_activations_.select(*activations_, part, ctx.node_name());
   if (part.positions.size() != part.taxel_ids.size() ||
       part.normals.size() != part.taxel_ids.size())
-    throw RunError(ctx.node_name() + ": skin part '" + body_part_ +
+    throw RunError(ctx.node_name() + ": skin part '" + config_.body_part +
                    "' has positions or normals missing for some taxels");
 
   if (!have_home_) {
@@ -320,7 +319,7 @@ void PpsController::step(NodeContext& ctx) {
     if (d > radius_ + kOutsideTolerance) {
       if (outside_ticks_ == 0 || d > max_distance_)
         ctx.log().debug("{}: t = {:.3f} s, a point of '{}' is {:.4f} m from home (radius {} m)",
-                        ctx.node_name(), now, body_part_, d, radius_);
+                        ctx.node_name(), now, config_.body_part, d, radius_);
       ++outside_ticks_;
     }
     max_distance_ = std::max(max_distance_, d);

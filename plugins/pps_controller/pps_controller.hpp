@@ -103,7 +103,6 @@ class PpsController : public Plugin {
   /// arm (not just its commands) within the radius.
   static constexpr double kGuardMargin = 2e-3;
   std::unique_ptr<robot::RobotData> data_, home_data_;  ///< at q; at the start posture
-  std::string body_part_;
   bool reach_ = false;
   double threshold_ = 0.4, speed_ = 0.1, persistence_ = 0.3, return_after_ = 1.0;
   double radius_ = 0.2, return_gain_ = 2.0, return_tolerance_ = 0.0;

@@ -82,9 +82,6 @@ PluginSpec PpsEvaluator::spec() {
 void PpsEvaluator::configure(NodeContext& ctx) {
   config_ = read_config<Config>(ctx);
   bind_ports(ctx, ports_);
-  threshold_ = config_.threshold;
-  figure_ids_ = config_.figure_presentations;
-  figure_taxels_ = config_.figure_taxels;
   csv_name_ = config_.csv.name;
   if (!csv_name_.empty()) csv_path_ = config_.csv.path;
   for (const std::string& p : config_.velocity_parts) velocity_parts_.push_back(p == "-" ? "" : p);
@@ -158,8 +155,8 @@ void PpsEvaluator::follow_presentation(NodeContext& ctx) {
   r.start_s = p.start_time_s;
   record_of_object_[r.object] = records_.size();
   records_.push_back(std::move(r));
-  if (std::find(figure_ids_.begin(), figure_ids_.end(), static_cast<double>(p.id)) !=
-      figure_ids_.end())
+  if (std::find(config_.figure_presentations.begin(), config_.figure_presentations.end(),
+                static_cast<double>(p.id)) != config_.figure_presentations.end())
     traces_[p.id].id = p.id;
 }
 
@@ -203,7 +200,7 @@ void PpsEvaluator::observe(NodeContext& ctx, PresentationRecord& r) {
       peak_at = k;
     }
   r.max_activation = std::max(r.max_activation, peak);
-  if (present && peak > threshold_ && !r.triggered) {
+  if (present && peak > config_.threshold && !r.triggered) {
     r.triggered = true;
     r.trigger_time_s = ctx.time_s();
     r.trigger_distance_m = nearest;
@@ -211,7 +208,7 @@ void PpsEvaluator::observe(NodeContext& ctx, PresentationRecord& r) {
   }
   const std::string prefix = r.body_part + "/";
   for (std::size_t i = 0; present && i < activations_->labels.size(); ++i)
-    if (activations_->values[i] > threshold_ && !activations_->labels[i].starts_with(prefix))
+    if (activations_->values[i] > config_.threshold && !activations_->labels[i].starts_with(prefix))
       r.triggered_other_part = true;
 
   double speed = PresentationRecord::kNaN;
@@ -268,13 +265,13 @@ void PpsEvaluator::step(NodeContext& ctx) {
 void PpsEvaluator::finish(NodeContext& ctx) {
   const nlohmann::json metrics = evaluation_metrics(records_);
   for (const auto& [key, value] : metrics.items()) ctx.report_metric(key, value);
-  ctx.report_metric("threshold", threshold_);
+  ctx.report_metric("threshold", config_.threshold);
   if (!csv_name_.empty()) write_presentations_csv(csv_path_, records_);
   for (const auto& [id, trace] : traces_) {
     if (trace.time_s.empty()) continue;
     const auto it = std::find_if(records_.begin(), records_.end(),
                                  [&id = id](const PresentationRecord& r) { return r.id == id; });
-    draw_presentation_figure(trace, *it, threshold_, figure_taxels_,
+    draw_presentation_figure(trace, *it, config_.threshold, config_.figure_taxels,
                              ctx.figure_path(fmt::format("presentation_{}_{}_{}.png", id,
                                                          motion_name(it->motion), it->body_part)));
   }

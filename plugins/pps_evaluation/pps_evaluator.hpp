@@ -71,10 +71,7 @@ class PpsEvaluator : public Plugin {
   const SkinPart* find_part(NodeContext& ctx, const std::string& name) const;
   robot::ObjectGeometry geometry_of(const std::string& object, std::size_t index) const;
 
-  double threshold_ = 0.4;
   std::vector<std::string> velocity_parts_;  ///< part controlled by velocity_i ("" = none)
-  std::vector<double> figure_ids_;
-  int figure_taxels_ = 3;
   std::string csv_name_;
   std::filesystem::path csv_path_;  // in the run folder, checked in configure()
 

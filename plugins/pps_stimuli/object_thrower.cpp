@@ -17,6 +17,8 @@
 namespace somasim::plugins {
 
 namespace {
+const std::vector<std::string> kShapeNames = {"sphere", "box", "cylinder"};
+const std::vector<std::string> kMotionNames = {"approach", "static", "receding"};
 
 // The least clearance [m] of an object's path from the links it is not aimed at: where no path
 // keeps path_clearance, the presentation is drawn again with this one.
@@ -183,6 +185,23 @@ void ObjectThrower::Config::visit(V& v) {
           "of the robot's left_eye camera)");
 }
 
+void ObjectThrower::Config::validate(ConfigChecks& checks) const {
+  checks.require(!parts.empty(), parts, "expected at least one skin part name");
+  checks.require(!shapes.empty(), shapes, "expected at least one shape (sphere, box)");
+  for (const auto& s : shapes)
+    checks.require(std::find(kShapeNames.begin(), kShapeNames.end(), s) != kShapeNames.end(),
+                   shapes,
+                   "unknown shape '" + s + "'" + did_you_mean(s, kShapeNames) +
+                       "; expected sphere, box or cylinder");
+  checks.require(!motions.empty(), motions,
+                 "expected at least one motion (approach, static, receding)");
+  for (const auto& m : motions)
+    checks.require(std::find(kMotionNames.begin(), kMotionNames.end(), m) != kMotionNames.end(),
+                   motions,
+                   "unknown motion '" + m + "'" + did_you_mean(m, kMotionNames) +
+                       "; expected approach, static or receding");
+}
+
 template <class V>
 void ObjectThrower::Ports::visit(V& v) {
   v.port("taxels", taxels, "skin taxel poses (root frame, true kinematics)");
@@ -227,58 +246,36 @@ PluginSpec ObjectThrower::spec() {
 }
 
 void ObjectThrower::read_lists(NodeContext& ctx) {
-  parts_ = config_.parts;
-  if (parts_.empty())
-    config_error(ctx, config_, config_.parts, "expected at least one skin part name");
   std::vector<std::string> known;
   for (const auto& patch : model_->skin_patches()) known.push_back(patch.body_part);
-  for (const auto& p : parts_)
+  for (const auto& p : config_.parts)
     if (std::find(known.begin(), known.end(), p) == known.end())
       config_error(ctx, config_, config_.parts,
                    "unknown skin part '" + p + "'" + did_you_mean(p, known) +
                        "; the robot's skin parts: " + join_names(known));
 
-  const std::vector<std::string> shape_names = {"sphere", "box", "cylinder"};
-  for (const auto& s : config_.shapes) {
-    const auto it = std::find(shape_names.begin(), shape_names.end(), s);
-    if (it == shape_names.end())
-      config_error(ctx, config_, config_.shapes,
-                   "unknown shape '" + s + "'" + did_you_mean(s, shape_names) +
-                       "; expected sphere, box or cylinder");
-    const ObjectShape shapes[] = {ObjectShape::kSphere, ObjectShape::kBox, ObjectShape::kCylinder};
-    shapes_.push_back(shapes[it - shape_names.begin()]);
-  }
-  if (shapes_.empty())
-    config_error(ctx, config_, config_.shapes, "expected at least one shape (sphere, box)");
-
-  const std::vector<std::string> motion_names = {"approach", "static", "receding"};
-  for (const auto& m : config_.motions) {
-    const auto it = std::find(motion_names.begin(), motion_names.end(), m);
-    if (it == motion_names.end())
-      config_error(ctx, config_, config_.motions,
-                   "unknown motion '" + m + "'" + did_you_mean(m, motion_names) +
-                       "; expected approach, static or receding");
-    const PresentationMotion motions[] = {
-        PresentationMotion::kApproach, PresentationMotion::kStatic, PresentationMotion::kReceding};
-    motions_.push_back(motions[it - motion_names.begin()]);
-  }
-  if (motions_.empty())
-    config_error(ctx, config_, config_.motions,
-                 "expected at least one motion (approach, static, receding)");
+  // Names checked in Config::validate().
+  const ObjectShape shapes[] = {ObjectShape::kSphere, ObjectShape::kBox, ObjectShape::kCylinder};
+  for (const auto& s : config_.shapes)
+    shapes_.push_back(
+        shapes[std::find(kShapeNames.begin(), kShapeNames.end(), s) - kShapeNames.begin()]);
+  const PresentationMotion motions[] = {PresentationMotion::kApproach, PresentationMotion::kStatic,
+                                        PresentationMotion::kReceding};
+  for (const auto& m : config_.motions)
+    motions_.push_back(
+        motions[std::find(kMotionNames.begin(), kMotionNames.end(), m) - kMotionNames.begin()]);
 }
 
 void ObjectThrower::configure(NodeContext& ctx) {
   config_ = read_config<Config>(ctx);
   bind_ports(ctx, ports_);
-  model_ = robot::experiment_robot(ctx);
+  model_ = robot::experiment_robot(ctx, config_.robot);
   read_lists(ctx);
 
   auto& g = geometry_;
   g.size = config_.size;
   cylinder_half_height_ = config_.cylinder_half_height;
   box_corner_ = config_.box_facing == BoxFacing::kCorner;
-  cylinder_axis_ = config_.cylinder_axis;
-  path_clearance_ = config_.path_clearance;
   g.distance_min = config_.distance_min;
   g.distance_max = config_.distance_max;
   if (g.distance_max < g.distance_min)
@@ -295,10 +292,8 @@ void ObjectThrower::configure(NodeContext& ctx) {
   if (g.speed_max < g.speed_min)
     config_error(ctx, config_, config_.speed_max, "must not be less than speed_min");
   g.linger = config_.linger;
-  presentations_ = config_.approaches;
   pause_ = config_.pause;
   retry_at_s_ = config_.first_after;
-  withdraw_after_skin_contact_ = config_.withdraw_after_skin_contact;
   position_noise_ = config_.position_noise;
   velocity_noise_ = config_.velocity_noise;
 
@@ -328,20 +323,17 @@ void ObjectThrower::configure(NodeContext& ctx) {
   }
   link_poses_ = ports_.link_poses.get();
   contacts_ = ports_.contacts.get();
-  if (withdraw_after_skin_contact_ >= 0 && !contacts_)
+  if (config_.withdraw_after_skin_contact >= 0 && !contacts_)
     config_error(ctx, config_, config_.withdraw_after_skin_contact,
                  "needs the skin's contact events: wire input 'contacts' (e.g. skin.contacts)");
   configure_view(ctx);
   object_motion_ =
       config_.object_motion == "kinematic" ? ObjectMotion::kKinematic : ObjectMotion::kGuided;
-  object_mass_ = config_.mass;
-  wait_for_clear_path_ = config_.wait_for_clear_path;
-  withdraw_after_robot_contact_ = config_.withdraw_after_robot_contact;
   if (ports_.world_contacts.wired()) {
     robot_contacts_ = std::make_unique<RobotContactLog>(*model_);
     world_contacts_ = ports_.world_contacts.get();
   }
-  if (withdraw_after_robot_contact_ >= 0 && !world_contacts_)
+  if (config_.withdraw_after_robot_contact >= 0 && !world_contacts_)
     config_error(ctx, config_, config_.withdraw_after_robot_contact,
                  "needs the world's contacts: wire input 'world_contacts' (e.g. world.contacts)");
   believed_taxels_ = ports_.believed_taxels.get();
@@ -358,8 +350,7 @@ void ObjectThrower::configure(NodeContext& ctx) {
 }
 
 void ObjectThrower::configure_view(NodeContext& ctx) {
-  view_policy_ = config_.view;
-  if (view_policy_ == ViewPolicy::kIgnore) return;
+  if (config_.view == ViewPolicy::kIgnore) return;
   std::vector<std::string> known;
   for (const auto& c : model_->cameras()) known.push_back(c.name);
   std::vector<int> cameras;
@@ -376,7 +367,7 @@ void ObjectThrower::configure_view(NodeContext& ctx) {
   if (cameras.empty())
     for (int c = 0; c < static_cast<int>(model_->cameras().size()); ++c) cameras.push_back(c);
   const bool can_check = link_poses_ && !cameras.empty();
-  if (view_policy_ == ViewPolicy::kRequire && !can_check)
+  if (config_.view == ViewPolicy::kRequire && !can_check)
     config_error(ctx, config_, config_.view,
                  link_poses_ ? "robot '" + model_->name() + "' has no camera"
                              : std::string("needs the robot's link poses: wire "
@@ -389,7 +380,7 @@ void ObjectThrower::configure_view(NodeContext& ctx) {
 bool ObjectThrower::launch(NodeContext& ctx) {
   const std::size_t index = static_cast<std::size_t>(launched_);
   // Parts, shapes and motions in turn, each with the presentation index.
-  const std::string& part = parts_[index % parts_.size()];
+  const std::string& part = config_.parts[index % config_.parts.size()];
   const ObjectShape shape = shapes_[index % shapes_.size()];
   const PresentationMotion motion = motions_[index % motions_.size()];
   const SkinPart* sp = nullptr;
@@ -412,7 +403,7 @@ bool ObjectThrower::launch(NodeContext& ctx) {
   const double reach = bounding_radius(shape, geometry_.size, cylinder_half_height_);
   const int aimed_link = model_->link_index(sp->link);
   const Eigen::Vector3d long_axis =
-      shape == ObjectShape::kCylinder && cylinder_axis_ != CylinderAxis::kAny
+      shape == ObjectShape::kCylinder && config_.cylinder_axis != CylinderAxis::kAny
           ? part_long_axis(sp->positions)
           : Eigen::Vector3d::Zero();
   std::size_t k = 0;
@@ -421,14 +412,14 @@ bool ObjectThrower::launch(NodeContext& ctx) {
   std::pair<Eigen::Vector3d, Eigen::Vector3d> path;  // of the last path accepted
   std::optional<std::string> unseen;                 // why the last path tried was not seen
   int out_of_view = 0;                               // paths given up as not seen
-  double clearance = path_clearance_;
+  double clearance = config_.path_clearance;
   const auto clear = [&](const Eigen::Vector3d& start, const Eigen::Vector3d& end) {
     if (!link_poses_) return true;
     if (!robot::point_clear_of_robot(*model_, link_poses_->poses, start, reach + 0.01) ||
         !robot::object_path_clear_of_robot(*model_, link_poses_->poses, cover, body.rotation, start,
                                            end, clearance, std::span(&aimed_link, 1)))
       return false;
-    if (view_policy_ == ViewPolicy::kRequire) {
+    if (config_.view == ViewPolicy::kRequire) {
       unseen = view_->unseen(link_poses_->poses, motion, start, end, reach);
       if (unseen) {
         ++out_of_view;
@@ -457,7 +448,7 @@ bool ObjectThrower::launch(NodeContext& ctx) {
           motion == PresentationMotion::kReceding ? g.receding_start_min : g.distance_min,
           motion == PresentationMotion::kReceding ? g.receding_start_max : g.distance_max,
           rad_to_deg(g.cone_rad),
-          reduced ? fmt::format("{:.3f} m, then {:.3f} m", path_clearance_, clearance)
+          reduced ? fmt::format("{:.3f} m, then {:.3f} m", config_.path_clearance, clearance)
                   : fmt::format("{:.3f} m", clearance),
           out_of_view == 0
               ? std::string()
@@ -470,7 +461,7 @@ bool ObjectThrower::launch(NodeContext& ctx) {
     if (draw > 0) ++unreachable_draws_[part];
     k = pick(rng);
     body = presented_body(shape, corner, sp->normals[k].normalized(), geometry_.size,
-                          cylinder_half_height_, cylinder_axis_, long_axis);
+                          cylinder_half_height_, config_.cylinder_axis, long_axis);
     cover = robot::sphere_cover(shape, body.size);
     planned = plan_presentation(motion, sp->positions[k], sp->normals[k].normalized(), g, rng,
                                 clear, kPathAttempts);
@@ -490,7 +481,7 @@ bool ObjectThrower::launch(NodeContext& ctx) {
   spawn.name = "pps_object_" + std::to_string(spawn.id);
   spawn.shape = shape;
   spawn.motion = object_motion_;
-  spawn.mass = object_mass_;
+  spawn.mass = config_.mass;
   spawn.pose = Eigen::Isometry3d::Identity();
   spawn.pose.linear() = body.rotation;
   spawn.size = body.size;
@@ -601,7 +592,7 @@ void ObjectThrower::withdraw_when_felt() {
     if (e.id <= last_felt_event_id_) continue;
     last_felt_event_id_ = e.id;
     if (p.active && e.time_s >= p.start_time_s)
-      withdraw_at(e.time_s + withdraw_after_skin_contact_);
+      withdraw_at(e.time_s + config_.withdraw_after_skin_contact);
   }
 }
 
@@ -614,8 +605,8 @@ void ObjectThrower::watch_robot_contacts() {
   if (!p.active) return;
   const std::optional<double> first =
       robot_contacts_->add(*world_contacts_, *objects_, p.object, p.id);
-  if (first && withdraw_after_robot_contact_ >= 0)
-    withdraw_at(*first + withdraw_after_robot_contact_);
+  if (first && config_.withdraw_after_robot_contact >= 0)
+    withdraw_at(*first + config_.withdraw_after_robot_contact);
 }
 
 void ObjectThrower::withdraw_if_due(double now) {
@@ -635,7 +626,7 @@ void ObjectThrower::try_launch(NodeContext& ctx, double now) {
   // move, as the experimenter would, then give up.
   if (!waiting_since_s_) waiting_since_s_ = now;
   ++postponed_;
-  if (now - *waiting_since_s_ >= wait_for_clear_path_ - 1e-9)
+  if (now - *waiting_since_s_ >= config_.wait_for_clear_path - 1e-9)
     throw RunError(unplaced_ +
                    fmt::format(" (waited {:g} s for a clear path)", now - *waiting_since_s_));
   retry_at_s_ = now + kRetryInterval;
@@ -646,9 +637,9 @@ void ObjectThrower::step(NodeContext& ctx) {
   Presentation& p = *presentation_;
   if (p.active && now - p.start_time_s >= lifetime_ - 1e-9) p.active = false;
   const bool between = launched_ > 0 && now - p.start_time_s < lifetime_ + pause_ - 1e-9;
-  const bool done = !p.active && !between && launched_ >= presentations_;
+  const bool done = !p.active && !between && launched_ >= config_.approaches;
   if (!p.active && !between && !done && now >= retry_at_s_ - 1e-9) try_launch(ctx, now);
-  if (withdraw_after_skin_contact_ >= 0) withdraw_when_felt();
+  if (config_.withdraw_after_skin_contact >= 0) withdraw_when_felt();
   if (world_contacts_) watch_robot_contacts();
   withdraw_if_due(now);
   perceive(ctx);
@@ -663,16 +654,16 @@ void ObjectThrower::step(NodeContext& ctx) {
 void ObjectThrower::finish(NodeContext& ctx) {
   ctx.report_metric("objects_presented", launched_);
   if (link_poses_) ctx.report_metric("presentations_postponed", postponed_);
-  if (link_poses_ && path_clearance_ > kLeastPathClearance)
+  if (link_poses_ && config_.path_clearance > kLeastPathClearance)
     ctx.report_metric("presentations_reduced_clearance", reduced_clearance_);
-  if (withdraw_after_skin_contact_ >= 0 || withdraw_after_robot_contact_ >= 0)
+  if (config_.withdraw_after_skin_contact >= 0 || config_.withdraw_after_robot_contact >= 0)
     ctx.report_metric("objects_withdrawn", withdrawn_);
   if (robot_contacts_) robot_contacts_->report(ctx);
   if (view_) {
     int out_of_view = 0;
     for (const auto& [part, n] : per_part_out_of_view_) out_of_view += n;
     ctx.report_metric("presentations_out_of_view", out_of_view);
-    if (view_policy_ == ViewPolicy::kRequire)
+    if (config_.view == ViewPolicy::kRequire)
       ctx.report_metric("paths_out_of_view", paths_out_of_view_);
   }
   if (learner_stimulus_)

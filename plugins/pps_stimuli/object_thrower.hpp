@@ -90,6 +90,7 @@ class ObjectThrower : public Plugin {
     std::string vision_link;
     template <class V>
     void visit(V& v);
+    void validate(ConfigChecks& checks) const;  // cross-field checks
   };
   struct Ports {
     In<SkinTaxels> taxels;
@@ -140,21 +141,14 @@ class ObjectThrower : public Plugin {
 
   std::shared_ptr<const robot::RobotModel> model_;
   std::unique_ptr<BelievedVision> vision_;  // set when believed_state is wired
-  std::vector<std::string> parts_;
   std::vector<ObjectShape> shapes_;
   std::vector<PresentationMotion> motions_;
   PresentationGeometry geometry_;
   bool box_corner_ = false;
-  CylinderAxis cylinder_axis_ = CylinderAxis::kAny;
-  double path_clearance_ = 0.005;               // [m] of the path from links it is not aimed at
-  int reduced_clearance_ = 0;                   // presentations placed with the least clearance
-  double withdraw_after_skin_contact_ = -1.0;   // [s]; < 0: objects fly their whole path
-  double withdraw_at_s_ = 0.0;                  // when the current object goes (inf: not yet)
-  double withdraw_after_robot_contact_ = -1.0;  // [s]; < 0: off
+  int reduced_clearance_ = 0;   // presentations placed with the least clearance
+  double withdraw_at_s_ = 0.0;  // when the current object goes (inf: not yet)
   ObjectMotion object_motion_ = ObjectMotion::kGuided;
-  double object_mass_ = 0.1;           // [kg] (guided)
-  double wait_for_clear_path_ = 10.0;  // [s]
-  double retry_at_s_ = 0.0;            // no launch before this time (first_after, then retries) [s]
+  double retry_at_s_ = 0.0;  // no launch before this time (first_after, then retries) [s]
   std::optional<double> waiting_since_s_;            // first failed launch of the current wait [s]
   std::string unplaced_;                             // why the last launch failed
   int postponed_ = 0;                                // failed launches
@@ -163,7 +157,6 @@ class ObjectThrower : public Plugin {
   std::uint64_t last_felt_event_id_ = 0;
   int withdrawn_ = 0;
   double cylinder_half_height_ = 0, position_noise_ = 0, velocity_noise_ = 0, pause_ = 0;
-  int presentations_ = 0;
   const SkinTaxels* skin_ = nullptr;
   const JointState* state_ = nullptr;
   const JointState* believed_state_ = nullptr;  // optional
@@ -196,7 +189,6 @@ class ObjectThrower : public Plugin {
   std::map<std::string, int> per_part_presentations_, per_part_events_;
   std::map<std::string, int> unreachable_draws_;  // taxels given up per part (no clear path)
   std::map<std::string, int> per_motion_;
-  ViewPolicy view_policy_ = ViewPolicy::kReport;
   std::unique_ptr<PresentationView> view_;           // set when the view can be checked
   std::map<std::string, int> per_part_out_of_view_;  // presentations not seen coming
   int paths_out_of_view_ = 0;                        // paths given up (view: require)

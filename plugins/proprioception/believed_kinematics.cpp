@@ -44,7 +44,7 @@ PluginSpec BelievedKinematics::spec() {
 
 void BelievedKinematics::configure(NodeContext& ctx) {
   const auto config = read_config<Config>(ctx);
-  model_ = robot::experiment_robot(ctx);
+  model_ = robot::experiment_robot(ctx, config.robot);
   try {
     offsets_ = robot::parse_joint_offsets(*model_, config.joint_offsets_deg);
   } catch (const InputError& e) {

@@ -105,13 +105,12 @@ PluginSpec SkinPlugin::spec() {
 void SkinPlugin::configure(NodeContext& ctx) {
   config_ = read_config<Config>(ctx);
   bind_ports(ctx, ports_);
-  model_ = robot::experiment_robot(ctx);
+  model_ = robot::experiment_robot(ctx, config_.robot);
   response_params_.contact_radius = config_.contact_radius;
   response_params_.model = config_.pressure_model;
   response_params_.pressure_threshold = config_.pressure_threshold;
   response_params_.min_taxels = config_.min_taxels;
   response_params_.release_s = config_.release_s;
-  draw_figure_ = config_.figure;
 
   select_parts(ctx);
   load_layouts(ctx);
@@ -342,7 +341,7 @@ void SkinPlugin::step(NodeContext& ctx) {
 void SkinPlugin::finish(NodeContext& ctx) {
   if (!model_) return;
   report(ctx);
-  if (!draw_figure_ || parts_.empty()) return;
+  if (!config_.figure || parts_.empty()) return;
   std::vector<SkinFigurePanel> panels;
   for (const auto& p : parts_)
     panels.push_back({p.patch, &p.layout, p.response->fired(), p.touched_virtual, p.events});

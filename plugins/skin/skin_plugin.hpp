@@ -83,7 +83,6 @@ class SkinPlugin : public Plugin {
   std::vector<Part> parts_;
   std::vector<std::vector<int>> parts_on_link_;  // link index -> indices into parts_
   std::vector<Eigen::Isometry3d> rest_poses_;    // link poses at q = 0 (before any input)
-  bool draw_figure_ = true;
   double keep_events_s_ = 2.0;
   double last_contact_time_ = -1e300;  // newest contact of Contacts::recent already applied [s]
   std::uint64_t next_event_id_ = 1;

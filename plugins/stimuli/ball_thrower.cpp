@@ -49,6 +49,10 @@ void BallThrower::Config::visit(V& v) {
       .doc("a skin event this close to the first physical touch counts");
 }
 
+void BallThrower::Config::validate(ConfigChecks& checks) const {
+  checks.require(!parts.empty(), parts, "expected at least one skin part name");
+}
+
 template <class V>
 void BallThrower::Ports::visit(V& v) {
   v.port("taxels", taxels, "skin taxel poses (root frame)");
@@ -69,20 +73,16 @@ PluginSpec BallThrower::spec() {
 void BallThrower::configure(NodeContext& ctx) {
   config_ = read_config<Config>(ctx);
   bind_ports(ctx, ports_);
-  model_ = robot::experiment_robot(ctx);
-  parts_ = config_.parts;
-  if (parts_.empty())
-    config_error(ctx, config_, config_.parts, "expected at least one skin part name");
+  model_ = robot::experiment_robot(ctx, config_.robot);
   std::vector<std::string> known;
   for (const auto& patch : model_->skin_patches()) {
     known.push_back(patch.body_part);
   }
-  for (const auto& p : parts_)
+  for (const auto& p : config_.parts)
     if (std::find(known.begin(), known.end(), p) == known.end())
       config_error(ctx, config_, config_.parts,
                    "unknown skin part '" + p + "'" + did_you_mean(p, known) +
                        "; the robot's skin parts: " + join_names(known));
-  throws_ = config_.throws;
   distance_ = config_.distance;
   cone_rad_ = deg_to_rad(config_.cone_deg);
   flight_time_ = config_.flight_time;
@@ -101,7 +101,7 @@ void BallThrower::configure(NodeContext& ctx) {
 }
 
 void BallThrower::launch(NodeContext& ctx) {
-  const std::string& part = parts_[static_cast<std::size_t>(thrown_) % parts_.size()];
+  const std::string& part = config_.parts[static_cast<std::size_t>(thrown_) % config_.parts.size()];
   const SkinPart* sp = nullptr;
   for (const auto& p : skin_->parts)
     if (p.name == part) sp = &p;
@@ -216,7 +216,7 @@ void BallThrower::step(NodeContext& ctx) {
     if (now - current_.t_spawn < lifetime_ + event_window_) return;
     close_throw(ctx);
   }
-  if (thrown_ >= throws_) {
+  if (thrown_ >= config_.throws) {
     ctx.request_stop(std::to_string(thrown_) + " balls thrown");
     return;
   }

@@ -37,6 +37,7 @@ class BallThrower : public Plugin {
     double event_window = 0.2;   // [s]
     template <class V>
     void visit(V& v);
+    void validate(ConfigChecks& checks) const;  // cross-field checks
   };
   struct Ports {
     In<SkinTaxels> taxels;
@@ -73,8 +74,6 @@ class BallThrower : public Plugin {
   void close_throw(NodeContext& ctx);
 
   std::shared_ptr<const robot::RobotModel> model_;
-  std::vector<std::string> parts_;
-  int throws_ = 0;
   double distance_ = 0, cone_rad_ = 0, flight_time_ = 0, lifetime_ = 0, radius_ = 0, mass_ = 0;
   double gravity_ = -9.81, event_window_ = 0.2, skin_margin_ = 0.02;
   double last_contact_time_ = -1e300;

@@ -89,14 +89,12 @@ PluginSpec TaxelThrower::spec() {
 void TaxelThrower::configure(NodeContext& ctx) {
   config_ = read_config<Config>(ctx);
   bind_ports(ctx, ports_);
-  throws_ = config_.throws;
   taxel_position_ = list3(config_.taxel_position);
   taxel_normal_ = list3(config_.taxel_normal);
   taxel_normal_.normalize();
   // Any orthonormal pair spanning the skin plane.
   tangent_u_ = taxel_normal_.unitOrthogonal();
   tangent_v_ = taxel_normal_.cross(tangent_u_);
-  body_part_ = config_.body_part;
   start_distance_min_ = config_.start_distance_min;
   start_distance_max_ = config_.start_distance_max;
   start_cone_rad_ = deg_to_rad(config_.start_cone_deg);
@@ -114,7 +112,7 @@ void TaxelThrower::configure(NodeContext& ctx) {
   contacts_ = &ports_.contacts.get();
   distance_ = &ports_.distance.get();
   SkinPart part;
-  part.name = body_part_;
+  part.name = config_.body_part;
   part.link = "root";
   part.taxel_ids = {0};
   part.positions = part.positions_link = {taxel_position_};
@@ -171,7 +169,7 @@ void TaxelThrower::emit_contact(double t) {
   ContactEvent e;
   e.id = next_event_id_++;
   e.time_s = t;
-  e.body_part = body_part_;
+  e.body_part = config_.body_part;
   if (current_.hit) e.touched_taxels = {0};
   // Keep a short history so that slower consumers still see every event.
   while (!contacts_->recent.empty() && contacts_->recent.front().time_s < t - 1.0)
@@ -198,7 +196,7 @@ void TaxelThrower::step(NodeContext& ctx) {
     const double pz = p.dot(taxel_normal_);
     contact_d_sum_ += (pz < 0 ? -1.0 : 1.0) * p.norm();
   }
-  if (thrown_ >= throws_) {
+  if (thrown_ >= config_.throws) {
     done_ = true;
     ctx.request_stop(std::to_string(thrown_) + " throws done");
     return;

@@ -72,11 +72,9 @@ class TaxelThrower : public Plugin {
 
   // parameters
   Eigen::Vector3d taxel_position_, taxel_normal_, tangent_u_, tangent_v_;
-  int throws_ = 0;
   double start_distance_min_ = 0, start_distance_max_ = 0, start_cone_rad_ = 0;
   double landing_sigma_ = 0, speed_min_ = 0, speed_max_ = 0, hit_radius_ = 0;
   double position_noise_ = 0, velocity_noise_ = 0, offset_ = 0, radius_ = 0;
-  std::string body_part_;
   // ports
   pps::Stimulus* perceived_ = nullptr;
   pps::Stimulus* truth_ = nullptr;

@@ -86,7 +86,7 @@ PluginSpec GazeController::spec() {
 void GazeController::configure(NodeContext& ctx) {
   config_ = read_config<Config>(ctx);
   bind_ports(ctx, ports_);
-  model_ = robot::experiment_robot(ctx);
+  model_ = robot::experiment_robot(ctx, config_.robot);
   vision::GazeOptions options;
   options.cameras = config_.cameras;
   options.neck_joints = config_.neck_joints;
@@ -110,15 +110,13 @@ void GazeController::configure(NodeContext& ctx) {
   } catch (const InputError& e) {
     config_error(ctx, config_, config_.joint_offsets_deg, e.what());
   }
-  idle_ = config_.idle;
-  const std::string_view idle = enum_name(idle_);
-  idle_parts_ = config_.idle_parts;
+  const std::string_view idle = enum_name(config_.idle);
   hold_s_ = config_.hold_s;
   dwell_s_ = config_.dwell_s;
-  if (idle_ != GazeIdle::kHold && idle_parts_.empty())
+  if (config_.idle != GazeIdle::kHold && config_.idle_parts.empty())
     config_error(ctx, config_, config_.idle_parts,
                  fmt::format("idle '{}' needs at least one skin part", idle));
-  if (idle_ != GazeIdle::kHold && !ports_.taxels.wired())
+  if (config_.idle != GazeIdle::kHold && !ports_.taxels.wired())
     config_error(ctx, config_, config_.idle,
                  fmt::format("idle '{}' needs the input 'taxels' (the believed skin, "
                              "e.g. believed.taxels) wired",
@@ -138,7 +136,7 @@ void GazeController::configure(NodeContext& ctx) {
 bool GazeController::part_centroids(std::vector<Eigen::Vector3d>& out) const {
   out.clear();
   if (taxels_ == nullptr || taxels_->parts.empty()) return false;  // nothing believed yet
-  for (const std::string& name : idle_parts_) {
+  for (const std::string& name : config_.idle_parts) {
     const auto it = std::find_if(taxels_->parts.begin(), taxels_->parts.end(),
                                  [&](const SkinPart& p) { return p.name == name; });
     if (it == taxels_->parts.end()) {
@@ -198,7 +196,7 @@ void GazeController::step(NodeContext& ctx) {
     last_target_s_ = t;
     idle_now_ = false;
     aim(ctx, q, target_->position, /*tracking=*/true);
-  } else if (idle_ != GazeIdle::kHold && t - last_target_s_ >= hold_s_) {
+  } else if (config_.idle != GazeIdle::kHold && t - last_target_s_ >= hold_s_) {
     if (!idle_now_) {
       idle_now_ = true;
       idle_since_s_ = t;
@@ -208,7 +206,7 @@ void GazeController::step(NodeContext& ctx) {
     std::vector<Eigen::Vector3d> centroids;
     if (part_centroids(centroids)) {
       Eigen::Vector3d point = Eigen::Vector3d::Zero();
-      if (idle_ == GazeIdle::kFixation) {
+      if (config_.idle == GazeIdle::kFixation) {
         for (const Eigen::Vector3d& c : centroids) point += c;
         point /= static_cast<double>(centroids.size());
       } else {
@@ -220,7 +218,7 @@ void GazeController::step(NodeContext& ctx) {
         ctx.log().info(
             "gaze_controller: idle ({}) at t = {:.3f} s: looking at ({:.3f}, {:.3f}, "
             "{:.3f}) m",
-            enum_name(idle_), t, point.x(), point.y(), point.z());
+            enum_name(config_.idle), t, point.x(), point.y(), point.z());
     }
   }
   // Toward the goal at a bounded speed, within the limits.

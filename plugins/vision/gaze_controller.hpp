@@ -75,10 +75,8 @@ class GazeController : public Plugin {
   std::shared_ptr<const robot::RobotModel> model_;
   std::unique_ptr<vision::GazeSolver> solver_;
   Eigen::VectorXd offsets_;
-  double max_speed_ = 0.0;        // [rad/s]
-  double reach_tolerance_ = 0.0;  // [rad]
-  GazeIdle idle_ = GazeIdle::kHold;
-  std::vector<std::string> idle_parts_;
+  double max_speed_ = 0.0;               // [rad/s]
+  double reach_tolerance_ = 0.0;         // [rad]
   double hold_s_ = 0.0, dwell_s_ = 0.0;  // [s]
   const SkinTaxels* taxels_ = nullptr;   // believed taxels (idle fixation / scan)
   const pps::Stimulus* target_ = nullptr;

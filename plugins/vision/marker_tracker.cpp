@@ -104,7 +104,7 @@ PluginSpec MarkerTracker::spec() {
 void MarkerTracker::configure(NodeContext& ctx) {
   config_ = read_config<Config>(ctx);
   bind_ports(ctx, ports_);
-  model_ = robot::experiment_robot(ctx);
+  model_ = robot::experiment_robot(ctx, config_.robot);
   eyes_believed_.configure(ctx, config_.eyes, model_);
   const auto low = config_.hsv_low;
   const auto high = config_.hsv_high;
@@ -125,21 +125,14 @@ void MarkerTracker::configure(NodeContext& ctx) {
                                range_.low[i], range_.high[i]));
   range_text_ =
       fmt::format("hsv_low {} .. hsv_high {}", hsv_text(range_.low), hsv_text(range_.high));
-  min_area_px_ = config_.min_area_px;
   use_circle_ = config_.blob_centre == BlobCentre::kCircle;
-  marker_radius_ = config_.marker_radius;
-  max_reprojection_px_ = config_.max_reprojection_px;
-  max_distance_from_believed_ = config_.max_distance_from_believed;
-  no_colour_frames_error_ = config_.no_colour_frames_error;
-  reset_after_lost_ = config_.reset_after_lost;
   const std::string marker_frame = config_.marker_frame;
   if (model_->find_frame(marker_frame) < 0 && model_->find_link(marker_frame) < 0)
     config_error(ctx, config_, config_.marker_frame,
                  fmt::format("'{}' is neither a frame nor a link of robot '{}'", marker_frame,
                              model_->name()));
   marker_ref_ = model_->frame_ref(marker_frame);
-  kalman_options_ = config_.kalman;
-  kalman_ = vision::KalmanTracker(kalman_options_);
+  kalman_ = vision::KalmanTracker(config_.kalman);
 
   left_ = &ports_.eyes.left_eye_rgb.get();
   right_ = &ports_.eyes.right_eye_rgb.get();
@@ -147,7 +140,7 @@ void MarkerTracker::configure(NodeContext& ctx) {
   truth_ = ports_.true_link_poses.get();
   stimulus_ = &ports_.stimulus.get();
   pixels_ = &ports_.marker_pixels.get();
-  stimulus_->radius = marker_radius_;
+  stimulus_->radius = config_.marker_radius;
 }
 
 bool MarkerTracker::looks_like_marker(const render::Camera& camera, const vision::MarkerBlob& blob,
@@ -155,7 +148,7 @@ bool MarkerTracker::looks_like_marker(const render::Camera& camera, const vision
   // The enclosing circle of a sphere's image: f R / z [px], less when partly hidden; one pixel
   // of rasterisation either way.
   const double z = camera.to_camera(point_root).z();
-  const double expected_px = camera.intrinsics.fx * marker_radius_ / z;
+  const double expected_px = camera.intrinsics.fx * config_.marker_radius / z;
   return blob.circle_radius_px <= 1.3 * expected_px + 1.0 &&
          blob.circle_radius_px >= 0.3 * expected_px - 1.0;
 }
@@ -179,7 +172,7 @@ bool MarkerTracker::marker_expected_in_view(const std::vector<render::Camera>& c
 void MarkerTracker::lose(double dt_s) {
   stimulus_->present = false;
   ++lost_;
-  if (lost_ >= reset_after_lost_)
+  if (lost_ >= config_.reset_after_lost)
     kalman_.reset();
   else if (dt_s > 0)
     kalman_.predict(dt_s);
@@ -209,7 +202,7 @@ void MarkerTracker::step(NodeContext& ctx) {
   // Candidate blobs of each image, and the in-range pixels (to tell a wrong range).
   const auto blobs = [&](const Image& image, int& matched) {
     std::vector<vision::MarkerBlob> b =
-        vision::segment_blobs(image.data, range_, min_area_px_, kMaxBlobs);
+        vision::segment_blobs(image.data, range_, config_.min_area_px, kMaxBlobs);
     matched =
         b.empty() ? vision::segment_marker(image.data, range_, 1).matched_px : b.front().matched_px;
     return b;
@@ -222,7 +215,7 @@ void MarkerTracker::step(NodeContext& ctx) {
   if (expected) ++expected_;
   if (expected && matched_l == 0 && matched_r == 0) {
     if (no_colour_++ == 0) no_colour_since_s_ = left_->time_s;
-    if (no_colour_frames_error_ > 0 && no_colour_ >= no_colour_frames_error_)
+    if (config_.no_colour_frames_error > 0 && no_colour_ >= config_.no_colour_frames_error)
       throw RunError(fmt::format(
           "no pixel of camera '{}' or '{}' has been in the colour range {} for {} frames "
           "(since t = {:.3f} s), while the believed kinematics put the marker ('{}') in view "
@@ -245,12 +238,12 @@ void MarkerTracker::step(NodeContext& ctx) {
       const Eigen::Vector2d ul = use_circle_ ? l.circle_centre_px : l.centroid_px;
       const Eigen::Vector2d ur = use_circle_ ? r.circle_centre_px : r.centroid_px;
       const vision::Triangulation t = vision::triangulate(cams[0], ul, cams[1], ur);
-      if (!t.valid || t.reprojection_error_px > max_reprojection_px_) continue;
+      if (!t.valid || t.reprojection_error_px > config_.max_reprojection_px) continue;
       if (best_l && t.reprojection_error_px >= best.reprojection_error_px) continue;
       if (!looks_like_marker(cams[0], l, t.point) || !looks_like_marker(cams[1], r, t.point))
         continue;
-      if (max_distance_from_believed_ > 0 &&
-          (t.point - believed).norm() > max_distance_from_believed_) {
+      if (config_.max_distance_from_believed > 0 &&
+          (t.point - believed).norm() > config_.max_distance_from_believed) {
         rejected_far = true;
         continue;
       }
@@ -278,7 +271,7 @@ void MarkerTracker::step(NodeContext& ctx) {
   stimulus_->present = true;
   stimulus_->position = kalman_.position();
   stimulus_->velocity = kalman_.velocity();
-  stimulus_->radius = marker_radius_;
+  stimulus_->radius = config_.marker_radius;
   if (truth_) score_against_truth(dt);
 }
 
@@ -315,7 +308,7 @@ void MarkerTracker::finish(NodeContext& ctx) {
   ctx.report_metric("reprojection_mean_px",
                     tracked_ ? reprojection_sum_ / static_cast<double>(tracked_) : 0.0);
   ctx.report_metric("reprojection_max_px", reprojection_max_);
-  if (max_distance_from_believed_ > 0)
+  if (config_.max_distance_from_believed > 0)
     ctx.report_metric("far_from_believed_rejections", far_rejections_);
   if (truth_) {
     ctx.report_metric(

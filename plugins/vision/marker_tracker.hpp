@@ -89,15 +89,8 @@ class MarkerTracker : public Plugin {
   BelievedEyes eyes_believed_;  // cameras and the believed head/eye kinematics
   vision::HsvRange range_;
   std::string range_text_;
-  int min_area_px_ = 1;
-  bool use_circle_ = true;  // blob_centre: circle
-  double marker_radius_ = 0.0;
-  double max_reprojection_px_ = 0.0;
-  double max_distance_from_believed_ = 0.0;  // [m]; 0: off
-  int no_colour_frames_error_ = 0;
-  int reset_after_lost_ = 0;
+  bool use_circle_ = true;      // blob_centre: circle
   robot::FrameRef marker_ref_;  // where the marker is (marker_frame)
-  vision::KalmanOptions kalman_options_;
   vision::KalmanTracker kalman_;
 
   const Image* left_ = nullptr;

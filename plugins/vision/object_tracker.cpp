@@ -194,7 +194,7 @@ PluginSpec ObjectTracker::spec() {
 void ObjectTracker::configure(NodeContext& ctx) {
   config_ = read_config<Config>(ctx);
   bind_ports(ctx, ports_);
-  model_ = robot::experiment_robot(ctx);
+  model_ = robot::experiment_robot(ctx, config_.robot);
   eyes_believed_.configure(ctx, config_.eyes, model_);
   vision::StereoTrackerOptions options;
   options.motion.min_flow_px = config_.min_flow_px;

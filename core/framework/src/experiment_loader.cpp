@@ -272,7 +272,7 @@ class Loader {
       error(root["duration_s"] ? root["duration_s"] : root, "", "duration_s",
             fmt::format("duration_s × base_rate_hz is {:g} ticks; at most {:g} (2^53) can run",
                         ticks, kMaxTicks));
-    else if (std::floor(ticks + 1e-9) < 1.0)
+    else if (ticks > 0.0 && std::floor(ticks + 1e-9) < 1.0)  // (<= 0: already refused)
       error(root["duration_s"] ? root["duration_s"] : root, "", "duration_s",
             fmt::format("duration_s × base_rate_hz is {:g} ticks; a run needs at least one tick "
                         "(1 / base_rate_hz = {:g} s)",

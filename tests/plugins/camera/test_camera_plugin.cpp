@@ -184,8 +184,8 @@ TEST(CameraPlugin, BadBackgroundIsAClearError) {
 
 TEST(CameraPlugin, UnknownOutputIsAClearError) {
   EXPECT_EQ(input_error(graph("outputs: 'rgb, edges'")),
-            "<inline>:7:23: node 'cam', key 'params.outputs': unknown output 'edges' "
-            "(expected rgb, depth, mask)");
+            "<inline>:7:23: node 'cam', key 'params.outputs': expected a list of words: one of "
+            "rgb, depth, mask, got an element 'edges'");
 }
 
 // The EGL back end (surfaceless, llvmpipe here) renders the same images as OSMesa. Failing to

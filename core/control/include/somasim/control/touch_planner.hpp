@@ -10,6 +10,7 @@
 /// the two arms (and the trunk) apart from the touching finger on the touched link.
 #include <functional>
 #include <memory>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -29,9 +30,9 @@ struct TouchPlannerOptions {
   /// Within align_distance of the skin the finger is along −n (the IK's tolerance); farther out
   /// only the fingertip stays on the normal and the finger may tilt, up to max_tilt at
   /// start_distance (the arms cannot hold a 20 cm normal approach for every taxel).
-  double align_distance = 0.06;    ///< [m]
-  double max_tilt = 0.6;           ///< [rad]
-  double far_axis_weight = 0.001;  ///< IK axis weight beyond align_distance [m]
+  double align_distance = 0.03;                       ///< [m]
+  double max_tilt = 60.0 * std::numbers::pi / 180.0;  ///< [rad]
+  double far_axis_weight = 0.001;                     ///< IK axis weight beyond align_distance [m]
   /// Along the approach, moving the touched limb costs this much more than moving the effector's
   /// arm: the limb stays still wherever the arm alone can follow the normal.
   double limb_cost = 100.0;
