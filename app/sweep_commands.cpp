@@ -10,6 +10,7 @@
 #include "somasim/sweep/child_process.hpp"
 #include "somasim/sweep/collect.hpp"
 #include "somasim/sweep/run_folder.hpp"
+#include "somasim/sweep/slurm_script.hpp"
 #include "sweep_setup.hpp"
 
 namespace somasim::app {
@@ -111,51 +112,39 @@ int cmd_sweep_expand(const CommonOptions& common, const SweepArgs& args) {
   return kExitOk;
 }
 
-namespace {
-
-// A word for bash, in single quotes.
-std::string shell_quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
-}  // namespace
-
 int cmd_sweep_slurm(const CommonOptions& common, const SweepArgs& args) {
-  if (args.array_throttle < 0)
-    throw InputError(
-        fmt::format("--array-throttle {}: expected an integer >= 1", args.array_throttle));
   static const std::regex kSlurmTime(R"(^(\d+-)?\d+(:\d+){0,2}$)");
   if (!args.time.empty() && !std::regex_match(args.time, kSlurmTime))
     throw InputError("--time '" + args.time +
                      "': expected a Slurm time limit such as 01:30:00, 90 or 2-00:00:00");
-  for (const auto& a : args.sbatch_args)
-    if (a.find('\n') != std::string::npos || a.rfind('-', 0) != 0)
-      throw InputError("--sbatch-arg '" + a + "': expected one sbatch option, e.g. --mem=4G");
+  sweep::SlurmScriptSpec spec;
+  spec.job_name = "check";
+  spec.log_dir = "/check";
+  spec.command = {"check"};
+  spec.throttle = args.array_throttle;
+  spec.partition = args.partition;
+  spec.time = args.time;
+  spec.extra = args.sbatch_args;
+  sweep::slurm_script(spec);  // the options alone, before the sweep is set up
   const SweepSetup setup(common, args, std::nullopt, true);
   const fs::path root = fs::absolute(setup.root).lexically_normal();
-  const std::size_t n = setup.jobs.size();
-  std::string script = "#!/bin/bash\n";
-  script += fmt::format("#SBATCH --job-name={}\n", setup.spec.name);
-  script += fmt::format("#SBATCH --array=0-{}{}\n", n - 1,
-                        args.array_throttle > 0 ? fmt::format("%{}", args.array_throttle) : "");
-  script += fmt::format("#SBATCH --output={}\n", (root / "logs" / "%A_%a.out").string());
-  script += fmt::format("#SBATCH --error={}\n", (root / "logs" / "%A_%a.err").string());
-  if (!args.partition.empty()) script += "#SBATCH --partition=" + args.partition + "\n";
-  if (!args.time.empty()) script += "#SBATCH --time=" + args.time + "\n";
-  for (const auto& a : args.sbatch_args) script += "#SBATCH " + a + "\n";
-  script += fmt::format(
-      "# Written by `somasim sweep slurm` for sweep '{}' ({} runs of {}).\n"
-      "# Each array task runs one job; completed runs are skipped, so resubmitting resumes.\n",
-      setup.spec.name, n, setup.spec.experiment.string());
-  std::string command = "exec " + shell_quote(sweep::self_executable().string());
-  for (const auto& p : common.plugin_path)
-    command += " --plugin-path " + shell_quote(fs::absolute(p).string());
-  command += " sweep run-one " +
-             shell_quote(fs::absolute(setup.spec.file).lexically_normal().string()) +
-             " --index \"$SLURM_ARRAY_TASK_ID\" --out " + shell_quote(root.string());
-  script += command + "\n";
+  spec.job_name = setup.spec.name;
+  spec.tasks = setup.jobs.size();
+  spec.log_dir = (root / "logs").string();
+  spec.comments = {
+      fmt::format("Written by `somasim sweep slurm` for sweep '{}' ({} runs of {}).",
+                  setup.spec.name, spec.tasks, setup.spec.experiment.string()),
+      "Each array task runs one job; completed runs are skipped, so resubmitting resumes."};
+  spec.command = {sweep::self_executable().string()};
+  for (const auto& p : common.plugin_path) {
+    spec.command.emplace_back("--plugin-path");
+    spec.command.push_back(fs::absolute(p).string());
+  }
+  for (const std::string& w : {std::string("sweep"), std::string("run-one"),
+                               fs::absolute(setup.spec.file).lexically_normal().string(),
+                               std::string("--out"), root.string()})
+    spec.command.push_back(w);
+  const std::string script = sweep::slurm_script(spec);
   const fs::path file = root / "sweep.sbatch";
   sweep::write_file_atomically(file, script);
   fs::permissions(file, fs::perms::owner_exec | fs::perms::group_exec | fs::perms::others_exec,

@@ -247,11 +247,10 @@ TEST_F(SweepCli, SlurmWritesAnArrayScript) {
                 "/%A_%a.out\n#SBATCH --error=" + logs +
                 "/%A_%a.err\n#SBATCH --partition=debug\n#SBATCH --time=00:10:00\n#SBATCH "
                 "--mem=1G\n");
-  EXPECT_NE(
-      text.find("exec '" + kBinary + "' --plugin-path '" + kTestPluginDir + "' sweep run-one '" +
-                (dir / "sweep.yaml").string() + "' --index \"$SLURM_ARRAY_TASK_ID\" --out '" +
-                (dir / "out").string() + "'\n"),
-      std::string::npos)
+  EXPECT_NE(text.find("exec '" + kBinary + "' '--plugin-path' '" + kTestPluginDir +
+                      "' 'sweep' 'run-one' '" + (dir / "sweep.yaml").string() + "' '--out' '" +
+                      (dir / "out").string() + "' --index \"$SLURM_ARRAY_TASK_ID\"\n"),
+            std::string::npos)
       << text;
   // Without sbatch on PATH: a clear message, exit 2, the script still written.
   const std::string path = std::getenv("PATH");
@@ -263,6 +262,17 @@ TEST_F(SweepCli, SlurmWritesAnArrayScript) {
             "error: sbatch not found on PATH: install slurm-client or run on a Slurm login node; "
             "the script is at " +
                 script.string() + "\n");
+  // Values that would break out of an #SBATCH line: refused before the sweep is set up.
+  r = cli({"sweep", "slurm", "sweep.yaml", "--out", "out2", "--partition", "debug\ntouch x"}, dir);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(r.err,
+            "error: --partition 'debug\\x0atouch x': \\x0a cannot be written into an #SBATCH "
+            "line safely (letters, digits and '._/%+,:=@~-' can)\n");
+  EXPECT_FALSE(fs::exists(dir / "out2"));
+  r = cli({"sweep", "slurm", "sweep.yaml", "--out", "out\ntouch x"}, dir);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("the log folder '"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "out\ntouch x" / "sweep.sbatch"));
   r = cli({"sweep", "slurm", "sweep.yaml", "--time", "ten minutes"}, dir);
   EXPECT_EQ(r.code, 2);
   EXPECT_EQ(r.err,
