@@ -157,6 +157,9 @@ int cmd_validate(const CommonOptions& common, const std::string& file,
     configure_without_running(exp);
     fmt::print("{}: ok ({} nodes, {} s at {} Hz)\n", file, exp.nodes.size(), exp.duration_s,
                exp.base_rate_hz);
+    // What was loaded to check it (each library's constructors ran).
+    for (const auto& lib : registry.opened_libraries())
+      fmt::print("  plugin library loaded: {}\n", lib.string());
     return kExitOk;
   } catch (const InputError& e) {
     return bad_input(e);

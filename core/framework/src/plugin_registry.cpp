@@ -8,6 +8,7 @@
 #include <cstring>
 #include <set>
 
+#include "somasim/elf_symbols.hpp"
 #include "somasim/error.hpp"
 #include "somasim/plugin.hpp"
 
@@ -50,6 +51,12 @@ std::vector<fs::path> PluginRegistry::default_search_path(const std::vector<fs::
 
 void PluginRegistry::open(LibraryCandidate& c) {
   if (c.opened || c.rejected()) return;
+  // dlopen runs the library's constructors: only a file that exports the entry point (read
+  // from its dynamic symbols, without loading it) is opened.
+  if (std::string why; !elf_exports_function(c.path, SOMASIM_PLUGIN_ENTRY_SYMBOL, why)) {
+    c.rejection = why + "; not loaded";
+    return;
+  }
   // RTLD_LOCAL keeps plugins' symbols apart; libraries stay loaded for the process lifetime
   // because plugin instances and their specs' factories point into them.
   void* handle = dlopen(c.path.c_str(), RTLD_NOW | RTLD_LOCAL);
@@ -94,9 +101,11 @@ LibraryCandidate PluginRegistry::inspect(const fs::path& file) {
   if (auto indexed = read_plugin_index(file, c.index_note)) {
     c.indexed = true;
     c.plugins = std::move(*indexed);
-  } else {
-    open(c);  // no usable index: open it to see what it provides
+  } else if (std::string why; !elf_exports_function(file, SOMASIM_PLUGIN_ENTRY_SYMBOL, why)) {
+    c.rejection = why + "; not loaded";
   }
+  // Without a usable index its plugins are unknown until it is opened: only when a plugin is
+  // provided by no indexed library (find), or when every plugin is listed (list).
   return c;
 }
 
@@ -145,11 +154,24 @@ const PluginSpec* PluginRegistry::find(const std::string& name) {
     if (it != c.specs.end()) return &it->second;
     // A stale index named it but the library does not provide it: keep looking.
   }
+  // No known library provides it: open the ones without an index, in order, until one does.
+  for (auto& c : candidates_) {
+    if (c.rejected() || c.indexed || c.opened) continue;
+    open(c);
+    const auto it = c.specs.find(name);
+    if (it != c.specs.end()) return &it->second;
+  }
   return nullptr;
 }
 
-std::vector<PluginRegistry::Listing> PluginRegistry::list() {
+void PluginRegistry::open_unindexed() {
   scan();
+  for (auto& c : candidates_)
+    if (!c.indexed) open(c);
+}
+
+std::vector<PluginRegistry::Listing> PluginRegistry::list() {
+  open_unindexed();
   std::vector<Listing> out;
   std::set<std::string> seen;
   for (const auto& c : candidates_) {
@@ -163,9 +185,12 @@ std::vector<PluginRegistry::Listing> PluginRegistry::list() {
 }
 
 std::vector<std::string> PluginRegistry::names() {
-  std::vector<std::string> out;
-  for (const auto& l : list()) out.push_back(l.plugin.name);
-  return out;
+  scan();
+  std::set<std::string> out;
+  for (const auto& c : candidates_)
+    if (!c.rejected())
+      for (const auto& p : c.plugins) out.insert(p.name);
+  return {out.begin(), out.end()};
 }
 
 std::string PluginRegistry::search_report() {
@@ -184,7 +209,9 @@ std::string PluginRegistry::search_report() {
     for (const auto& c : candidates_) {
       if (c.path.parent_path() != dir) continue;
       found += (found.empty() ? "" : ", ") + c.path.filename().string() +
-               (c.rejected() ? " [rejected: " + c.rejection + "]" : "");
+               (c.rejected()              ? " [rejected: " + c.rejection + "]"
+                : !c.indexed && !c.opened ? " [no index: not opened]"
+                                          : "");
     }
     out += found.empty() ? " (no .so files);" : " (" + found + ");";
   }

@@ -91,8 +91,8 @@ TEST_F(Cli, PluginsReportsRejectedLibraries) {
   const CliResult r = cli({"--plugin-path", kBadPluginDir, "plugins"}, dir);
   EXPECT_EQ(r.code, 0);
   EXPECT_EQ(r.err, "rejected " + kNoEntryLib +
-                       ": no entry point 'somasim_plugin_entry' (is SOMASIM_PLUGIN_LIBRARY "
-                       "missing?)\n"
+                       ": no entry point 'somasim_plugin_entry' among its dynamic symbols (is "
+                       "SOMASIM_PLUGIN_LIBRARY missing?); not loaded\n"
                        "rejected " +
                        kOldApiLib +
                        ": built for plugin interface 'somasim-plugin-api/0', this somasim needs "
@@ -169,7 +169,8 @@ TEST_F(Cli, GraphPrintsDot) {
 TEST_F(Cli, ValidateOkAndBad) {
   CliResult r = cli({"validate", "exp.yaml"}, dir);
   EXPECT_EQ(r.code, 0);
-  EXPECT_EQ(r.out, "exp.yaml: ok (3 nodes, 0.005 s at 1000 Hz)\n");
+  EXPECT_EQ(r.out, "exp.yaml: ok (3 nodes, 0.005 s at 1000 Hz)\n  plugin library loaded: " +
+                       kTestPluginLib + "\n");
   write_file(dir / "bad.yaml", R"(experiment: bad
 duration_s: 1
 nodes:

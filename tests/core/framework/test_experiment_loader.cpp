@@ -13,7 +13,8 @@ namespace {
 
 const std::string kSearched = "searched: " + kTestPluginDir + " (libsomasim_test_plugins.so)";
 const std::string kNoEntryWhy =
-    "no entry point 'somasim_plugin_entry' (is SOMASIM_PLUGIN_LIBRARY missing?)";
+    "no entry point 'somasim_plugin_entry' among its dynamic symbols (is SOMASIM_PLUGIN_LIBRARY "
+    "missing?); not loaded";
 const std::string kOldApiWhy =
     "built for plugin interface 'somasim-plugin-api/0', this somasim needs "
     "'somasim-plugin-api/5' (rebuild the plugin)";

@@ -1,11 +1,21 @@
 // PluginRegistry: libraries with an index are opened only when one of their plugins is needed;
-// libraries without a usable index are opened to see what they provide.
+// libraries without one only when no index names the plugin looked up, or when all are listed;
+// nothing that lacks the entry point in its dynamic symbols is ever loaded (constructors never
+// run). The ELF reader that decides it, on real, truncated and corrupted files.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
+#include <fstream>
+#include <random>
+
+#include <dlfcn.h>
+#include <sys/stat.h>
 
 #include "cli_support.hpp"
+#include "somasim/elf_symbols.hpp"
+#include "somasim/plugin.hpp"
 #include "somasim/plugin_index.hpp"
 #include "somasim/plugin_registry.hpp"
 #include "test_support.hpp"
@@ -79,9 +89,10 @@ TEST(PluginRegistry, StaleOrForeignIndexFallsBackToOpening) {
   EXPECT_EQ(cands[0].index_note, "index written for another plugin interface");
   EXPECT_TRUE(cands[0].rejected());
   EXPECT_EQ(cands[1].path, f.plugins);
-  EXPECT_TRUE(cands[1].opened);
+  EXPECT_FALSE(cands[1].opened);  // opened when a plugin is looked up that no index names
   EXPECT_EQ(cands[1].index_note, "index older than the library");
   EXPECT_NE(registry.find("counter"), nullptr);
+  EXPECT_TRUE(cands[1].opened);
 }
 
 TEST(PluginRegistry, FirstLibraryOnThePathWinsWithOrWithoutIndex) {
@@ -133,4 +144,92 @@ TEST(PluginsCommand, IndexSubcommandWritesTheIndex) {
 }
 
 }  // namespace
+// The reader finds the entry point in a real plugin, not in the library without one, and says
+// what is wrong with what is no shared library at all.
+TEST(ElfSymbols, EntryPointOfRealLibraries) {
+  std::string why;
+  EXPECT_TRUE(elf_exports_function(kTestPluginLib, SOMASIM_PLUGIN_ENTRY_SYMBOL, why)) << why;
+  EXPECT_FALSE(elf_exports_function(kNoEntryLib, SOMASIM_PLUGIN_ENTRY_SYMBOL, why));
+  EXPECT_EQ(why,
+            "no entry point 'somasim_plugin_entry' among its dynamic symbols (is "
+            "SOMASIM_PLUGIN_LIBRARY missing?)");
+  EXPECT_TRUE(elf_exports_function(kNoEntryLib, "somasim_test_not_a_plugin", why)) << why;
+  TempDir dir;
+  write_file(dir / "text.so", "not a library\n");
+  EXPECT_FALSE(elf_exports_function(dir / "text.so", "x", why));
+  EXPECT_EQ(why, "not an ELF file");
+  EXPECT_FALSE(elf_exports_function("/dev/zero", "x", why));
+  EXPECT_EQ(why, "not a regular file");
+  EXPECT_FALSE(elf_exports_function(dir.path(), "x", why));
+  ASSERT_EQ(mkfifo((dir / "fifo.so").c_str(), 0600), 0);
+  EXPECT_FALSE(elf_exports_function(dir / "fifo.so", "x", why));  // never blocks on the FIFO
+  EXPECT_EQ(why, "not a regular file");
+}
+
+// Every prefix of a real plugin library (cut every 256 bytes) and 400 copies with random bytes
+// changed: the reader answers (true only where the entry point is really there), never crashes
+// or reads out of bounds (the sanitizer build runs this too).
+TEST(ElfSymbols, TruncatedAndCorruptedFilesAreAnsweredSafely) {
+  std::ifstream in(kTestPluginLib, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_GT(bytes.size(), 4096u);
+  TempDir dir;
+  const fs::path f = dir / "lib.so";
+  std::string why;
+  int refused = 0;
+  for (std::size_t n = 0; n < bytes.size(); n += 256) {
+    write_file(f, bytes.substr(0, n));
+    refused += elf_exports_function(f, SOMASIM_PLUGIN_ENTRY_SYMBOL, why) ? 0 : 1;
+  }
+  EXPECT_GT(refused, 0);
+  std::mt19937_64 rng(3);
+  std::uniform_int_distribution<std::size_t> at(0, bytes.size() - 1);
+  std::uniform_int_distribution<int> byte(0, 255), changes(1, 64);
+  int found = 0;
+  for (int k = 0; k < 400; ++k) {
+    std::string copy = bytes;
+    // The ELF header and section headers are where a change matters most: half the changes
+    // land in the first 64 bytes or the last 4 KiB.
+    for (int c = changes(rng); c > 0; --c) {
+      std::size_t i = at(rng);
+      if (c % 2 == 0) i = c % 4 == 0 ? i % 64 : bytes.size() - 1 - i % 4096;
+      copy[i] = static_cast<char>(byte(rng));
+    }
+    write_file(f, copy);
+    found += elf_exports_function(f, SOMASIM_PLUGIN_ENTRY_SYMBOL, why) ? 1 : 0;
+  }
+  std::printf("corrupted libraries: entry point still found in %d of 400\n", found);
+}
+
+// A library without the entry point is never loaded — on the search path (listed, looked up,
+// validated) or named explicitly — so its constructor never runs. (The constructor does run
+// when the library is loaded: checked last, so the test can fail.)
+TEST(PluginRegistry, ALibraryWithoutTheEntryPointIsNeverLoaded) {
+  TempDir dir;
+  const fs::path marker = dir / "constructor_ran";
+  ASSERT_EQ(setenv("SOMASIM_TEST_CONSTRUCTOR_MARKER", marker.c_str(), 1), 0);
+  {
+    PluginRegistry registry({kBadPluginDir, kTestPluginDir});
+    registry.list();
+    EXPECT_EQ(registry.find("no_such_plugin"), nullptr);
+    EXPECT_NE(registry.find("counter"), nullptr);
+    EXPECT_THROW(registry.load_library(kNoEntryLib), InputError);
+    for (const auto& lib : registry.opened_libraries()) EXPECT_NE(lib, fs::path(kNoEntryLib));
+  }
+  write_file(dir / "exp.yaml",
+             "experiment: t\nduration_s: 0.005\nnodes:\n  c: {plugin: counter, params: {start: "
+             "0}}\n");
+  const CliResult r =
+      cli({"--plugin-path", kBadPluginDir, "--plugin-path", kTestPluginDir, "validate", "exp.yaml"},
+          dir);
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("plugin library loaded: " + kTestPluginLib), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(marker));
+  void* handle = dlopen(kNoEntryLib.c_str(), RTLD_NOW | RTLD_LOCAL);
+  ASSERT_NE(handle, nullptr);
+  EXPECT_TRUE(fs::exists(marker)) << "the marker library's constructor did not run";
+  dlclose(handle);
+  unsetenv("SOMASIM_TEST_CONSTRUCTOR_MARKER");
+}
+
 }  // namespace somasim::test

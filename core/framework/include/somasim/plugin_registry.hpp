@@ -3,9 +3,12 @@
 /// Finds plugin shared libraries on a search path, checks their interface version and
 /// exposes the plugins they register. Built-in plugins are found the same way as users'.
 ///
-/// Libraries are loaded (dlopen'ed) only when needed: a library with a valid index file
-/// (plugin_index.hpp) is opened when one of its plugins is looked up; a library without one is
-/// opened when the search path is scanned, to see what it provides.
+/// Libraries are loaded (dlopen'ed, which runs their constructors) only when needed, and only
+/// files that export the entry point (read from their ELF dynamic symbols, elf_symbols.hpp):
+/// a library with a valid index file (plugin_index.hpp) is opened when one of its plugins is
+/// looked up; a library without one only when no indexed library provides the plugin looked up,
+/// or when every plugin is listed (`somasim plugins`). An explicit library (load_library) is
+/// opened at once: the experiment that names it trusts it as it would a script.
 #include <filesystem>
 #include <map>
 #include <string>
@@ -50,13 +53,14 @@ class PluginRegistry {
   /// search path in order) that provides it wins; only that library is opened.
   const PluginSpec* find(const std::string& name);
   /// Every plugin found, each once (as find() would resolve it), without opening indexed
-  /// libraries: name, summary and library.
+  /// libraries (libraries without an index are opened to see what they provide): name,
+  /// summary and library.
   struct Listing {
     IndexedPlugin plugin;
     const LibraryCandidate* library = nullptr;
   };
   std::vector<Listing> list();
-  /// Names of all plugins found (no library is opened for this beyond the scan).
+  /// Names of the plugins known without opening anything more (indexed and opened libraries).
   std::vector<std::string> names();
   /// "searched: DIR (...), DIR (...)": what was looked at and why candidates were rejected.
   std::string search_report();
@@ -73,6 +77,7 @@ class PluginRegistry {
   void scan();
   LibraryCandidate inspect(const std::filesystem::path& file);
   void open(LibraryCandidate& c);
+  void open_unindexed();
   std::vector<std::filesystem::path> search_path_;
   std::vector<LibraryCandidate> candidates_;
   std::vector<std::filesystem::path> opened_order_;
