@@ -1,6 +1,10 @@
 #include "commands.hpp"
 #include "mpi_session.hpp"
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
 #include <cstdio>
 #include <cstdlib>  // mkdtemp (POSIX)
 
@@ -36,15 +40,40 @@ std::vector<Override> parse_sets(const std::vector<std::string>& sets) {
   return out;
 }
 
+// Holds the run folder for this process: an exclusive lock on the folder itself (flock, released
+// when the process ends, however it ends). A second run into the same folder is refused while
+// this one lives.
+void lock_run_folder(const fs::path& dir) {
+  static int held = -1;  // kept open for the process's lifetime
+  const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd < 0) throw InputError("cannot open run folder '" + dir.string() + "'");
+  if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+    ::close(fd);
+    throw InputError("run folder '" + dir.string() +
+                     "' is in use by another somasim run; wait for it or choose another --out");
+  }
+  if (held >= 0) ::close(held);
+  held = fd;
+}
+
 // Creates the run folder, or empties an existing one with `overwrite`; an existing non-empty
-// folder is refused otherwise (its files would mix with this run's). InputError when it cannot
-// be made a fresh, writable folder.
+// folder is refused otherwise (its files would mix with this run's), and so is one another run
+// holds. --overwrite empties only a real folder, not one reached through a symbolic link (the
+// link's target would be emptied). InputError when it cannot be made a fresh, writable folder.
 void prepare_run_folder(const fs::path& dir, bool overwrite) {
   std::error_code ec;
   const auto status = fs::status(dir, ec);
   if (fs::exists(status) && !fs::is_directory(status))
     throw InputError("--out '" + dir.string() + "' exists and is not a folder");
-  if (fs::is_directory(status) && !fs::is_empty(dir, ec)) {
+  if (fs::is_directory(status) && !fs::is_empty(dir, ec) && overwrite &&
+      fs::is_symlink(fs::symlink_status(dir, ec)))
+    throw InputError("--out '" + dir.string() +
+                     "' is a symbolic link; --overwrite empties only a real folder (give the "
+                     "folder's own path)");
+  fs::create_directories(dir, ec);
+  if (ec) throw InputError("cannot create run folder '" + dir.string() + "': " + ec.message());
+  lock_run_folder(dir);
+  if (!fs::is_empty(dir, ec)) {
     if (!overwrite)
       throw InputError("run folder '" + dir.string() +
                        "' already holds a run; choose another --out or add --overwrite "
@@ -52,8 +81,6 @@ void prepare_run_folder(const fs::path& dir, bool overwrite) {
     for (const auto& entry : fs::directory_iterator(dir, ec)) fs::remove_all(entry.path(), ec);
     if (ec) throw InputError("cannot empty run folder '" + dir.string() + "': " + ec.message());
   }
-  fs::create_directories(dir, ec);
-  if (ec) throw InputError("cannot create run folder '" + dir.string() + "': " + ec.message());
   const fs::path probe = dir / ".somasim-write-test";
   if (std::FILE* f = std::fopen(probe.c_str(), "w")) {
     std::fclose(f);

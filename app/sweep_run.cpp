@@ -252,6 +252,7 @@ int cmd_sweep_run(const CommonOptions& common, const SweepArgs& args) {
         break;
     }
   }
+  for (const Job* job : pending) sweep::check_no_links_below(setup.root, job->folder);
   fmt::print("sweep {}: {} runs in {} ({} already completed, {} to run, {} workers)\n",
              setup.spec.name, n, setup.root.string(), skipped, pending.size(), args.workers);
   std::fflush(stdout);
@@ -329,6 +330,7 @@ int cmd_sweep_run_one(const CommonOptions& common, const SweepArgs& args) {
     case sweep::RunState::kRedo:
       break;
   }
+  sweep::check_no_links_below(setup.root, job.folder);
   install_stop_handler();  // the child gets the same signals (same process group) and flushes
   JobRunner runner(common, setup, false);
   const pid_t pid = runner.launch(job);

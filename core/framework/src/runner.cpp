@@ -44,7 +44,7 @@ std::shared_ptr<spdlog::logger> make_logger(const fs::path& dir, bool quiet) {
   err->set_pattern("[%n] %^%l%$: %v");
   auto logger = std::make_shared<spdlog::logger>("somasim", spdlog::sinks_init_list{file, err});
   logger->set_level(spdlog::level::debug);
-  logger->flush_on(spdlog::level::warn);
+  logger->flush_on(spdlog::level::debug);  // every line reaches log.txt as it is logged
   return logger;
 }
 
@@ -70,11 +70,19 @@ class ProgressLine {
   double last_ = 0.0;
 };
 
+// Written to a temporary file in the same folder and renamed over `file`: a reader (or a run
+// killed meanwhile) sees the old metrics.json or the new one, never half of one.
 void write_metrics(const fs::path& file, const nlohmann::ordered_json& metrics) {
-  std::ofstream out(file);
-  out << metrics.dump(2) << "\n";
-  out.close();
-  if (!out) throw std::runtime_error("cannot write " + file.string());
+  const fs::path tmp = file.string() + ".tmp";
+  {
+    std::ofstream out(tmp);
+    out << metrics.dump(2) << "\n";
+    out.close();
+    if (!out) throw std::runtime_error("cannot write " + tmp.string());
+  }
+  std::error_code ec;
+  fs::rename(tmp, file, ec);
+  if (ec) throw std::runtime_error("cannot write " + file.string() + ": " + ec.message());
 }
 
 /// The plugin libraries the experiment's nodes come from, for the log.
@@ -121,6 +129,11 @@ namespace {
 
 RunReport run_in_folder(const Experiment& exp, const RunOptions& options) {
   fs::create_directories(options.out_dir);
+  // Until the run ends, metrics.json says it is running: a folder whose run was killed says so.
+  write_metrics(options.out_dir / "metrics.json", {{"experiment", exp.name},
+                                                   {"status", "running"},
+                                                   {"seed", exp.seed},
+                                                   {"pid", static_cast<long>(::getpid())}});
   {
     std::ofstream resolved(options.out_dir / "experiment.resolved.yaml");
     resolved << exp.resolved_yaml();

@@ -23,7 +23,12 @@ Simulation::Simulation(const Experiment& experiment, fs::path out_dir,
 }
 
 Simulation::~Simulation() {
-  for (auto& r : recorders_) r->flush();
+  for (auto& r : recorders_) {
+    try {
+      r->flush();
+    } catch (const std::exception&) {  // finish() reports write errors; nothing more to save
+    }
+  }
 }
 
 double Simulation::time_s() const {
@@ -145,7 +150,14 @@ std::string Simulation::finish() {
     for (const auto& [k, v] : n.metrics) m[k] = v;
     if (!m.empty()) metrics_[n.spec.name] = m;
   }
-  for (auto& r : recorders_) r->flush();
+  for (auto& r : recorders_) {
+    try {
+      r->flush();
+    } catch (const std::exception& e) {
+      if (first_error.empty()) first_error = e.what();
+      logger_->error("{}", e.what());
+    }
+  }
   return first_error;
 }
 
@@ -264,8 +276,8 @@ fs::path NodeContext::output_path_param(const std::string& param) {
 namespace {
 // Why `relative` (normalised, relative to the run folder) is one of the run's own files, or "".
 std::string run_file_problem(const std::string& relative, const Experiment& exp) {
-  static const char* const kRunFiles[] = {"metrics.json", "log.txt", "experiment.resolved.yaml",
-                                          "manifest.json"};
+  static const char* const kRunFiles[] = {"metrics.json", "metrics.json.tmp", "log.txt",
+                                          "experiment.resolved.yaml", "manifest.json"};
   for (const char* f : kRunFiles)
     if (relative == f) return "is one of the run folder's own files";
   for (const char* folder : {"figures", "frames"})  // figures; cameras' saved frames

@@ -88,6 +88,19 @@ nlohmann::ordered_json sweep_manifest(const SweepSpec& spec, const BaseExperimen
   return m;
 }
 
+void check_no_links_below(const fs::path& root, const std::string& relative) {
+  fs::path at = root;
+  for (const auto& part : fs::path(relative)) {
+    at /= part;
+    std::error_code ec;
+    if (fs::is_symlink(fs::symlink_status(at, ec)))
+      throw InputError("'" + at.string() +
+                       "' is a symbolic link inside the sweep's output folder; the sweep empties "
+                       "run folders before each run and does not delete through links it did not "
+                       "make (nothing was deleted; remove the link)");
+  }
+}
+
 void write_file_atomically(const fs::path& file, const std::string& text) {
   const fs::path tmp = file.string() + fmt::format(".tmp.{}", ::getpid());
   {

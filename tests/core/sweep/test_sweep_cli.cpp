@@ -313,3 +313,33 @@ TEST_F(SweepCli, BadSweepFilesAreBadInput) {
 
 }  // namespace
 }  // namespace somasim::test
+
+namespace somasim::test {
+
+// A symbolic link planted where a run folder goes (or on the way to it): the sweep refuses to
+// run rather than empty the link's target.
+TEST_F(SweepCli, LinksPlantedInTheOutputFolderAreNotFollowed) {
+  ASSERT_EQ(cli({"sweep", "expand", "sweep.yaml", "--out", "out"}, dir).code, 0);
+  fs::create_directories(dir / "precious");
+  write_file(dir / "precious/keep.txt", "keep\n");
+  fs::create_directories(dir / "out/runs");
+  fs::create_directory_symlink(dir / "precious", dir / "out/runs/0003");
+  CliResult r = cli({"sweep", "run", "sweep.yaml", "--out", "out"}, dir);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("0003' is a symbolic link inside the sweep's output folder"),
+            std::string::npos)
+      << r.err;
+  EXPECT_TRUE(fs::exists(dir / "precious/keep.txt"));
+  r = cli({"sweep", "run-one", "sweep.yaml", "--out", "out", "--index", "3"}, dir);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_TRUE(fs::exists(dir / "precious/keep.txt"));
+  // A link on the way: the whole runs/ folder.
+  fs::remove(dir / "out/runs/0003");
+  fs::rename(dir / "out/runs", dir / "out/runs_real");
+  fs::create_directory_symlink(dir / "precious", dir / "out/runs");
+  r = cli({"sweep", "run", "sweep.yaml", "--out", "out"}, dir);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_TRUE(fs::exists(dir / "precious/keep.txt"));
+}
+
+}  // namespace somasim::test

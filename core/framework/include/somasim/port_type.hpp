@@ -33,7 +33,8 @@ class PortRecorder {
   virtual ~PortRecorder() = default;
   /// Records the port's value after a step of its producer at sim time `time_s` [s].
   virtual void write(double time_s) = 0;
-  /// Writes out everything buffered; called at the end of a run, also after a failure.
+  /// Writes out everything buffered; called at the end of a run, also after a failure. Throws
+  /// RunError (naming the file) when the data cannot be written; the run then fails.
   virtual void flush() = 0;
 };
 

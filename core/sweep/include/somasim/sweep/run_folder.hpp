@@ -43,6 +43,11 @@ void prepare_output_root(const std::filesystem::path& root, const SweepSpec& spe
 /// Reads DIR/sweep.json. Throws InputError when it is missing or malformed.
 nlohmann::json read_sweep_manifest(const std::filesystem::path& root);
 
+/// Throws InputError when a job's run folder `root / relative` (or a folder on the way to it
+/// below `root`) is a symbolic link: the sweep empties run folders before each run and must not
+/// delete through a link someone placed there. Nothing is deleted.
+void check_no_links_below(const std::filesystem::path& root, const std::string& relative);
+
 /// Writes `text` to `file` through `file.tmp.PID` and a rename. Throws InputError on failure.
 void write_file_atomically(const std::filesystem::path& file, const std::string& text);
 
