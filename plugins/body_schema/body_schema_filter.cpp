@@ -36,7 +36,9 @@ void BodySchemaFilter::Config::visit(V& v) {
       .doc(
           "1 or 2 cameras, fed by the inputs left_eye_rgb and right_eye_rgb; the first "
           "is the frame of the estimated palm pose");
-  v.field("particles", particles).at_least(1).doc("M");
+  v.field("particles", particles)
+      .range(1, kMaxParticles)
+      .doc("M (the estimate's KDE costs M² kernel evaluations per frame)");
   v.field("schedule", schedule)
       .one_of(body_schema::noise_schedule_names())
       .doc("noise schedule preset (somasim/body_schema/noise_schedule.hpp)");
@@ -100,11 +102,17 @@ void BodySchemaFilter::Config::visit(V& v) {
 
 void BodySchemaFilter::Config::validate(ConfigChecks& checks) const {
   checks.require(!joints.empty(), joints, "expected at least one joint");
+  for (auto it = joints.begin(); it != joints.end(); ++it)
+    checks.require(std::find(joints.begin(), it, *it) == it, joints,
+                   "joint '" + *it + "' is listed twice");
+  checks.require(cameras.size() != 2 || cameras[0] != cameras[1], cameras,
+                 "the two cameras are the same ('" + (cameras.empty() ? "" : cameras[0]) + "')");
   checks.require(!cameras.empty() && cameras.size() <= 2, cameras,
                  fmt::format("expected 1 or 2 camera names, got {}", cameras.size()));
   for (double m : compare_particles)
-    checks.require(m >= 1.0 && m == std::floor(m) && m <= 1.0e6, compare_particles,
-                   fmt::format("expected whole numbers of particles >= 1, got {}", m));
+    checks.require(
+        m >= 1.0 && m == std::floor(m) && m <= kMaxParticles, compare_particles,
+        fmt::format("expected whole numbers of particles in [1, {}], got {}", kMaxParticles, m));
 }
 
 template <class V>
@@ -153,6 +161,15 @@ void BodySchemaFilter::configure_joints(NodeContext& ctx) {
     } catch (const InputError& e) {
       config_error(ctx, config_, config_.true_offsets_deg, e.what());
     }
+    // An offset the filter does not estimate could never be found: a mistake in the config.
+    for (int d = 0; d < model_->num_dofs(); ++d)
+      if (true_offsets_[d] != 0.0 &&
+          std::find(offset_dofs_.begin(), offset_dofs_.end(), d) == offset_dofs_.end())
+        config_error(
+            ctx, config_, config_.true_offsets_deg,
+            fmt::format("joint '{}' has a true offset but is not among the estimated "
+                        "joints ({})",
+                        model_->joint(model_->dof_joint(d)).name, fmt::join(config_.joints, ", ")));
   }
 }
 

@@ -45,6 +45,9 @@ constexpr std::span<const NamedValue<OnNoMatch>> name_table(OnNoMatch) {
 
 class BodySchemaFilter : public Plugin {
  public:
+  /// The most particles a filter may have: the KDE of the estimate is O(M²) per frame
+  /// (4·10⁸ kernel evaluations at this bound), so more would run for hours or exhaust memory.
+  static constexpr int kMaxParticles = 20000;
   struct Config {
     robot::RobotParam robot;
     std::string chain = "right_arm";

@@ -59,6 +59,18 @@ void GazeController::Config::visit(V& v) {
       .doc("idle scan: time on each part before the next");
 }
 
+void GazeController::Config::validate(ConfigChecks& checks) const {
+  std::vector<std::string> all = neck_joints;
+  all.insert(all.end(), eye_joints.begin(), eye_joints.end());
+  for (auto it = all.begin(); it != all.end(); ++it) {
+    const bool neck = static_cast<std::size_t>(it - all.begin()) < neck_joints.size();
+    checks.require(std::find(all.begin(), it, *it) == it, neck ? neck_joints : eye_joints,
+                   "joint '" + *it + "' is listed twice (neck_joints and eye_joints together)");
+  }
+  checks.require(cameras.size() != 2 || cameras[0] != cameras[1], cameras,
+                 "the two cameras are the same ('" + (cameras.empty() ? "" : cameras[0]) + "')");
+}
+
 template <class V>
 void GazeController::Ports::visit(V& v) {
   v.port("target", target, "what to look at (root frame), e.g. marker_tracker.stimulus");
@@ -105,6 +117,22 @@ void GazeController::configure(NodeContext& ctx) {
   } catch (const InputError& e) {
     config_error(ctx, config_, config_.cameras, e.what());  // the joints are checked above
   }
+  // Every gaze joint must move a camera (lie between the root and a camera's link).
+  for (const auto* joints : {&config_.neck_joints, &config_.eye_joints})
+    for (const std::string& joint : *joints) {
+      const int dof = model_->dof_index(joint);
+      bool moves_a_camera = false;
+      for (const std::string& c : config_.cameras) {
+        const auto& dofs = model_->supporting_dofs(
+            model_->cameras().at(static_cast<std::size_t>(model_->find_camera(c))).link);
+        moves_a_camera = moves_a_camera || std::find(dofs.begin(), dofs.end(), dof) != dofs.end();
+      }
+      if (!moves_a_camera)
+        config_error(ctx, config_, *joints,
+                     fmt::format("gaze: joint '{}' moves neither camera ({}): it is not between "
+                                 "the robot's root and the cameras' links",
+                                 joint, fmt::join(config_.cameras, ", ")));
+    }
   try {
     offsets_ = robot::parse_joint_offsets(*model_, config_.joint_offsets_deg);
   } catch (const InputError& e) {

@@ -50,6 +50,7 @@ class GazeController : public Plugin {
     double dwell_s = 2.0;  // [s]
     template <class V>
     void visit(V& v);
+    void validate(ConfigChecks& checks) const;  // cross-field checks
   };
   struct Ports {
     In<pps::Stimulus> target;

@@ -51,9 +51,11 @@ class Loader {
   Experiment load(const std::string& text) {
     YAML::Node root;
     try {
-      root = YAML::Load(text);
+      root = load_one_document(text);
     } catch (const YAML::ParserException& e) {
       throw InputError(syntax_error_message(text, e));
+    } catch (const InputError& e) {
+      throw InputError(locs_.file() + ": " + e.what());
     }
     if (!root.IsMap()) {
       throw InputError(
@@ -178,9 +180,11 @@ class Loader {
         fail("expected a dotted path such as nodes.NODE.params.NAME");
       YAML::Node value;
       try {
-        value = YAML::Load(ov.value);
+        value = load_one_document(ov.value);
       } catch (const YAML::ParserException& e) {
         fail("the value is not valid YAML: " + e.msg);
+      } catch (const InputError& e) {
+        fail(std::string("the value ") + e.what());
       }
       // Walk to the parent map, checking that each step exists.
       YAML::Node parent = root;

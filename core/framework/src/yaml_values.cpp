@@ -4,10 +4,21 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <vector>
 
 #include <fmt/format.h>
 
+#include "somasim/error.hpp"
+
 namespace somasim {
+
+YAML::Node load_one_document(const std::string& text) {
+  std::vector<YAML::Node> docs = YAML::LoadAll(text);
+  if (docs.size() > 1)
+    throw InputError(
+        fmt::format("holds {} YAML documents (separated by '---'); expected one", docs.size()));
+  return docs.empty() ? YAML::Node() : docs.front();
+}
 
 std::string describe_yaml(const YAML::Node& node) {
   switch (node.Type()) {

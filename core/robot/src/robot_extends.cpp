@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "robot_loader_internal.hpp"
+#include "somasim/yaml_text.hpp"
 
 namespace somasim::robot::detail {
 
@@ -15,10 +16,12 @@ const std::vector<std::string> kExtendsKeys = {"robot", "extends", "set"};
 
 YAML::Node RobotLoader::parse(const std::string& text, const std::string& display) {
   try {
-    return YAML::Load(text);
+    return load_one_document(text);
   } catch (const YAML::ParserException& e) {
     throw InputError(fmt::format("{}:{}:{}: YAML syntax error: {}", display, e.mark.line + 1,
                                  e.mark.column + 1, e.msg));
+  } catch (const InputError& e) {
+    throw InputError(display + ": " + e.what());
   }
 }
 

@@ -6,8 +6,11 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
+#include <unordered_map>
+#include <utility>
 
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
@@ -54,10 +57,12 @@ class SweepReader {
   SweepSpec read(const std::string& text) {
     YAML::Node root;
     try {
-      root = YAML::Load(text);
+      root = load_one_document(text);
     } catch (const YAML::ParserException& e) {
       throw InputError(fmt::format("{}:{}:{}: YAML syntax error: {}", display_, e.mark.line + 1,
                                    e.mark.column + 1, e.msg));
+    } catch (const InputError& e) {
+      throw InputError(display_ + ": " + e.what());
     }
     if (!root.IsMap())
       throw InputError(loc(root).str() +
@@ -75,6 +80,7 @@ class SweepReader {
     read_mode(root["mode"]);
     read_fixed(root["set"]);
     read_axes(root["axes"], root);
+    check_runs_distinct();
     read_summary(root["summary"]);
     diags_.throw_if_any();
     return std::move(spec_);
@@ -286,6 +292,10 @@ class SweepReader {
       for (const auto& f : spec_.fixed)
         if (f.path == a.path)
           error(kv.first, key, "is also fixed in 'set' (at " + f.where.str() + "); keep one");
+      if (a.path == "seed" && root["seeds"])
+        error(kv.first, key,
+              "is also swept by 'seeds' (at " + loc(root["seeds"]).str() +
+                  "), which would override it in every run; keep one");
       const YAML::Node v = kv.second;
       if (v.IsSequence()) {
         if (v.size() == 0) error(v, key, "expected at least one value, got an empty list");
@@ -304,6 +314,50 @@ class SweepReader {
       }
       spec_.axes.push_back(std::move(a));
     }
+  }
+
+  // Values that are the same value (0.0 and -0.0, 1 and 1.0, a text twice) would make
+  // identical runs: in grid mode two values of one axis, in zip mode two positions whose values
+  // agree on every axis. Compared by a canonical key (numbers by value), in linear time.
+  static std::string value_key(const AxisValue& v) {
+    if (const auto x = parse_double(v.text)) return fmt::format("n{:.17g}", *x + 0.0);  // -0 = 0
+    return "t" + v.text;
+  }
+
+  void check_runs_distinct() {
+    const auto duplicate = [&](const std::vector<std::string>& keys)
+        -> std::optional<std::pair<std::size_t, std::size_t>> {
+      std::unordered_map<std::string, std::size_t> first;
+      for (std::size_t i = 0; i < keys.size(); ++i)
+        if (const auto [it, fresh] = first.emplace(keys[i], i); !fresh)
+          return std::make_pair(it->second, i);
+      return std::nullopt;
+    };
+    if (spec_.mode == SweepMode::kGrid) {
+      for (const Axis& a : spec_.axes) {
+        std::vector<std::string> keys;
+        for (const AxisValue& v : a.values) keys.push_back(value_key(v));
+        if (const auto d = duplicate(keys)) {
+          const AxisValue &x = a.values[d->second], &y = a.values[d->first];
+          diags_.add(x.where, "", "axes." + a.path,
+                     fmt::format("value {} is the same as {} (at {}); two runs would be identical",
+                                 x.text, y.text, y.where.str()));
+          return;
+        }
+      }
+      return;
+    }
+    if (spec_.axes.empty()) return;
+    std::size_t n = spec_.axes.front().values.size();
+    for (const Axis& a : spec_.axes) n = std::min(n, a.values.size());
+    std::vector<std::string> keys(n);
+    for (const Axis& a : spec_.axes)
+      for (std::size_t i = 0; i < n; ++i) keys[i] += value_key(a.values[i]) + '\x1f';
+    if (const auto d = duplicate(keys))
+      diags_.add(spec_.axes.front().values[d->second].where, "", "axes",
+                 fmt::format("zip position {} has the same values as position {} on every axis; "
+                             "two runs would be identical",
+                             d->second + 1, d->first + 1));
   }
 
   void read_range(const YAML::Node& v, const std::string& key, Axis& a) {

@@ -205,6 +205,19 @@ TEST_F(BadInputs, NodeRatesFarOffTheBaseRateAreRefused) {
   }
 }
 
+// A second YAML document (after '---') in an experiment or a --set value was silently dropped.
+TEST_F(BadInputs, SecondYamlDocumentsAreRefused) {
+  CliResult r =
+      run("experiment: x\nduration_s: 0.01\nnodes:\n  c: {plugin: counter, params: "
+          "{start: 0}}\n---\nexperiment: y\n");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(r.err, "error: exp.yaml: holds 2 YAML documents (separated by '---'); expected one\n");
+  write_file(dir / "exp.yaml", kCounter);
+  r = cli({"validate", "exp.yaml", "--set", "nodes.c.params.start=1\n---\n2"}, dir);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("the value holds 2 YAML documents"), std::string::npos) << r.err;
+}
+
 TEST_F(BadInputs, HugeFilesAreRefusedBeforeTheyAreRead) {
   write_file(dir / "huge.yaml", kCounter);
   fs::resize_file(dir / "huge.yaml", 3u << 20);  // 3 MiB (sparse: NUL bytes after the text)

@@ -149,5 +149,38 @@ TEST_F(SweepFile, BadInputsAreLocated) {
             "got 'b c'");
 }
 
+// Values that make identical runs: the same value twice on a grid axis (numbers compared by
+// value: 0.0 and -0.0, 1 and 1.0), a zip position repeated on every axis, a `seed` axis that
+// `seeds` overrides; and a file of two YAML documents.
+TEST_F(SweepFile, ValuesThatMakeIdenticalRunsAreRefused) {
+  const std::string head = "sweep: b\nexperiment: exp.yaml\n";
+  EXPECT_EQ(error_of(head + "axes: {a.x: [0.0, -0.0]}\n"),
+            "s.yaml:3:19: key 'axes.a.x': value -0.0 is the same as 0.0 (at s.yaml:3:14); two "
+            "runs would be identical");
+  EXPECT_NE(error_of(head + "axes: {a.x: [1, 2, 1.0]}\n").find("value 1.0 is the same as 1"),
+            std::string::npos);
+  EXPECT_NE(error_of(head + "axes: {a.x: [abc, abc]}\n").find("value abc is the same as abc"),
+            std::string::npos);
+  EXPECT_NE(error_of(head + "axes: {a.x: {from: 1, to: 1, count: 3}}\n").find("is the same as"),
+            std::string::npos);
+  EXPECT_EQ(error_of(head + "mode: zip\naxes: {a.x: [1, 2, 1], a.y: [5, 6, 5.0]}\n"),
+            "s.yaml:4:20: key 'axes': zip position 3 has the same values as position 1 on every "
+            "axis; two runs would be identical");
+  EXPECT_EQ(error_of(head + "mode: zip\naxes: {a.x: [1, 2, 1], a.y: [5, 6, 7]}\n"), "no error");
+  EXPECT_EQ(error_of(head + "seeds: [1, 2]\naxes: {seed: [3, 4]}\n"),
+            "s.yaml:4:8: key 'axes.seed': is also swept by 'seeds' (at s.yaml:3:8), which would "
+            "override it in every run; keep one");
+  EXPECT_EQ(error_of(head + "axes: {a.x: [1]}\n---\naxes: {a.x: [2]}\n"),
+            "s.yaml: holds 2 YAML documents (separated by '---'); expected one");
+}
+
+// Generated grid axes of up to 100000 values (the limit) are checked in linear time: a large
+// sweep expands in well under the test's timeout.
+TEST_F(SweepFile, LargeAxesAreCheckedForRepeatsQuickly) {
+  const std::string head = "sweep: b\nexperiment: exp.yaml\n";
+  const SweepSpec spec = load(head + "axes: {a.x: {from: 0, to: 99999, step: 1}}\n");
+  EXPECT_EQ(spec.axes.front().values.size(), 100000u);
+}
+
 }  // namespace
 }  // namespace somasim::sweep

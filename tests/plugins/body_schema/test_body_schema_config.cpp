@@ -49,10 +49,10 @@ TEST(BodySchemaFilterConfig, CrossFieldChecksAreLocated) {
             "got 0");
   EXPECT_EQ(error_of(filter_graph("compare_particles: [50, 2.5]")),
             "<inline>:7:33: node 'filter', key 'params.compare_particles': expected whole numbers "
-            "of particles >= 1, got 2.5");
+            "of particles in [1, 20000], got 2.5");
   EXPECT_EQ(error_of(filter_graph("compare_particles: [2000000]")),
             "<inline>:7:33: node 'filter', key 'params.compare_particles': expected whole numbers "
-            "of particles >= 1, got 2000000");
+            "of particles in [1, 20000], got 2000000");
 }
 
 TEST(BodySchemaFilterConfig, EmbeddedBlocksAreCheckedByTheirOwnFields) {
@@ -86,6 +86,25 @@ TEST(BodySchemaFilterConfig, ChecksAgainstTheRobotModel) {
                       "deg'"),
             std::string::npos);
   EXPECT_NE(error_of(filter_graph("palm_frame: r_paw")).find("key 'params.palm_frame'"),
+            std::string::npos);
+}
+
+// Mistakes that used to run: a joint or camera listed twice, a true offset on a joint the filter
+// does not estimate (it could never be found), 10^8 particles (allocation until killed).
+TEST(BodySchemaFilterConfig, DuplicatesUnestimatedTruthAndHugeFiltersAreRefused) {
+  EXPECT_NE(error_of(filter_graph("joints: [r_elbow, r_elbow]"))
+                .find("key 'params.joints': joint 'r_elbow' is listed twice"),
+            std::string::npos);
+  EXPECT_NE(error_of(filter_graph("cameras: [left_eye, left_eye]"))
+                .find("key 'params.cameras': the two cameras are the same ('left_eye')"),
+            std::string::npos);
+  EXPECT_NE(error_of(filter_graph("joints: [r_elbow], true_offsets_deg: 'r_wrist_prosup: 5'"))
+                .find("key 'params.true_offsets_deg': joint 'r_wrist_prosup' has a true offset "
+                      "but is not among the estimated joints (r_elbow)"),
+            std::string::npos);
+  EXPECT_EQ(error_of(filter_graph("joints: [r_elbow], true_offsets_deg: 'r_elbow: 5'")), "");
+  EXPECT_NE(error_of(filter_graph("particles: 100000000"))
+                .find("key 'params.particles': value 100000000 is out of range"),
             std::string::npos);
 }
 

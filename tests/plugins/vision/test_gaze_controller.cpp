@@ -185,6 +185,26 @@ TEST(GazeController, UnknownJointOrCameraIsALocatedError) {
   }
 }
 
+// A joint that moves neither camera (an arm's) or one listed twice: refused, not solved for.
+TEST(GazeController, JointsThatDoNotMoveTheEyesOrRepeatAreRefused) {
+  try {
+    Harness h(graph("neck_joints: [neck_pitch, neck_roll, neck_yaw, l_elbow]"));
+    FAIL();
+  } catch (const somasim::InputError& e) {
+    EXPECT_STREQ(e.what(),
+                 "<inline>:7:27: node 'gaze', key 'params.neck_joints': gaze: joint 'l_elbow' "
+                 "moves neither camera (left_eye, right_eye): it is not between the robot's root "
+                 "and the cameras' links");
+  }
+  try {
+    Harness h(graph("neck_joints: [neck_pitch, neck_roll, neck_yaw, eyes_tilt]"));
+    FAIL();
+  } catch (const somasim::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("joint 'eyes_tilt' is listed twice"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(GazeController, IdleFixationLooksBetweenTheBelievedParts) {
   Harness h(idle_graph("idle: fixation, idle_parts: [part_a, part_b]"));
   const Eigen::Vector3d a = ahead({-0.12, 0.05, 0.40});

@@ -15,6 +15,11 @@ namespace somasim {
 /// A YAML value as shown in messages: "'abc'" for scalars, "a list", "a map", "nothing".
 std::string describe_yaml(const YAML::Node& node);
 
+/// The one YAML document of `text` (YAML::Load would silently drop the documents after a
+/// `---` separator). Throws YAML::ParserException for invalid YAML and somasim::InputError
+/// "holds N YAML documents (separated by '---'); expected one" for several.
+YAML::Node load_one_document(const std::string& text);
+
 /// Strict number parsing of a whole scalar (no trailing text). YAML's .nan/.inf spellings are
 /// parsed (callers reject them with a precise message).
 std::optional<double> parse_double(const std::string& text);
