@@ -158,11 +158,12 @@ void ReachController::plan_targets(NodeContext& ctx, const Eigen::VectorXd& q0) 
     const robot::IkResult r = eye_hand_->solve(target.pose_eye, target.posture);
     if (!r.success) {
       const Eigen::Vector3d p = target.pose_eye.translation();
-      throw InputError(fmt::format(
-          "reach_controller: target {} ({:.3f}, {:.3f}, {:.3f}) m in the {} frame is outside "
-          "the arm's reach: the closest palm pose found is {:.1f} mm and {:.1f} deg away",
-          t, p.x(), p.y(), p.z(), config_.camera, r.position_error * 1e3,
-          r.orientation_error / kDegToRad));
+      config_error(ctx, config_, config_.targets,
+                   fmt::format("target {} ({:.3f}, {:.3f}, {:.3f}) m in the {} frame is outside "
+                               "the arm's reach: the closest palm pose found is {:.1f} mm and "
+                               "{:.1f} deg away",
+                               t, p.x(), p.y(), p.z(), config_.camera, r.position_error * 1e3,
+                               r.orientation_error / kDegToRad));
     }
   }
   for (Target& target : targets_)

@@ -191,6 +191,12 @@ class Loader {
       std::string walked;
       for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
         YAML::Node next = parent[parts[i]];
+        // A node written without parameters gets its `params` map from the first --set of one.
+        if (i == 2 && parts[0] == "nodes" && parts[2] == "params" && !next.IsDefined() &&
+            parent.IsMap()) {
+          parent[parts[i]] = YAML::Node(YAML::NodeType::Map);
+          next = parent[parts[i]];
+        }
         if (!next.IsDefined() || !next.IsMap()) {
           std::vector<std::string> keys;
           if (parent.IsMap())

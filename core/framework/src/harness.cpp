@@ -34,8 +34,15 @@ Harness::Harness(const std::string& yaml, const std::vector<fs::path>& plugin_pa
       out_dir_(fresh_dir()) {
   auto logger =
       std::make_shared<spdlog::logger>("harness", std::make_shared<spdlog::sinks::null_sink_mt>());
-  sim_ = std::make_unique<Simulation>(experiment_, out_dir_, logger);
-  sim_->configure();
+  try {
+    sim_ = std::make_unique<Simulation>(experiment_, out_dir_, logger);
+    sim_->configure();
+  } catch (...) {  // no destructor runs: leave no run folder behind
+    sim_.reset();
+    std::error_code ec;
+    fs::remove_all(out_dir_, ec);
+    throw;
+  }
 }
 
 Harness::~Harness() {

@@ -377,6 +377,16 @@ TEST(ExperimentLoader, PluginLibraryLoadedByPathProvidesPlugins) {
   EXPECT_EQ(exp.nodes[0].spec->library_path, kTestPluginLib);
 }
 
+// A node written without `params:` takes a parameter from --set (the map is made).
+TEST(ExperimentLoader, SetGivesAParameterToANodeWrittenWithoutParams) {
+  LoadOptions options;
+  options.overrides = {{"nodes.c.params.start", "3"}};
+  PluginRegistry registry({kTestPluginDir});
+  const Experiment exp =
+      load_ok("experiment: t\nduration_s: 1\nnodes:\n  c: {plugin: counter}\n", registry, options);
+  EXPECT_EQ(exp.nodes[0].params.get<double>("start"), 3.0);
+}
+
 TEST(ExperimentLoader, SetOnMissingPath) {
   LoadOptions options;
   options.overrides = {{"nodes.cc.params.start", "1"}};
