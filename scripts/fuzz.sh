@@ -9,7 +9,8 @@ seconds="${1:-600}"
 dir="${SOMASIM_FUZZ_BUILD_DIR:-build-fuzz}"
 CC=clang CXX=clang++ cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Sanitize \
   -DSOMASIM_FUZZ=ON -DSOMASIM_BUILD_BENCHMARKS=OFF >/dev/null
-targets=(fuzz_experiment_loader fuzz_robot_loader fuzz_learned_map fuzz_ini_import)
+targets=(fuzz_experiment_loader fuzz_robot_loader fuzz_learned_map fuzz_ini_import fuzz_sweep_file
+  fuzz_set_values)
 cmake --build "$dir" --parallel "$(nproc)" --target somasim_fuzz_targets
 findings="$dir/fuzz-findings"
 mkdir -p "$findings"

@@ -1,5 +1,8 @@
 // Robot description loader: frames, cameras, skin.
 
+#include <tuple>
+#include <utility>
+
 #include "robot_loader_internal.hpp"
 
 namespace somasim::robot::detail {
@@ -7,6 +10,7 @@ namespace somasim::robot::detail {
 namespace {
 
 const std::vector<std::string> kFrameKeys = {"link", "origin"};
+constexpr std::int64_t kMaxImageSide = 16384;  // [px] (OpenGL's usual framebuffer limit)
 const std::vector<std::string> kCameraKeys = {"link", "frame", "origin", "fx",   "fy", "cx",
                                               "cy",   "width", "height", "near", "far"};
 const std::vector<std::string> kSurfaces = {"cylinder", "box_face"};
@@ -95,8 +99,8 @@ void RobotLoader::read_cameras(const YAML::Node& cameras) {
     }
     const auto fx = reader_.positive(n, "fx", item, "", true, "a focal length", "px");
     const auto fy = reader_.positive(n, "fy", item, "", true, "a focal length", "px");
-    const auto w = reader_.integer(n, "width", item, "", true, 1);
-    const auto h = reader_.integer(n, "height", item, "", true, 1);
+    const auto w = reader_.integer(n, "width", item, "", true, 1, kMaxImageSide);
+    const auto h = reader_.integer(n, "height", item, "", true, 1, kMaxImageSide);
     const auto cx = reader_.number(n, "cx", item, "", false, "px");
     const auto cy = reader_.number(n, "cy", item, "", false, "px");
     const auto near_clip = reader_.positive(n, "near", item, "", false, "a clipping distance", "m");
@@ -113,6 +117,26 @@ void RobotLoader::read_cameras(const YAML::Node& cameras) {
     c.cy = cy.value_or(0.5 * c.height);
     c.near = near_clip.value_or(0.01);
     c.far = far_clip.value_or(100.0);
+    // A focal length far from the image's size renders nothing useful (1e-300: every point
+    // on one pixel; 1e308: nothing in view): fx and fy within [1e-3, 1e3] of the image width.
+    for (const auto& [key, f] : {std::pair{"fx", c.fx}, std::pair{"fy", c.fy}})
+      if (f < 1e-3 * c.width || f > 1e3 * c.width) {
+        reader_.error(n[key], item, key,
+                      fmt::format("{} px for an image {} px wide; expected a focal length in "
+                                  "[{:g}, {:g}] px (1e-3 to 1e3 times the width)",
+                                  f, c.width, 1e-3 * c.width, 1e3 * c.width));
+        ok = false;
+      }
+    for (const auto& [key, v, size] :
+         {std::tuple{"cx", c.cx, c.width}, std::tuple{"cy", c.cy, c.height}})
+      if (std::abs(v) > 10.0 * size) {
+        reader_.error(n[key], item, key,
+                      fmt::format("{} px for an image of {} px; expected a principal point "
+                                  "within 10 image sizes of the image",
+                                  v, size));
+        ok = false;
+      }
+    if (!ok) continue;
     if (c.far <= c.near) {
       reader_.error(n["far"] ? n["far"] : n, item, "far",
                     fmt::format("far {} <= near {}; expected far > near [m]", c.far, c.near));

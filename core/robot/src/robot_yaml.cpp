@@ -131,12 +131,14 @@ std::optional<double> YamlReader::positive(const YAML::Node& map, const std::str
 
 std::optional<std::int64_t> YamlReader::integer(const YAML::Node& map, const std::string& key,
                                                 const std::string& item, const std::string& prefix,
-                                                bool required, std::int64_t min) {
+                                                bool required, std::int64_t min, std::int64_t max) {
+  const std::string expected = max == std::numeric_limits<std::int64_t>::max()
+                                   ? fmt::format("an integer >= {}", min)
+                                   : fmt::format("an integer in [{}, {}]", min, max);
   const YAML::Node n = map[key];
   if (!n) {
     if (required)
-      error(map, item, prefix + key,
-            fmt::format("missing required key (expected an integer >= {})", min));
+      error(map, item, prefix + key, "missing required key (expected " + expected + ")");
     return std::nullopt;
   }
   std::optional<std::int64_t> v;
@@ -146,9 +148,8 @@ std::optional<std::int64_t> YamlReader::integer(const YAML::Node& map, const std
     const long long x = std::strtoll(n.Scalar().c_str(), &end, 10);
     if (!n.Scalar().empty() && end == n.Scalar().c_str() + n.Scalar().size() && errno == 0) v = x;
   }
-  if (!v || *v < min) {
-    error(n, item, prefix + key,
-          fmt::format("expected an integer >= {}, got {}", min, describe(n)));
+  if (!v || *v < min || *v > max) {
+    error(n, item, prefix + key, fmt::format("expected {}, got {}", expected, describe(n)));
     return std::nullopt;
   }
   return v;

@@ -5,6 +5,7 @@
 // names what is being read ("link 'r_hand'", "chain 'right_arm'", ...). Errors are collected in
 // a Diagnostics and thrown together.
 #include <filesystem>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -71,9 +72,11 @@ class YamlReader {
   std::optional<double> positive(const YAML::Node& map, const std::string& key,
                                  const std::string& item, const std::string& prefix, bool required,
                                  const std::string& what, const std::string& unit);
+  /// An integer in [min, max] ("expected an integer in [min, max]" / ">= min" without a max).
   std::optional<std::int64_t> integer(const YAML::Node& map, const std::string& key,
                                       const std::string& item, const std::string& prefix,
-                                      bool required, std::int64_t min);
+                                      bool required, std::int64_t min,
+                                      std::int64_t max = std::numeric_limits<std::int64_t>::max());
   /// A list of exactly n finite numbers.
   std::optional<Eigen::VectorXd> numbers(const YAML::Node& map, const std::string& key,
                                          const std::string& item, const std::string& prefix,

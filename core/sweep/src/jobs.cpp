@@ -13,7 +13,10 @@ namespace somasim::sweep {
 namespace {
 
 // Beyond any allocation a cluster grants; keeps a typo from exhausting memory.
-constexpr std::size_t kMaxJobs = 1000000;
+// A sweep's size: runs, and overrides over all runs (each a path, a value and where it was
+// written), so that expanding the largest accepted sweep takes seconds and little memory.
+constexpr std::size_t kMaxJobs = 100000;
+constexpr std::size_t kMaxOverrides = 2000000;
 
 std::string folder_name(int index, std::size_t count) {
   int width = 4;
@@ -59,6 +62,12 @@ std::vector<Job> expand_jobs(const SweepSpec& spec) {
   if (combos.size() * seeds > kMaxJobs)
     throw InputError(
         fmt::format("{}: key 'seeds': the sweep has more than {} runs", anchor.str(), kMaxJobs));
+  const std::size_t per_run = spec.axes.size() + spec.fixed.size();
+  if (combos.size() * seeds * per_run > kMaxOverrides)
+    throw InputError(fmt::format(
+        "{}: key 'axes': {} runs of {} overrides each are more than {} overrides in all; split "
+        "the sweep",
+        anchor.str(), combos.size() * seeds, per_run, kMaxOverrides));
   std::vector<Job> jobs;
   const std::size_t count = combos.size() * seeds;
   for (const auto& combo : combos)

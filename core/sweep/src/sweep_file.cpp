@@ -34,7 +34,8 @@ const std::vector<std::string> kSummaryKeys = {"metric", "against"};
 // A sweep file is a few dozen lines; this bounds the parser's memory (~200x the file).
 constexpr std::uintmax_t kMaxSweepFileBytes = 1u << 20;
 // More runs than any cluster allocation would take; bounds memory against a typo'd step.
-constexpr std::size_t kMaxValues = 100000;
+constexpr std::size_t kMaxValues = 100000;        // of one axis
+constexpr std::size_t kMaxTotalValues = 1000000;  // of all axes together
 
 bool safe_name(const std::string& s) {
   return !s.empty() && std::all_of(s.begin(), s.end(), [](char c) {
@@ -312,6 +313,7 @@ class SweepReader {
               "expected a list of values or a range {from, to, step} or {from, to, count}, got " +
                   describe_yaml(v));
       }
+      total_values_ += a.values.size();
       spec_.axes.push_back(std::move(a));
     }
   }
@@ -388,12 +390,21 @@ class SweepReader {
         error(v, key, fmt::format("the range has more than {} values", kMaxValues));
         return;
       }
+      if (n + 1 + static_cast<double>(total_values_) > static_cast<double>(kMaxTotalValues)) {
+        error(v, key, fmt::format("the axes hold more than {} values in all", kMaxTotalValues));
+        return;
+      }
       const double dir = *to >= *from ? 1.0 : -1.0;
       for (int i = 0; i <= static_cast<int>(n); ++i) values.push_back(*from + dir * i * *step);
       integers = parse_int(v["from"].Scalar()) && parse_int(v["to"].Scalar()) &&
                  parse_int(v["step"].Scalar());
     } else {
       const auto count = v["count"].IsScalar() ? parse_int(v["count"].Scalar()) : std::nullopt;
+      if (count && *count >= 1 &&
+          static_cast<std::size_t>(*count) + total_values_ > kMaxTotalValues) {
+        error(v, key, fmt::format("the axes hold more than {} values in all", kMaxTotalValues));
+        return;
+      }
       if (!count || *count < 1 || *count > static_cast<std::int64_t>(kMaxValues)) {
         error(v["count"], key,
               fmt::format("expected 'count' an integer in [1, {}], got {}", kMaxValues,
@@ -452,6 +463,7 @@ class SweepReader {
 
   std::string display_;
   fs::path base_dir_;
+  std::size_t total_values_ = 0;  // over the axes read so far
   SweepSpec spec_;
   Diagnostics diags_;
 };

@@ -193,6 +193,25 @@ cameras:
             "robot.yaml:3:34: camera 'eye', key 'fy': expected a focal length > 0 [px], got -1");
 }
 
+// Intrinsics that render nothing useful and sizes no integer of the renderer holds: refused,
+// never narrowed (a width of 4294967616 once rendered at 320 px).
+TEST_F(RobotLoader, CameraIntrinsicsOutOfAnyUsefulRangeAreRefused) {
+  const auto camera = [&](const std::string& fields) {
+    return error("robot: r\ncameras:\n  eye: {link: root, " + fields + "}\n");
+  };
+  EXPECT_EQ(camera("fx: 1e-300, fy: 257, width: 320, height: 240"),
+            "robot.yaml:3:25: camera 'eye', key 'fx': 1e-300 px for an image 320 px wide; "
+            "expected a focal length in [0.32, 320000] px (1e-3 to 1e3 times the width)");
+  EXPECT_NE(camera("fx: 257, fy: 1e308, width: 320, height: 240").find("key 'fy': 1e+308 px"),
+            std::string::npos);
+  EXPECT_EQ(camera("fx: 257, fy: 257, width: 4294967616, height: 240"),
+            "robot.yaml:3:46: camera 'eye', key 'width': expected an integer in [1, 16384], got "
+            "'4294967616'");
+  EXPECT_NE(camera("fx: 257, fy: 257, width: 320, height: 240, cx: 1e9").find("key 'cx'"),
+            std::string::npos);
+  EXPECT_EQ(camera("fx: 257, fy: 257, width: 320, height: 240, cx: -40, cy: 300"), "(no error)");
+}
+
 TEST_F(RobotLoader, SkinPatchOnUnknownLink) {
   EXPECT_EQ(error(R"(robot: r
 links:

@@ -1,6 +1,8 @@
 // Sweep files: keys, values, ranges and seeds, and every message a bad file gets.
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
 #include "somasim/error.hpp"
 #include "somasim/sweep/jobs.hpp"
 #include "somasim/sweep/sweep_file.hpp"
@@ -180,6 +182,28 @@ TEST_F(SweepFile, LargeAxesAreCheckedForRepeatsQuickly) {
   const std::string head = "sweep: b\nexperiment: exp.yaml\n";
   const SweepSpec spec = load(head + "axes: {a.x: {from: 0, to: 99999, step: 1}}\n");
   EXPECT_EQ(spec.axes.front().values.size(), 100000u);
+}
+
+// The sweep's size is bounded before anything is allocated for it: values over all axes, runs,
+// and overrides over all runs.
+TEST_F(SweepFile, SweepSizesAreBounded) {
+  const std::string head = "sweep: b\nexperiment: exp.yaml\n";
+  std::string axes = "axes:\n";
+  for (int k = 0; k < 11; ++k) axes += fmt::format("  a.x{}: {{from: 0, to: 99999, step: 1}}\n", k);
+  EXPECT_NE(error_of(head + axes).find("the axes hold more than 1000000 values in all"),
+            std::string::npos);
+  EXPECT_NE(error_of(head + "axes: {a.x: {from: 1, to: 400, step: 1}, a.y: {from: 1, to: 400, "
+                            "step: 1}}\n")
+                .find("the grid has more than 100000 runs"),
+            std::string::npos);
+  std::string zip2 = "mode: zip\naxes:\n";
+  for (int k = 0; k < 12; ++k) zip2 += fmt::format("  a.x{}: {{from: 1, to: 90000, step: 1}}\n", k);
+  EXPECT_NE(error_of(head + zip2).find("the axes hold more than 1000000 values"),
+            std::string::npos);
+  std::string zip3 = "mode: zip\nset: {";
+  for (int k = 0; k < 30; ++k) zip3 += fmt::format("{}s.f{}: 1", k ? ", " : "", k);
+  zip3 += "}\naxes: {a.x: {from: 1, to: 90000, step: 1}}\n";
+  EXPECT_NE(error_of(head + zip3).find("overrides in all; split the sweep"), std::string::npos);
 }
 
 }  // namespace
