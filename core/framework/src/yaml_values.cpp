@@ -4,6 +4,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <string_view>
 #include <vector>
 
 #include <fmt/format.h>
@@ -12,12 +13,52 @@
 
 namespace somasim {
 
+namespace {
+
+// The YAML documents in `text`, counted from its lines (YAML::LoadAll can loop forever on some
+// malformed input, e.g. ",(#"): a document marker "---" or "..." starts a line (column 0) and is
+// followed by white space or the line's end; a line with content (not blank, not a comment, not
+// a % directive) after a "---" that follows content, or after a "...", is in a new document.
+std::size_t yaml_documents(const std::string& text) {
+  const auto content = [](std::string_view s) {
+    const auto i = s.find_first_not_of(" \t\r");
+    return i != std::string_view::npos && s[i] != '#';
+  };
+  const auto marker = [](std::string_view line, std::string_view m) {
+    return line.substr(0, 3) == m &&
+           (line.size() == 3 || line[3] == ' ' || line[3] == '\t' || line[3] == '\r');
+  };
+  std::size_t documents = 0;
+  bool open = false;  // the current document has content
+  std::size_t pos = 0;
+  while (pos < text.size()) {
+    std::size_t end = text.find('\n', pos);
+    if (end == std::string::npos) end = text.size();
+    const std::string_view line(text.data() + pos, end - pos);
+    pos = end + 1;
+    if (marker(line, "---")) {
+      if (open) ++documents;
+      open = content(line.substr(3));
+    } else if (marker(line, "...")) {
+      if (open) ++documents;
+      open = false;
+    } else if (!open && !line.empty() && line[0] == '%') {
+      continue;  // a directive
+    } else if (content(line)) {
+      open = true;
+    }
+  }
+  return documents + (open ? 1 : 0);
+}
+
+}  // namespace
+
 YAML::Node load_one_document(const std::string& text) {
-  std::vector<YAML::Node> docs = YAML::LoadAll(text);
-  if (docs.size() > 1)
+  const std::size_t documents = yaml_documents(text);
+  if (documents > 1)
     throw InputError(
-        fmt::format("holds {} YAML documents (separated by '---'); expected one", docs.size()));
-  return docs.empty() ? YAML::Node() : docs.front();
+        fmt::format("holds {} YAML documents (separated by '---'); expected one", documents));
+  return YAML::Load(text);
 }
 
 std::string describe_yaml(const YAML::Node& node) {

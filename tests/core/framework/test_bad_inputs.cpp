@@ -218,6 +218,16 @@ TEST_F(BadInputs, SecondYamlDocumentsAreRefused) {
   EXPECT_NE(r.err.find("the value holds 2 YAML documents"), std::string::npos) << r.err;
 }
 
+// Inputs on which yaml-cpp's multi-document reader loops forever (found by fuzz_sweep_file):
+// refused at once. (A hang fails the test by its time limit.)
+TEST_F(BadInputs, MalformedYamlNeverHangs) {
+  for (const char* text : {",(#", ",", "-,(", "? ,\n", "--- ,\n..."}) {
+    const CliResult r = run(text);
+    EXPECT_EQ(r.code, 2) << text;
+    EXPECT_EQ(r.err.rfind("error: exp.yaml:", 0), 0u) << r.err;
+  }
+}
+
 TEST_F(BadInputs, HugeFilesAreRefusedBeforeTheyAreRead) {
   write_file(dir / "huge.yaml", kCounter);
   fs::resize_file(dir / "huge.yaml", 3u << 20);  // 3 MiB (sparse: NUL bytes after the text)
