@@ -8,6 +8,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "graph_check.hpp"
+#include "somasim/config.hpp"
 #include "somasim/diagnostics.hpp"
 #include "somasim/error.hpp"
 #include "somasim/experiment.hpp"
@@ -382,8 +383,10 @@ class Loader {
       file = file.lexically_normal();
       std::error_code ec;
       if (!fs::is_regular_file(file, ec)) {
-        error(kv.second, "", "robots." + name,
-              "robot description file '" + file.string() + "' does not exist");
+        error(
+            kv.second, "", "robots." + name,
+            "robot description file '" + file.string() + "' " +
+                (fs::exists(file, ec) ? input_file_problem(file) : std::string("does not exist")));
         continue;
       }
       exp_.robots.push_back({name, file, locs_.of(kv.second)});
@@ -616,6 +619,9 @@ Experiment load_experiment_file(const fs::path& file, PluginRegistry& registry,
     throw InputError("experiment file '" + file.string() + "' does not exist");
   if (fs::is_directory(file, ec))
     throw InputError("experiment file '" + file.string() + "' is a directory, not a YAML file");
+  // Never opened unless a regular file: opening a FIFO blocks, a device never ends.
+  if (!fs::is_regular_file(fs::status(file, ec)))
+    throw InputError("experiment file '" + file.string() + "' " + input_file_problem(file));
   if (const auto size = fs::file_size(file, ec); !ec && size > kMaxExperimentFileBytes)
     throw InputError(fmt::format("experiment file '{}' is {} bytes; at most {} (2 MiB) are read",
                                  file.string(), size, kMaxExperimentFileBytes));

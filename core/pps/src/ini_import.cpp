@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <optional>
 #include <sstream>
@@ -175,6 +176,9 @@ LearnedState build(const std::string& path, const Section& s, const ParzenSpec& 
 }  // namespace
 
 std::vector<LearnedState> import_taxels2d_ini(const std::string& path, const ParzenSpec& parzen) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))  // (opening a FIFO blocks)
+    throw InputError(path + ": not a regular file");
   std::ifstream in(path);
   if (!in) throw InputError(path + ": cannot open for reading");
   return parse_taxels2d_ini(in, path, parzen);

@@ -170,7 +170,7 @@ std::optional<Geometry> RobotLoader::read_geometry(const YAML::Node& n, const st
                         "mesh file " + in_quotes(*file) + " does not exist (resolved to '" +
                             p.string() + "')");
           ok = false;
-        } else if (std::ifstream in(p, std::ios::binary); !in || !fs::is_regular_file(p, ec)) {
+        } else if (!fs::is_regular_file(p, ec) || !std::ifstream(p, std::ios::binary)) {
           reader_.error(n["file"], item, prefix + "file",
                         "mesh file " + in_quotes(*file) + " cannot be read (resolved to '" +
                             p.string() + "'); expected a readable regular file");

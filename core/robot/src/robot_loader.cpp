@@ -25,8 +25,11 @@ std::string read_text(const fs::path& path, bool& ok) {
   if (const auto size = fs::file_size(path, ec); !ec && size > kMaxRobotFileBytes)
     throw InputError("robot description '" + path.string() + "' is " + std::to_string(size) +
                      " bytes; at most " + std::to_string(kMaxRobotFileBytes) + " (2 MiB) are read");
+  // Never opened unless a regular file: opening a FIFO blocks, a device never ends.
+  ok = fs::is_regular_file(path, ec);
+  if (!ok) return "";
   std::ifstream in(path, std::ios::binary);
-  ok = static_cast<bool>(in) && fs::is_regular_file(path);
+  ok = static_cast<bool>(in);
   std::stringstream s;
   if (ok) s << in.rdbuf();
   return s.str();

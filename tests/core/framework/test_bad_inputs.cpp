@@ -2,6 +2,7 @@
 // clear line and exit code 2, never a crash or a hang, and nothing is written outside the run
 // folder. (Robot, mesh and learned-file errors are asserted with their plugins.)
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <nlohmann/json.hpp>
 
@@ -226,6 +227,26 @@ TEST_F(BadInputs, MalformedYamlNeverHangs) {
     EXPECT_EQ(r.code, 2) << text;
     EXPECT_EQ(r.err.rfind("error: exp.yaml:", 0), 0u) << r.err;
   }
+}
+
+// A FIFO or a device as an experiment or robot description is refused before it is opened
+// (opening a FIFO blocks until a writer comes; /dev/zero never ends).
+TEST_F(BadInputs, FifosAndDevicesAreNeverOpened) {
+  ASSERT_EQ(mkfifo((dir / "fifo.yaml").c_str(), 0600), 0);
+  CliResult r = cli({"validate", "fifo.yaml"}, dir);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(r.err,
+            "error: experiment file 'fifo.yaml' is not a regular file (fifo.yaml is a FIFO)\n");
+  r = cli({"validate", "/dev/zero"}, dir);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(r.err,
+            "error: experiment file '/dev/zero' is not a regular file (/dev/zero is a device)\n");
+  write_file(dir / "exp.yaml",
+             "experiment: x\nduration_s: 1\nrobots: {r: fifo.yaml, z: /dev/urandom}\nnodes: {}\n");
+  r = cli({"validate", "exp.yaml"}, dir);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("fifo.yaml is a FIFO"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("/dev/urandom is a device"), std::string::npos) << r.err;
 }
 
 TEST_F(BadInputs, HugeFilesAreRefusedBeforeTheyAreRead) {

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include "robot_test_support.hpp"
 #include "somasim/error.hpp"
@@ -102,6 +103,11 @@ TEST_F(RobotLoader, MeshFileMissingOrUnreadable) {
             "robot.yaml:4:33: link 'root', key 'visual[0].file': mesh file 'folder.stl' cannot "
             "be read (resolved to '" +
                 (dir_ / "folder.stl").string() + "'); expected a readable regular file");
+  // A FIFO is not opened (that would block until a writer came).
+  ASSERT_EQ(mkfifo((dir_ / "fifo.stl").c_str(), 0600), 0);
+  EXPECT_NE(error("robot: r\nlinks:\n  root:\n    visual: [{type: mesh, file: fifo.stl}]\n")
+                .find("mesh file 'fifo.stl' cannot be read"),
+            std::string::npos);
   write("hand.stl", "solid hand\nendsolid hand\n");
   const RobotModel m = parse_robot_model(
       "robot: r\nlinks:\n  root:\n    visual: [{type: mesh, file: hand.stl, scale: 0.001}]\n",
