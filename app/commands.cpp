@@ -5,8 +5,11 @@
 #include <sys/file.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cstdio>
 #include <cstdlib>  // mkdtemp (POSIX)
+#include <cstring>
+#include <vector>
 
 #include <fmt/format.h>
 #include <spdlog/sinks/null_sink.h>
@@ -48,9 +51,17 @@ void lock_run_folder(const fs::path& dir) {
   const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
   if (fd < 0) throw InputError("cannot open run folder '" + dir.string() + "'");
   if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+    const int error = errno;
     ::close(fd);
-    throw InputError("run folder '" + dir.string() +
-                     "' is in use by another somasim run; wait for it or choose another --out");
+    if (error == EWOULDBLOCK)
+      throw InputError("run folder '" + dir.string() +
+                       "' is in use by another somasim run; wait for it or choose another --out");
+    // A file system without flock (some NFS mounts): run without the lock, and say so.
+    fmt::print(stderr,
+               "warning: cannot lock run folder '{}' ({}); a second run into it would "
+               "not be refused\n",
+               dir.string(), std::strerror(error));
+    return;
   }
   if (held >= 0) ::close(held);
   held = fd;
@@ -65,8 +76,12 @@ void prepare_run_folder(const fs::path& dir, bool overwrite) {
   const auto status = fs::status(dir, ec);
   if (fs::exists(status) && !fs::is_directory(status))
     throw InputError("--out '" + dir.string() + "' exists and is not a folder");
+  // (The link itself: "out/" or "out/." would be resolved through it by lstat.)
+  fs::path named = dir;
+  while (!named.empty() && (named.filename().empty() || named.filename() == "."))
+    named = named.parent_path();
   if (fs::is_directory(status) && !fs::is_empty(dir, ec) && overwrite &&
-      fs::is_symlink(fs::symlink_status(dir, ec)))
+      fs::is_symlink(fs::symlink_status(named, ec)))
     throw InputError("--out '" + dir.string() +
                      "' is a symbolic link; --overwrite empties only a real folder (give the "
                      "folder's own path)");
@@ -78,7 +93,13 @@ void prepare_run_folder(const fs::path& dir, bool overwrite) {
       throw InputError("run folder '" + dir.string() +
                        "' already holds a run; choose another --out or add --overwrite "
                        "(which empties it first)");
-    for (const auto& entry : fs::directory_iterator(dir, ec)) fs::remove_all(entry.path(), ec);
+    std::vector<fs::path> entries;
+    for (const auto& entry : fs::directory_iterator(dir, ec)) entries.push_back(entry.path());
+    for (const fs::path& entry : entries) {
+      std::error_code removed;
+      fs::remove_all(entry, removed);
+      if (removed && !ec) ec = removed;  // the first failure is the one reported
+    }
     if (ec) throw InputError("cannot empty run folder '" + dir.string() + "': " + ec.message());
   }
   const fs::path probe = dir / ".somasim-write-test";

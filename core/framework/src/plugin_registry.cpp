@@ -59,7 +59,9 @@ void PluginRegistry::open(LibraryCandidate& c) {
   }
   // RTLD_LOCAL keeps plugins' symbols apart; libraries stay loaded for the process lifetime
   // because plugin instances and their specs' factories point into them.
-  void* handle = dlopen(c.path.c_str(), RTLD_NOW | RTLD_LOCAL);
+  // An absolute path: dlopen searches the library path for a name without '/', and would load
+  // another file than the one checked.
+  void* handle = dlopen(fs::absolute(c.path).c_str(), RTLD_NOW | RTLD_LOCAL);
   if (!handle) {
     const char* err = dlerror();
     c.rejection = std::string("cannot be loaded: ") + (err ? err : "unknown dlopen error");
@@ -74,7 +76,7 @@ void PluginRegistry::open(LibraryCandidate& c) {
     return;
   }
   const PluginLibraryEntry* entry = entry_fn();
-  if (!entry || !entry->interface_version ||
+  if (!entry || !entry->interface_version || !entry->register_plugins ||
       std::strcmp(entry->interface_version, kPluginInterfaceVersion) != 0) {
     c.rejection = std::string("built for plugin interface '") +
                   (entry && entry->interface_version ? entry->interface_version : "?") +

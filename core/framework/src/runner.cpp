@@ -76,9 +76,14 @@ void write_metrics(const fs::path& file, const nlohmann::ordered_json& metrics) 
   const fs::path tmp = file.string() + ".tmp";
   {
     std::ofstream out(tmp);
-    out << metrics.dump(2) << "\n";
+    // Invalid UTF-8 in a message or metric is replaced, not a reason to lose the file.
+    out << metrics.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) << "\n";
     out.close();
-    if (!out) throw std::runtime_error("cannot write " + tmp.string());
+    if (!out) {
+      std::error_code ec;
+      fs::remove(tmp, ec);
+      throw std::runtime_error("cannot write " + tmp.string());
+    }
   }
   std::error_code ec;
   fs::rename(tmp, file, ec);

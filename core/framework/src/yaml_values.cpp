@@ -29,7 +29,7 @@ std::size_t yaml_documents(const std::string& text) {
            (line.size() == 3 || line[3] == ' ' || line[3] == '\t' || line[3] == '\r');
   };
   std::size_t documents = 0;
-  bool open = false;  // the current document has content
+  bool open = false;  // the current document has content or was started by "---"
   std::size_t pos = 0;
   while (pos < text.size()) {
     std::size_t end = text.find('\n', pos);
@@ -38,7 +38,7 @@ std::size_t yaml_documents(const std::string& text) {
     pos = end + 1;
     if (marker(line, "---")) {
       if (open) ++documents;
-      open = content(line.substr(3));
+      open = true;  // an explicit document, even an empty one
     } else if (marker(line, "...")) {
       if (open) ++documents;
       open = false;

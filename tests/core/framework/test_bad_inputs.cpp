@@ -213,6 +213,9 @@ TEST_F(BadInputs, SecondYamlDocumentsAreRefused) {
           "{start: 0}}\n---\nexperiment: y\n");
   EXPECT_EQ(r.code, 2);
   EXPECT_EQ(r.err, "error: exp.yaml: holds 2 YAML documents (separated by '---'); expected one\n");
+  r = run("---\n---\nexperiment: x\nduration_s: 0.01\nnodes: {}\n");  // an empty first one
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(r.err, "error: exp.yaml: holds 2 YAML documents (separated by '---'); expected one\n");
   write_file(dir / "exp.yaml", kCounter);
   r = cli({"validate", "exp.yaml", "--set", "nodes.c.params.start=1\n---\n2"}, dir);
   EXPECT_EQ(r.code, 2);

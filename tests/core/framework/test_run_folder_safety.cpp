@@ -89,12 +89,15 @@ TEST(RunFolderSafety, OverwriteDoesNotEmptyThroughASymbolicLink) {
   write_file(dir / "precious/keep.txt", "keep\n");
   fs::create_directory_symlink(dir / "precious", dir / "link");
   write_file(dir / "exp.yaml", counter_experiment(0.01));
-  const CliResult r = cli({"run", "exp.yaml", "--out", "link", "--overwrite"}, dir);
-  EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find("is a symbolic link; --overwrite empties only a real folder"),
-            std::string::npos)
-      << r.err;
-  EXPECT_TRUE(fs::exists(dir / "precious/keep.txt"));
+  // Also written with a trailing "/" or "/." (which lstat would resolve through the link).
+  for (const char* out : {"link", "link/", "link/."}) {
+    const CliResult r = cli({"run", "exp.yaml", "--out", out, "--overwrite"}, dir);
+    EXPECT_EQ(r.code, 2) << out;
+    EXPECT_NE(r.err.find("is a symbolic link; --overwrite empties only a real folder"),
+              std::string::npos)
+        << out << ": " << r.err;
+    EXPECT_TRUE(fs::exists(dir / "precious/keep.txt")) << out;
+  }
 }
 
 // A file size limit (ulimit -f, SIGXFSZ ignored) makes writes fail as a full disk does.
