@@ -109,7 +109,7 @@ TEST(BodySchemaReaching, FewerThanOneParticleIsALocatedError) {
   } catch (const somasim::InputError& e) {
     EXPECT_STREQ(e.what(),
                  "--set nodes.filter.params.particles=0: node 'filter', key 'params.particles': "
-                 "value 0 is out of range; expected an integer >= 1");
+                 "value 0 is out of range; expected an integer in [1, 20000]");
   }
 }
 

@@ -177,7 +177,8 @@ LearnedState build(const std::string& path, const Section& s, const ParzenSpec& 
 
 std::vector<LearnedState> import_taxels2d_ini(const std::string& path, const ParzenSpec& parzen) {
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))  // (opening a FIFO blocks)
+  if (std::filesystem::exists(path, ec) &&
+      !std::filesystem::is_regular_file(path, ec))  // (opening a FIFO blocks)
     throw InputError(path + ": not a regular file");
   std::ifstream in(path);
   if (!in) throw InputError(path + ": cannot open for reading");

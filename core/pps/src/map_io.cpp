@@ -272,7 +272,8 @@ json parse_json(Input&& in, const std::string& source) {
 
 json read_json_file(const std::string& path) {
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))  // (opening a FIFO blocks)
+  if (std::filesystem::exists(path, ec) &&
+      !std::filesystem::is_regular_file(path, ec))  // (opening a FIFO blocks)
     throw InputError(path + ": not a regular file");
   std::ifstream in(path);
   if (!in) throw InputError(path + ": cannot open for reading");

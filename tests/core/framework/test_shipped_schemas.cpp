@@ -36,7 +36,7 @@ TEST(ShippedSchemas, AnIntegerBeyondTheMembersWidthIsALocatedError) {
           dir, /*with_plugin_path=*/false);
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("node 'filter', key 'params.particles': value 4294967297 is out of "
-                       "range; expected an integer >= 1 (the parameter holds integers in "
+                       "range; expected an integer in [1, 20000] (the parameter holds integers in "
                        "[-2147483648, 2147483647])"),
             std::string::npos)
       << r.err;
