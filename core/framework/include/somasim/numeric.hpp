@@ -36,7 +36,8 @@ std::optional<I> to_integer(double x, Rounding mode = Rounding::kNearest) {
   }
   // The bounds as doubles: the lowest is a power of two (exact); the highest + 1 is one too.
   constexpr double lowest = static_cast<double>(std::numeric_limits<I>::lowest());
-  constexpr double above_max = 2.0 * static_cast<double>(std::numeric_limits<I>::max() / 2 + 1);
+  // (max + 1 = 2^digits: digits excludes the sign bit.)
+  const double above_max = std::ldexp(1.0, std::numeric_limits<I>::digits);
   if (r < lowest || r >= above_max) return std::nullopt;
   return static_cast<I>(r);
 }
