@@ -39,6 +39,7 @@ if ((${#missing[@]})); then
   [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
   "${sudo_cmd[@]}" apt-get update
   DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y --no-install-recommends "${missing[@]}"
+  echo "== packages installed (${SECONDS} s)"
 fi
 
 if [ "$mode" = runtime ]; then
@@ -51,6 +52,7 @@ if [ "$mode" = runtime ]; then
       -DSOMASIM_BUILD_TESTS=OFF -DSOMASIM_BUILD_BENCHMARKS=OFF -DSOMASIM_BUILD_TOOLS=OFF
     cmake --build build --parallel "$(nproc)"
   fi
+  echo "== built (${SECONDS} s)"
   exit 0
 fi
 
