@@ -157,6 +157,7 @@ static int run_rank(const CommonOptions& common, const RunArgs& args, MpiSession
   RunOptions run;
   run.out_dir = mpi.run_folder(args.out.empty() ? fs::path("runs") / exp.name : fs::path(args.out));
   run.quiet = args.quiet || !mpi.is_root();
+  run.progress_every_s = args.progress_every_s;
   try {
     prepare_run_folder(run.out_dir, args.overwrite);
   } catch (const InputError& e) {

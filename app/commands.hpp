@@ -25,6 +25,7 @@ struct RunArgs {
   std::string out;
   bool overwrite = false;  ///< an existing run folder is emptied first (else refused)
   bool quiet = false;
+  double progress_every_s = 60.0;  ///< without a terminal: a progress log line this often [s]
 };
 
 int cmd_run(const CommonOptions& common, const RunArgs& args);

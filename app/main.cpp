@@ -4,7 +4,9 @@
 #include <CLI/CLI.hpp>
 
 #include "commands.hpp"
+#include "plugin_pages.hpp"
 #include "somasim/error.hpp"
+#include "somasim/version.hpp"
 #include "somasim/yaml_text.hpp"
 #include "sweep_commands.hpp"
 
@@ -15,6 +17,7 @@ int main(int argc, char** argv) {
       "somasim — headless robot simulator for embodied-cognition experiments.\n"
       "Exit codes: 0 success, 2 bad input (experiment file, parameters, plugins, usage),\n"
       "3 run failed (outputs flushed, error in metrics.json), 130 interrupted (outputs flushed)."};
+  app.set_version_flag("--version", somasim::version_text());
   app.require_subcommand(1);
   CommonOptions common;
   app.add_option("--plugin-path", common.plugin_path,
@@ -33,6 +36,12 @@ int main(int argc, char** argv) {
   run_cmd->add_flag("--overwrite", run.overwrite,
                     "Empty an existing run folder first (without it, one is refused)");
   run_cmd->add_flag("--quiet", run.quiet, "No progress line; only warnings and errors on stderr");
+  run_cmd
+      ->add_option("--progress-every", run.progress_every_s,
+                   "Without a terminal: a progress line in the log every SECONDS of wall time "
+                   "(0: none)")
+      ->check(CLI::Range(0.0, 1e6))
+      ->capture_default_str();
 
   std::string validate_file;
   std::vector<std::string> validate_sets;
@@ -50,6 +59,14 @@ int main(int argc, char** argv) {
   auto* index_cmd = plugins_cmd->add_subcommand(
       "index", "Write the index file of plugin libraries (<library>.index; the build does this)");
   index_cmd->add_option("libraries", index_libraries, "Plugin library files (.so)")->required();
+  std::string reference_dir;
+  bool reference_check = false;
+  auto* reference_cmd = plugins_cmd->add_subcommand(
+      "reference", "Write the plugin reference: one Markdown page per plugin library");
+  reference_cmd->add_option("dir", reference_dir, "Folder of the pages (e.g. docs/plugins)")
+      ->required();
+  reference_cmd->add_flag("--check", reference_check,
+                          "Write nothing; exit 1 and name the pages that are not current");
 
   auto* pps_cmd = app.add_subcommand("pps", "PPS learned-map files");
   pps_cmd->require_subcommand(1);
@@ -71,6 +88,8 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
     return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
   } catch (const CLI::ParseError& e) {
     // Usage errors are bad input too: the same "error: ..." line as every other.
     std::fprintf(stderr, "error: %s\nRun with --help for more information.\n", e.what());
@@ -82,6 +101,11 @@ int main(int argc, char** argv) {
     if (*validate_cmd) return cmd_validate(common, validate_file, validate_sets);
     if (*describe_cmd) return cmd_describe(common, describe_name);
     if (*index_cmd) return cmd_index_plugins(index_libraries);
+    if (*reference_cmd) {
+      somasim::PluginRegistry registry(
+          somasim::PluginRegistry::default_search_path(common.plugin_path));
+      return cmd_plugin_reference(registry, reference_dir, reference_check);
+    }
     if (*plugins_cmd) return cmd_plugins(common);
     if (*graph_cmd) return cmd_graph(common, graph_file);
     if (*convert_cmd) return cmd_pps_convert(convert_in, convert_out);

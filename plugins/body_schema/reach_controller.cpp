@@ -270,6 +270,7 @@ void ReachController::step(NodeContext& ctx) {
   phase_->frame = frame_;
   if (frame_ > 0) evaluate(frame_);
   if (frame_ == open_frames_ + closed_frames_) {
+    ctx.report_progress(movement_ + 1, movements_, "movements");
     report_->movement_done();
     if (movement_ + 1 < movements_)
       movement_done_ = true;

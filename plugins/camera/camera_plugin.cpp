@@ -1,6 +1,8 @@
 #include "camera_plugin.hpp"
 
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -236,9 +238,16 @@ void CameraPlugin::save_frames(NodeContext& ctx, const View& view) {
   for (const auto& [image, kind] :
        {std::pair{view.rgb, kRgb}, std::pair{view.depth, kDepth}, std::pair{view.mask, kMask}}) {
     if (image->frame != frame_) continue;
-    render::write_png(*image,
-                      ctx.output_path(fmt::format("frames/{}.{}_{}/{:06d}.png", ctx.node_name(),
-                                                  view.slot, kind, frame_)));
+    const std::string folder = fmt::format("frames/{}.{}_{}", ctx.node_name(), view.slot, kind);
+    const std::string file = fmt::format("{:06d}.png", frame_);
+    render::write_png(*image, ctx.output_path(folder + "/" + file));
+    // index.csv beside the images: which frame, at what simulated time, in which file.
+    const std::filesystem::path index = ctx.output_path(folder + "/index.csv");
+    const bool fresh = !std::filesystem::exists(index);
+    std::ofstream out(index, std::ios::app);
+    if (fresh) out << "frame,time [s],file\n";
+    out << frame_ << ',' << fmt::format("{}", image->time_s) << ',' << file << '\n';
+    if (!out) throw RunError("cannot write " + index.string());
   }
 }
 

@@ -219,6 +219,7 @@ void DoubleTouch::advance(NodeContext& ctx) {
     const double elapsed = now - phase_start_;
     switch (phase_) {
       case Phase::kPlan:
+        ctx.report_progress(static_cast<std::int64_t>(log_.size()), config_.touches, "touches");
         if (static_cast<int>(log_.size()) >= config_.touches) {
           start_transfer(now, home_);
           phase_ = Phase::kHome;

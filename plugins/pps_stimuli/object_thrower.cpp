@@ -648,6 +648,7 @@ void ObjectThrower::step(NodeContext& ctx) {
   true_offsets_.sync_layout(*skin_);
   if (contacts_) learn_true_offsets();
   true_offsets_.write(*true_offsets_out_);
+  ctx.report_progress(launched_, config_.approaches, "objects presented");
   if (done) ctx.request_stop(std::to_string(launched_) + " objects presented");
 }
 

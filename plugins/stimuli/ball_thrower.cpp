@@ -216,6 +216,7 @@ void BallThrower::step(NodeContext& ctx) {
     if (now - current_.t_spawn < lifetime_ + event_window_) return;
     close_throw(ctx);
   }
+  ctx.report_progress(thrown_, config_.throws, "balls thrown");
   if (thrown_ >= config_.throws) {
     ctx.request_stop(std::to_string(thrown_) + " balls thrown");
     return;

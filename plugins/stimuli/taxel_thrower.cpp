@@ -196,6 +196,7 @@ void TaxelThrower::step(NodeContext& ctx) {
     const double pz = p.dot(taxel_normal_);
     contact_d_sum_ += (pz < 0 ? -1.0 : 1.0) * p.norm();
   }
+  ctx.report_progress(thrown_, config_.throws, "throws");
   if (thrown_ >= config_.throws) {
     done_ = true;
     ctx.request_stop(std::to_string(thrown_) + " throws done");

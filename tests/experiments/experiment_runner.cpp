@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "somasim/metrics_layout.hpp"
 #include "somasim/plugin_registry.hpp"
 
 namespace somasim::testing {
@@ -28,6 +29,10 @@ ExperimentRun run_config(const std::string& name, const std::vector<Override>& o
   run.report = run_experiment(exp, ro);
   run.metrics = nlohmann::json::parse(read_file(run.dir / "metrics.json"));
   return run;
+}
+
+nlohmann::json ExperimentRun::metric(std::string_view name) const {
+  return find_metric(metrics, name).value_or(nlohmann::json());
 }
 
 std::string read_file(const fs::path& file) {

@@ -2,6 +2,7 @@
 // Runs a shipped experiment config into a fresh folder and reads its outputs (for tests).
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -15,6 +16,9 @@ struct ExperimentRun {
   std::filesystem::path dir;
   RunReport report;
   nlohmann::json metrics;  ///< metrics.json as written
+
+  /// A metric by its flat name (somasim/metrics_layout.hpp); null when the run has none.
+  nlohmann::json metric(std::string_view name) const;
 };
 
 /// Runs `configs/<name>.yaml` with `overrides` into a fresh temporary folder `tag`.

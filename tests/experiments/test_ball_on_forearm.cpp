@@ -9,11 +9,11 @@ using somasim::testing::run_config;
 TEST(BallOnForearm, EveryBallTouchingASkinPartYieldsAnEventOnThatPart) {
   const auto run = run_config("ball_on_forearm", {{"nodes.thrower.params.throws", "8"}});
   ASSERT_EQ(run.metrics["status"], "completed") << run.metrics["error"];
-  EXPECT_EQ(run.metrics["balls_thrown"], 8);
-  const int touched = run.metrics["balls_touched_expected_part"].get<int>();
+  EXPECT_EQ(run.metric("balls_thrown"), 8);
+  const int touched = run.metric("balls_touched_expected_part").get<int>();
   EXPECT_GE(touched, 2);  // most throws reach the aimed skin (some are blocked by the thumb)
-  EXPECT_EQ(run.metrics["hits_on_expected_part"].get<int>(), touched);
-  EXPECT_EQ(run.metrics["events_on_other_parts"], 0);
+  EXPECT_EQ(run.metric("hits_on_expected_part").get<int>(), touched);
+  EXPECT_EQ(run.metric("events_on_other_parts"), 0);
   EXPECT_TRUE(std::filesystem::exists(run.dir / "figures/skin_layout.png"));
   EXPECT_GT(run.metrics["real_time_factor"].get<double>(), 0.0);
 }

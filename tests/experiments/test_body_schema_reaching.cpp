@@ -149,10 +149,10 @@ TEST(BodySchemaReaching, NoMatchingParticleStopsCleanlyOrReinflates) {
             "node 'filter': body_schema_filter: no particle explains the images at t = 1.900 s "
             "(movement 0): every likelihood is 0 (is the hand in view and segmented? "
             "hand_hsv_low/high)");
-  EXPECT_EQ(stopped.metrics["filter_frames_without_match"], 1);
+  EXPECT_EQ(stopped.metric("filter_frames_without_match"), 1);
   const auto kept = run_config("body_schema_reaching", short_run(blind), "reinflate");
   EXPECT_EQ(kept.metrics["status"], "completed");
-  EXPECT_EQ(kept.metrics["filter_frames_without_match"], 2 * 56);
+  EXPECT_EQ(kept.metric("filter_frames_without_match"), 2 * 56);
 }
 
 TEST(BodySchemaParticles, FiltersOfOtherSizesRunOnTheSameImages) {

@@ -49,7 +49,7 @@ TEST(PpsEvaluation, AvoidanceScoresEveryPresentation) {
   for (const char* key : {"approaches", "triggered_rate", "skin_contact_rate", "contact_rate",
                           "min_distance_m", "trigger_distance_m", "false_trigger_rate"})
     EXPECT_TRUE(run.metrics.contains(key)) << key;  // the top-level keys
-  EXPECT_EQ(run.metrics["approaches"], 5);
+  EXPECT_EQ(run.metric("approaches"), 5);
   EXPECT_EQ(m["approaches"], 5);
   EXPECT_EQ(m["presentations"], 7);
   for (const char* k :

@@ -45,8 +45,8 @@ TEST_P(PpsLearnDoubleTouchErrorSets, EveryTaxelEstimateWithinOneCentimetre) {
       {"nodes.believed.params.joint_offsets_deg", std::string("{") + GetParam() + "}"}};
   const auto run = run_config("pps_learn_double_touch", overrides, "set");
   ASSERT_EQ(run.metrics["status"], "completed") << run.metrics["error"];
-  EXPECT_GE(run.metrics["offset_taxels_evaluated"].get<int>(), 5);
-  EXPECT_LE(run.metrics["offset_error_max_m"].get<double>(), 0.01) << GetParam();
+  EXPECT_GE(run.metric("offset_taxels_evaluated").get<int>(), 5);
+  EXPECT_LE(run.metric("offset_error_max_m").get<double>(), 0.01) << GetParam();
 }
 
 INSTANTIATE_TEST_SUITE_P(

@@ -28,28 +28,28 @@ nlohmann::json without_wall_clock(nlohmann::json m) {
 TEST(PpsLearnObjects, ApproachingObjectsTeachBothPartsAndTheirOffsetsAreEvaluated) {
   const auto run = run_config("pps_learn_objects", kShort, "a");
   ASSERT_EQ(run.metrics["status"], "completed") << run.metrics["error"];
-  EXPECT_EQ(run.metrics["objects_presented"], 6);
+  EXPECT_EQ(run.metric("objects_presented"), 6);
   const auto& pps = run.metrics["nodes"]["pps"];
   EXPECT_EQ(pps["events"], 6);
   for (const char* part : {"left_forearm", "right_palm"}) {
     EXPECT_EQ(pps["per_part"][part]["events"], 3) << part;
     EXPECT_GT(pps["per_part"][part]["positive_samples"].get<int>(), 0) << part;
-    EXPECT_TRUE(run.metrics["offset_mean_m"][part].is_number()) << part;
+    EXPECT_TRUE(run.metric("offset_mean_m")[part].is_number()) << part;
     // The injected error is 2 cm-class and positive (the believed skin lies inside) but for
     // forearm taxels near the elbow, which the shoulder and elbow errors move little (over 40
     // objects the forearm's taxels show -0.3 to 21 mm).
-    const double truth = run.metrics["true_offset_mean_m"][part].get<double>();
+    const double truth = run.metric("true_offset_mean_m")[part].get<double>();
     EXPECT_GT(truth, std::string(part) == "right_palm" ? 0.005 : -0.005) << part;
     EXPECT_LT(truth, 0.04) << part;
-    EXPECT_EQ(run.metrics["presented_per_part"][part]["contact_events"], 3) << part;
+    EXPECT_EQ(run.metric("presented_per_part")[part]["contact_events"], 3) << part;
   }
-  EXPECT_GT(run.metrics["offset_taxels_evaluated"].get<int>(), 0);
+  EXPECT_GT(run.metric("offset_taxels_evaluated").get<int>(), 0);
   // The contact estimator under the unsuffixed keys, floor and Fig 8 alongside; the ridge end too
   // (null here: 1 cm bins hold too few samples of 2 approaches for its plateau of 5 counts).
-  EXPECT_TRUE(run.metrics["offset_error_max_m"].is_number());
-  EXPECT_EQ(run.metrics["offset_error_max_m"], run.metrics["offset_error_max_contact_m"]);
-  EXPECT_TRUE(run.metrics["offset_error_max_floor_m"].is_number());
-  EXPECT_TRUE(run.metrics["offset_error_max_paper_m"].is_number());
+  EXPECT_TRUE(run.metric("offset_error_max_m").is_number());
+  EXPECT_EQ(run.metric("offset_error_max_m"), run.metric("offset_error_max_contact_m"));
+  EXPECT_TRUE(run.metric("offset_error_max_floor_m").is_number());
+  EXPECT_TRUE(run.metric("offset_error_max_paper_m").is_number());
   EXPECT_TRUE(run.metrics.contains("offset_error_max_ridge_m"));
   EXPECT_TRUE(std::filesystem::exists(run.dir / "pps_objects.json"));
   // Fig 9-style snapshot after the first event, of the taxel that event touched (the only one
@@ -85,8 +85,8 @@ TEST_P(PpsLearnObjectsErrorSets, EveryTaxelEstimateWithinOneCentimetre) {
       {"nodes.believed.params.joint_offsets_deg", std::string("{") + GetParam() + "}"}};
   const auto run = run_config("pps_learn_objects", overrides, "set");
   ASSERT_EQ(run.metrics["status"], "completed") << run.metrics["error"];
-  EXPECT_GE(run.metrics["offset_taxels_evaluated"].get<int>(), 30);
-  EXPECT_LE(run.metrics["offset_error_max_m"].get<double>(), 0.01) << GetParam();
+  EXPECT_GE(run.metric("offset_taxels_evaluated").get<int>(), 30);
+  EXPECT_LE(run.metric("offset_error_max_m").get<double>(), 0.01) << GetParam();
   // The error is real: perceived offsets of centimetres, which the estimate follows.
   double largest_truth = 0.0;
   for (const auto& [label, taxel] : run.metrics["nodes"]["pps"]["taxels"].items())

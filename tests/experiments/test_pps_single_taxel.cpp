@@ -61,11 +61,11 @@ std::vector<double> learned_distribution(const ExperimentRun& run, const std::st
 TEST(PpsSingleTaxelFig2, MeetsItsBoundsAndWritesEveryOutput) {
   const ExperimentRun run = run_config("pps_single_taxel");
   ASSERT_EQ(run.metrics["status"], "completed") << run.metrics["error"];
-  EXPECT_EQ(run.metrics["throws"], 500);
-  EXPECT_GT(run.metrics["samples"].get<int>(), 10000);
-  EXPECT_LE(std::abs(run.metrics["offset_estimate_m"].get<double>()), 0.02);
-  EXPECT_NEAR(run.metrics["hit_rate"].get<double>(), 0.46, 0.08);  // 1 - exp(-2^2 / (2 * 1.8^2))
-  EXPECT_EQ(run.metrics["negative_d_share"], 0.0);
+  EXPECT_EQ(run.metric("throws"), 500);
+  EXPECT_GT(run.metric("samples").get<int>(), 10000);
+  EXPECT_LE(std::abs(run.metric("offset_estimate_m").get<double>()), 0.02);
+  EXPECT_NEAR(run.metric("hit_rate").get<double>(), 0.46, 0.08);  // 1 - exp(-2^2 / (2 * 1.8^2))
+  EXPECT_EQ(run.metric("negative_d_share"), 0.0);
   for (const char* f :
        {"experiment.resolved.yaml", "log.txt", "metrics.json", "thrower.stimulus.csv",
         "pps.activations.csv", "pps_single_taxel.json", "figures/landscape_taxel_0.png"})
@@ -76,9 +76,9 @@ TEST(PpsSingleTaxelFig2, MeetsItsBoundsAndWritesEveryOutput) {
 TEST(PpsSingleTaxelFig3, ExtendsToNegativeDistancesWithANegativeOffset) {
   const ExperimentRun run = run_config("pps_single_taxel_offset");
   ASSERT_EQ(run.metrics["status"], "completed") << run.metrics["error"];
-  EXPECT_GE(run.metrics["negative_d_share"].get<double>(), 0.10);
-  EXPECT_LT(run.metrics["offset_estimate_m"].get<double>(), 0.0);
-  EXPECT_NEAR(run.metrics["contact_distance_m"].get<double>(), -0.10, 0.01);
+  EXPECT_GE(run.metric("negative_d_share").get<double>(), 0.10);
+  EXPECT_LT(run.metric("offset_estimate_m").get<double>(), 0.0);
+  EXPECT_NEAR(run.metric("contact_distance_m").get<double>(), -0.10, 0.01);
 }
 
 TEST(PpsSingleTaxel, SameSeedGivesIdenticalOutputsOtherSeedDoesNot) {

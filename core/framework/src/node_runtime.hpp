@@ -27,9 +27,11 @@ class NodeRuntime {
   std::map<std::string, std::shared_ptr<void>> outputs;  // owned storage
   std::map<std::string, void*> inputs;                   // producer storage or delay buffer
   std::vector<std::pair<std::string, nlohmann::json>> metrics;
-  std::int64_t next_tick = 0;            // the base tick of this node's next step
-  std::int64_t last_step_tick = -1;      // the base tick of its last step
-  std::vector<PortRecorder*> recorders;  // recorders of this node's outputs
+  std::int64_t next_tick = 0;                          // the base tick of this node's next step
+  std::int64_t last_step_tick = -1;                    // the base tick of its last step
+  std::vector<PortRecorder*> recorders;                // recorders of this node's outputs
+  std::int64_t progress_done = 0, progress_total = 0;  // NodeContext::report_progress
+  std::string progress_what;
 };
 
 }  // namespace somasim

@@ -11,6 +11,7 @@
 #include <spdlog/sinks/basic_file_sink.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
 
+#include "progress_report.hpp"
 #include "somasim/error.hpp"
 #include "somasim/interrupt.hpp"
 #include "somasim/simulation.hpp"
@@ -47,28 +48,6 @@ std::shared_ptr<spdlog::logger> make_logger(const fs::path& dir, bool quiet) {
   logger->flush_on(spdlog::level::debug);  // every line reaches log.txt as it is logged
   return logger;
 }
-
-class ProgressLine {
- public:
-  explicit ProgressLine(bool enabled) : enabled_(enabled && isatty(STDERR_FILENO)) {}
-  void update(double sim_t, double duration, double wall) {
-    if (!enabled_ || wall - last_ < 0.5) return;
-    last_ = wall;
-    const double rtf = wall > 0 ? sim_t / wall : 0.0;
-    const double eta = rtf > 0 ? (duration - sim_t) / rtf : 0.0;
-    fmt::print(stderr, "\r  sim {:.1f}/{:.1f} s   {:.1f}x real time   ETA {:.0f} s   ", sim_t,
-               duration, rtf, eta);
-    shown_ = true;
-  }
-  ~ProgressLine() {
-    if (shown_) fmt::print(stderr, "\n");
-  }
-
- private:
-  bool enabled_;
-  bool shown_ = false;
-  double last_ = 0.0;
-};
 
 // Written to a temporary file in the same folder and renamed over `file`: a reader (or a run
 // killed meanwhile) sees the old metrics.json or the new one, never half of one.
@@ -157,8 +136,9 @@ RunReport run_in_folder(const Experiment& exp, const RunOptions& options) {
     sim.configure();
     sim.start();
     started = true;
-    ProgressLine progress(options.progress && !options.quiet);
-    while (sim.step()) progress.update(sim.time_s(), exp.duration_s, wall());
+    ProgressReport progress(options.progress && !options.quiet,
+                            options.quiet ? 0.0 : options.progress_every_s, *logger);
+    while (sim.step()) progress.update(sim, exp.duration_s, wall());
     if (sim.stop_reason() == "interrupted") report.status = RunStatus::Interrupted;
   } catch (const InputError& e) {
     report.status = RunStatus::BadInput;
@@ -192,16 +172,6 @@ RunReport run_in_folder(const Experiment& exp, const RunOptions& options) {
   m["versions"] = {{"somasim", kVersion},
                    {"plugin_interface", kPluginInterfaceVersion},
                    {"compiler", __VERSION__}};
-  // Plugin metrics at the top level by their own names; a name reported by two nodes (or
-  // clashing with the run's own keys) is qualified as "node.metric".
-  std::map<std::string, int> count;
-  for (const auto& [node, values] : sim.node_metrics().items())
-    for (const auto& [k, v] : values.items()) ++count[k];
-  for (const auto& [node, values] : sim.node_metrics().items())
-    for (const auto& [k, v] : values.items()) {
-      const bool clash = count[k] > 1 || m.contains(k);
-      m[clash ? fmt::format("{}.{}", node, k) : k] = v;
-    }
   m["nodes"] = sim.node_metrics();
   write_metrics(options.out_dir / "metrics.json", m);
   if (report.status == RunStatus::Completed) {

@@ -1,5 +1,6 @@
 #include "somasim/simulation.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "node_runtime.hpp"
@@ -99,6 +100,28 @@ void Simulation::start() {
     nodes_[i]->plugin->start(nodes_[i]->context);
   }
   current_node_.clear();
+}
+
+std::optional<Simulation::NodeProgress> Simulation::furthest_progress() const {
+  std::optional<NodeProgress> best;
+  double best_fraction = -1.0;
+  for (const auto& n : nodes_) {
+    if (n->progress_total <= 0) continue;
+    const double f = static_cast<double>(n->progress_done) / static_cast<double>(n->progress_total);
+    if (f > best_fraction) {
+      best_fraction = f;
+      best = NodeProgress{n->spec.name, n->progress_what, n->progress_done, n->progress_total};
+    }
+  }
+  return best;
+}
+
+double Simulation::progress_fraction() const {
+  double f =
+      total_ticks_ > 0 ? static_cast<double>(tick_) / static_cast<double>(total_ticks_) : 0.0;
+  if (const auto p = furthest_progress())
+    f = std::max(f, static_cast<double>(p->done) / static_cast<double>(p->total));
+  return std::clamp(f, 0.0, 1.0);
 }
 
 bool Simulation::step() {
@@ -224,6 +247,12 @@ spdlog::logger& NodeContext::log() {
 void NodeContext::request_stop(const std::string& reason) {
   if (rt_.sim.stop_reason_.empty())
     rt_.sim.stop_reason_ = "node '" + rt_.spec.name + "': " + reason;
+}
+
+void NodeContext::report_progress(std::int64_t done, std::int64_t total, const std::string& what) {
+  rt_.progress_done = done;
+  rt_.progress_total = total;
+  if (rt_.progress_what != what) rt_.progress_what = what;
 }
 
 void NodeContext::report_metric(const std::string& name, nlohmann::json value) {

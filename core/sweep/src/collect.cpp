@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "somasim/metrics_layout.hpp"
 #include "somasim/sweep/run_folder.hpp"
 
 namespace somasim::sweep {
@@ -16,7 +17,7 @@ namespace fs = std::filesystem;
 namespace {
 
 // Columns the table already has, and metrics.json entries that are not per-run figures.
-const std::set<std::string> kSkippedMetrics = {"status", "seed", "experiment"};
+const std::set<std::string> kSkippedMetrics = {"status", "seed", "experiment", "pid"};
 
 std::optional<nlohmann::json> read_json(const fs::path& file) {
   std::ifstream in(file);
@@ -76,8 +77,8 @@ SweepTable collect_table(const fs::path& root) {
     const auto metrics = read_json(root / folder / "metrics.json");
     run.fixed.push_back(metrics ? metrics->value("status", "unknown") : "missing");
     if (metrics && metrics->is_object())
-      for (const auto& [k, v] : metrics->items()) {
-        if (kSkippedMetrics.count(k)) continue;
+      for (const auto& [k, v] : flatten_metrics(*metrics)) {
+        if (kSkippedMetrics.count(k) || k.starts_with("versions.")) continue;
         if (const auto c = cell(v)) {
           run.metrics[k] = *c;
           keys.insert(k);

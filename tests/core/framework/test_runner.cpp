@@ -1,10 +1,13 @@
 // run_experiment: the run folder, failures, re-running the resolved file, determinism.
+#include <algorithm>
+
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
 
 #include "somasim/experiment.hpp"
 #include "somasim/interrupt.hpp"
+#include "somasim/metrics_layout.hpp"
 #include "somasim/plugin_registry.hpp"
 #include "somasim/runner.hpp"
 #include "test_support.hpp"
@@ -90,12 +93,19 @@ TEST(Runner, RunFolderHasEveryOutput) {
   EXPECT_EQ(m["versions"]["somasim"], "0.1.0");
   EXPECT_EQ(m["versions"]["plugin_interface"], "somasim-plugin-api/5");
   EXPECT_TRUE(m["versions"]["compiler"].is_string());
-  // Metric names reported by one node stay plain; clashes are qualified by the node.
-  EXPECT_EQ(m["c.steps"], 5);
-  EXPECT_EQ(m["noise.steps"], 10);
-  EXPECT_EQ(m["c.final"], 5.0);
+  // Nothing is written twice: the run's own keys, then one section per node.
+  for (const auto& [key, value] : m.items())
+    EXPECT_TRUE(key == "nodes" || std::find(kRunMetricKeys.begin(), kRunMetricKeys.end(), key) !=
+                                      kRunMetricKeys.end())
+        << key;
   EXPECT_EQ(m["nodes"]["c"]["steps"], 5);
-  EXPECT_EQ(m["nodes"]["s"]["final"], m["s.final"]);
+  EXPECT_EQ(m["nodes"]["noise"]["steps"], 10);
+  EXPECT_EQ(m["nodes"]["c"]["final"], 5.0);
+  // Flat names: a name reported by two nodes is qualified by the node.
+  EXPECT_EQ(find_metric(m, "c.steps"), 5);
+  EXPECT_EQ(find_metric(m, "noise.steps"), 10);
+  EXPECT_EQ(find_metric(m, "s.final"), m["nodes"]["s"]["final"]);
+  EXPECT_FALSE(find_metric(m, "steps").has_value());
 
   const std::string log = read_file(r.dir / "log.txt");
   EXPECT_NE(log.find("experiment 'runner_test'"), std::string::npos) << log;
@@ -132,7 +142,7 @@ record: [c.value, s.sum]
   EXPECT_EQ(m["status"], "failed");
   EXPECT_EQ(m["error"], error);
   EXPECT_EQ(m["stop_reason"], error);
-  EXPECT_EQ(m["steps"], 3);  // finish() still ran and reported
+  EXPECT_EQ(find_metric(m, "steps"), 3);  // finish() still ran and reported
   // Every row up to the failure (ticks 0 and 1) is flushed.
   EXPECT_EQ(read_file(r.dir / "c.value.csv"), "time [s],value\n0,1\n0.001,2\n");
   EXPECT_EQ(read_file(r.dir / "s.sum.csv"), "time [s],value\n0,1\n0.001,2\n");

@@ -64,6 +64,10 @@ class NodeContext {
 
   /// Ends the run after the current tick (e.g. "500 throws done"); status stays "completed".
   void request_stop(const std::string& reason);
+  /// For a node that ends the run when it has done `total` things: `done` of them so far
+  /// (e.g. 12 of 200 "objects presented"). The progress line and its ETA use the furthest node;
+  /// `what` names the things in it. Cheap: call it whenever `done` changes.
+  void report_progress(std::int64_t done, std::int64_t total, const std::string& what);
 
   /// Records a final figure in metrics.json under `name` (plugins report in finish()).
   void report_metric(const std::string& name, nlohmann::json value);

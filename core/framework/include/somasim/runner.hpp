@@ -21,6 +21,9 @@ struct RunOptions {
   std::filesystem::path out_dir;  ///< created if missing
   bool quiet = false;             ///< no progress and only warnings on stderr
   bool progress = true;           ///< progress line on stderr (only if stderr is a terminal)
+  /// When stderr is not a terminal: a progress line in the log every this many seconds of wall
+  /// time (0: none). Not with `quiet`.
+  double progress_every_s = 60.0;
 };
 
 struct RunReport {

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -50,6 +51,16 @@ class Simulation {
   std::int64_t total_ticks() const { return total_ticks_; }
   const std::string& stop_reason() const { return stop_reason_; }
   const Experiment& experiment() const { return exp_; }
+  /// A node's report of how far it is towards ending the run (NodeContext::report_progress).
+  struct NodeProgress {
+    std::string node, what;
+    std::int64_t done = 0, total = 0;
+  };
+  /// The node report furthest towards its total (nullopt when no node reports progress).
+  std::optional<NodeProgress> furthest_progress() const;
+  /// How far the run is, in [0, 1]: the larger of simulated time over duration and the
+  /// furthest node's done / total.
+  double progress_fraction() const;
   /// Metrics reported by nodes: node name → {metric → value}.
   const nlohmann::ordered_json& node_metrics() const { return metrics_; }
   /// The node that was stepping when step() threw (for messages).

@@ -1,6 +1,7 @@
 #pragma once
 /// @file
 /// Version strings of the somasim package and of its plugin interface.
+#include <string>
 
 namespace somasim {
 
@@ -15,5 +16,11 @@ inline constexpr const char* kPluginInterfaceVersion = SOMASIM_PLUGIN_INTERFACE_
 #else
 inline constexpr const char* kPluginInterfaceVersion = "somasim-plugin-api/5";
 #endif
+
+/// What `somasim --version` prints: the package version, the plugin interface and the compiler.
+inline std::string version_text() {
+  return std::string("somasim ") + kVersion + " (plugin interface " + kPluginInterfaceVersion +
+         ", compiler " + __VERSION__ + ")";
+}
 
 }  // namespace somasim

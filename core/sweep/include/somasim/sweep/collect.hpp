@@ -3,9 +3,10 @@
 /// Merging a sweep's runs into one table (sweep.csv) and a summary figure.
 ///
 /// sweep.csv: one row per job in index order; columns `index`, `folder`, `seed`, one per axis
-/// (header = its path), `status` (metrics.json's, or "missing"), then every top-level number,
-/// string or boolean of the runs' metrics.json (the union over runs, sorted by name; empty where
-/// a run lacks it), and last the wall-clock columns (see is_wall_clock_column()), which are the
+/// (header = its path), `status` (metrics.json's, or "missing"), then every number, string or
+/// boolean of the runs' metrics.json under its flat name (metrics_layout.hpp: a node metric by
+/// its own name, nested objects joined with '.', e.g. `per_part.left_forearm.thrown`; the union
+/// over runs, sorted by name; empty where a run lacks it), and last the wall-clock columns (see is_wall_clock_column()), which are the
 /// only ones that differ between two executions of the same jobs.
 #include <filesystem>
 #include <optional>
