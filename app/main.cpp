@@ -1,10 +1,12 @@
 // somasim: run experiment graphs headless. See README.md.
+#include <cmath>
 #include <cstdio>
 
 #include <CLI/CLI.hpp>
 
 #include "commands.hpp"
 #include "plugin_pages.hpp"
+#include "plugin_template.hpp"
 #include "somasim/error.hpp"
 #include "somasim/version.hpp"
 #include "somasim/yaml_text.hpp"
@@ -40,7 +42,14 @@ int main(int argc, char** argv) {
       ->add_option("--progress-every", run.progress_every_s,
                    "Without a terminal: a progress line in the log every SECONDS of wall time "
                    "(0: none)")
-      ->check(CLI::Range(0.0, 1e6))
+      ->check(CLI::Validator(
+          [](std::string& text) -> std::string {
+            const auto v = somasim::parse_double(text);
+            return v && std::isfinite(*v) && *v >= 0 && *v <= 1e6
+                       ? ""
+                       : "expected seconds in [0, 1e6], got " + text;
+          },
+          "SECONDS in [0, 1e6]"))
       ->capture_default_str();
 
   std::string validate_file;
@@ -67,6 +76,14 @@ int main(int argc, char** argv) {
       ->required();
   reference_cmd->add_flag("--check", reference_check,
                           "Write nothing; exit 1 and name the pages that are not current");
+
+  auto* plugin_cmd = app.add_subcommand("plugin", "Start a plugin of your own");
+  plugin_cmd->require_subcommand(1);
+  std::string new_plugin_name, new_plugin_dir;
+  auto* new_plugin_cmd = plugin_cmd->add_subcommand(
+      "new", "Write a plugin folder to start from (CMakeLists.txt, the plugin, a harness test)");
+  new_plugin_cmd->add_option("name", new_plugin_name, "Plugin name, e.g. my_filter")->required();
+  new_plugin_cmd->add_option("--dir", new_plugin_dir, "Folder to write (default: ./NAME)");
 
   auto* pps_cmd = app.add_subcommand("pps", "PPS learned-map files");
   pps_cmd->require_subcommand(1);
@@ -108,6 +125,7 @@ int main(int argc, char** argv) {
     }
     if (*plugins_cmd) return cmd_plugins(common);
     if (*graph_cmd) return cmd_graph(common, graph_file);
+    if (*new_plugin_cmd) return cmd_plugin_new(new_plugin_name, new_plugin_dir);
     if (*convert_cmd) return cmd_pps_convert(convert_in, convert_out);
     if (sweep.selected()) return sweep.dispatch(common);
   } catch (const somasim::InputError& e) {

@@ -75,8 +75,7 @@ std::string plugin_section(const PluginSpec& spec) {
            "|---|---|---|---|---|---|\n";
     for (const auto& p : spec.params())
       out << "| `" << p.name << "` | " << cell(type_text(p)) << " | " << cell(p.unit) << " | "
-          << default_text(p)
-          << " | " << cell(bounds_text(p)) << " | " << cell(p.doc) << " |\n";
+          << default_text(p) << " | " << cell(bounds_text(p)) << " | " << cell(p.doc) << " |\n";
     out << "\n";
   }
   for (auto dir : {PortDirection::Input, PortDirection::Output}) {

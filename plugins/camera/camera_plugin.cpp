@@ -8,27 +8,13 @@
 #include <fmt/format.h>
 
 #include "backdrop.hpp"
+#include "render_thread.hpp"
 #include "somasim/error.hpp"
 #include "somasim/robot/experiment_robot.hpp"
 #include "somasim/robot/kinematics.hpp"
 
 namespace somasim::plugins {
 namespace {
-
-// One GL context per thread (a second one on a thread is refused, whatever its back end),
-// shared by the camera nodes that run on it and released with the last of them. The first node
-// on a thread chooses the back end.
-std::shared_ptr<render::RenderContext> thread_context(render::RenderBackend backend,
-                                                      bool& created) {
-  thread_local std::weak_ptr<render::RenderContext> shared;
-  std::shared_ptr<render::RenderContext> context = shared.lock();
-  created = !context;
-  if (!context) {
-    context = render::make_render_context(backend);
-    shared = context;
-  }
-  return context;
-}
 
 std::vector<std::string> words(const std::string& text) {
   std::string s = text;
@@ -172,7 +158,7 @@ void CameraPlugin::configure(NodeContext& ctx) {
   const render::RenderBackend backend = config_.backend;
   const std::string backend_name = render::render_backend_name(backend);
   bool created = false;
-  context_ = thread_context(backend, created);
+  context_ = thread_render_context(backend, created);
   if (context_->backend() != backend)
     config_error(ctx, config_, config_.backend,
                  fmt::format("'{}', but another camera node on this thread already renders with "
@@ -245,8 +231,8 @@ void CameraPlugin::save_frames(NodeContext& ctx, const View& view) {
     const std::filesystem::path index = ctx.output_path(folder + "/index.csv");
     const bool fresh = !std::filesystem::exists(index);
     std::ofstream out(index, std::ios::app);
-    if (fresh) out << "frame,time [s],file\n";
-    out << frame_ << ',' << fmt::format("{}", image->time_s) << ',' << file << '\n';
+    if (fresh) out << "time [s],frame,file\n";
+    out << fmt::format("{},{},{}\n", image->time_s, frame_, file);
     if (!out) throw RunError("cannot write " + index.string());
   }
 }

@@ -28,6 +28,11 @@ ExperimentRun run_config(const std::string& name, const std::vector<Override>& o
   ro.quiet = true;
   run.report = run_experiment(exp, ro);
   run.metrics = nlohmann::json::parse(read_file(run.dir / "metrics.json"));
+  run.flat = nlohmann::json::object();
+  for (const auto& [key, value] : run.metrics.items())
+    if (key != "nodes") run.flat[key] = value;
+  for (const auto& [flat_name, value] : node_metrics_by_flat_name(run.metrics))
+    run.flat[flat_name] = value;
   return run;
 }
 

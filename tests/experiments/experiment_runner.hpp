@@ -16,6 +16,9 @@ struct ExperimentRun {
   std::filesystem::path dir;
   RunReport report;
   nlohmann::json metrics;  ///< metrics.json as written
+  /// The run keys and every node metric under its flat name (somasim/metrics_layout.hpp),
+  /// values whole: one object to look metrics up by name.
+  nlohmann::json flat;
 
   /// A metric by its flat name (somasim/metrics_layout.hpp); null when the run has none.
   nlohmann::json metric(std::string_view name) const;

@@ -43,7 +43,7 @@ double num(const nlohmann::json& m, const char* key) {
 
 TEST(BodySchemaReaching, AdaptationBeatsTheNominalModelAndTheClosedLoopTheOpenLoop) {
   const auto run = run_config("body_schema_reaching", short_run(), "short");
-  const auto& m = run.metrics;
+  const auto& m = run.flat;
   ASSERT_EQ(m["status"], "completed") << m["error"];
   EXPECT_EQ(m["reach_movements"], 2);
   EXPECT_EQ(m["stop_reason"], "node 'reach': 2 movements done");
@@ -65,7 +65,7 @@ TEST(BodySchemaReaching, StillAdaptsWithImageNoise) {
                               short_run({{"nodes.reach.params.starts_per_target", "1"},
                                          {"nodes.filter.params.image_noise", "12"}}),
                               "noise");
-  const auto& m = run.metrics;
+  const auto& m = run.flat;
   ASSERT_EQ(m["status"], "completed") << m["error"];
   EXPECT_EQ(m["filter_frames_without_match"], 0);
   EXPECT_LT(num(m, "estimation_error_mm"), 0.5 * num(m, "estimation_error_nominal_mm"));
@@ -165,7 +165,7 @@ TEST(BodySchemaParticles, FiltersOfOtherSizesRunOnTheSameImages) {
                   {"nodes.filter.params.compare_particles", "[20, 120]"},
                   {"nodes.filter.params.evaluate_frame", "30"}},
                  "particles");
-  const auto& m = run.metrics;
+  const auto& m = run.flat;
   ASSERT_EQ(m["status"], "completed") << m["error"];
   for (const char* key : {"particles_20_estimation_error_mm", "particles_60_estimation_error_mm",
                           "particles_120_estimation_error_deg", "particles_120_step_ms"})
@@ -183,7 +183,7 @@ TEST(BodySchemaEdges, BothArmsAdaptFromEdgesAndTheBimanualErrorIsReported) {
                                {"nodes.filter_right.params.particles", "100"},
                                {"nodes.filter_left.params.particles", "100"}},
                               "edges");
-  const auto& m = run.metrics;
+  const auto& m = run.flat;
   ASSERT_EQ(m["status"], "completed") << m["error"];
   for (const char* arm : {"reach_right", "reach_left"}) {
     const auto& r = m["nodes"][arm];

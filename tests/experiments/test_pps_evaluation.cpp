@@ -48,7 +48,7 @@ TEST(PpsEvaluation, AvoidanceScoresEveryPresentation) {
   const auto& m = run.metrics["nodes"]["eval"];
   for (const char* key : {"approaches", "triggered_rate", "skin_contact_rate", "contact_rate",
                           "min_distance_m", "trigger_distance_m", "false_trigger_rate"})
-    EXPECT_TRUE(run.metrics.contains(key)) << key;  // the top-level keys
+    EXPECT_TRUE(run.flat.contains(key)) << key;  // by their flat names
   EXPECT_EQ(run.metric("approaches"), 5);
   EXPECT_EQ(m["approaches"], 5);
   EXPECT_EQ(m["presentations"], 7);

@@ -50,7 +50,7 @@ TEST(PpsLearnObjects, ApproachingObjectsTeachBothPartsAndTheirOffsetsAreEvaluate
   EXPECT_EQ(run.metric("offset_error_max_m"), run.metric("offset_error_max_contact_m"));
   EXPECT_TRUE(run.metric("offset_error_max_floor_m").is_number());
   EXPECT_TRUE(run.metric("offset_error_max_paper_m").is_number());
-  EXPECT_TRUE(run.metrics.contains("offset_error_max_ridge_m"));
+  EXPECT_TRUE(run.flat.contains("offset_error_max_ridge_m"));
   EXPECT_TRUE(std::filesystem::exists(run.dir / "pps_objects.json"));
   // Fig 9-style snapshot after the first event, of the taxel that event touched (the only one
   // with a positive sample), and the final landscapes.

@@ -4,7 +4,10 @@
 #   3. run <prefix>/bin/somasim on an experiment that loads the example by path and wires it to
 #      the test plugins' counter
 #   4. check the CSV and metrics.json it wrote
-foreach(var SOMASIM_BUILD_DIR EXAMPLE_DIR WORK_DIR TEST_PLUGIN_DIR GENERATOR CXX_COMPILER)
+#   5. `somasim plugin new`: the template builds against the prefix, is indexed, passes its
+#      harness test and is described by the installed somasim
+#   6. the example builds against the build tree as well (find_package with the build folder)
+foreach(var SOMASIM_BUILD_DIR EXAMPLE_DIR WORK_DIR TEST_PLUGIN_DIR GENERATOR CXX_COMPILER CTEST)
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "missing -D${var}=...")
   endif()
@@ -31,9 +34,11 @@ run("configure example" ${CMAKE_COMMAND} -S ${EXAMPLE_DIR} -B ${example_build} -
 run("build example" ${CMAKE_COMMAND} --build ${example_build})
 
 set(library ${example_build}/plugins/libsomasim_low_pass.so)
-if(NOT EXISTS ${library})
-  message(FATAL_ERROR "the example did not produce ${library}")
-endif()
+foreach(file ${library} ${library}.index)
+  if(NOT EXISTS ${file})
+    message(FATAL_ERROR "the example did not produce ${file}")
+  endif()
+endforeach()
 
 # tau = dt = 0.001 s gives a = 0.5 exactly: y_k = 1 - 0.5^(k+1) for a unit step (gain 1), every
 # value exact in binary, so the CSV can be compared byte for byte.
@@ -61,9 +66,45 @@ endif()
 
 file(READ ${run_dir}/metrics.json metrics)
 string(JSON status GET "${metrics}" status)
-string(JSON final GET "${metrics}" final_output)
+string(JSON final GET "${metrics}" nodes y final_output)
 string(JSON plugin_api GET "${metrics}" versions plugin_interface)
 if(NOT status STREQUAL "completed" OR NOT final STREQUAL "0.96875")
   message(FATAL_ERROR "metrics.json: status '${status}', final_output '${final}':\n${metrics}")
 endif()
+# 5. The template.
+set(somasim_new ${prefix}/bin/somasim)
+run("plugin new" ${somasim_new} plugin new my_gain --dir ${WORK_DIR}/my_gain)
+run("configure template" ${CMAKE_COMMAND} -S ${WORK_DIR}/my_gain -B ${WORK_DIR}/my_gain/build
+    -G ${GENERATOR} -DCMAKE_CXX_COMPILER=${CXX_COMPILER} -DCMAKE_PREFIX_PATH=${prefix}
+    -DCMAKE_BUILD_TYPE=Release)
+run("build template" ${CMAKE_COMMAND} --build ${WORK_DIR}/my_gain/build)
+foreach(file libsomasim_my_gain.so libsomasim_my_gain.so.index)
+  if(NOT EXISTS ${WORK_DIR}/my_gain/build/plugins/${file})
+    message(FATAL_ERROR "the template did not produce plugins/${file}")
+  endif()
+endforeach()
+run("template's harness test" ${CTEST} --test-dir ${WORK_DIR}/my_gain/build
+    --output-on-failure)
+if(NOT run_stdout MATCHES "100% tests passed, 0 tests failed out of 1")
+  message(FATAL_ERROR "the template's test did not run:\n${run_stdout}")
+endif()
+run("template's test binary" ${WORK_DIR}/my_gain/build/test_my_gain)
+if(NOT run_stdout MATCHES "PASSED  \\] 2 tests")
+  message(FATAL_ERROR "the template's harness tests did not all run:\n${run_stdout}")
+endif()
+run("describe template" ${somasim_new} --plugin-path ${WORK_DIR}/my_gain/build/plugins
+    plugins describe my_gain)
+if(NOT run_stdout MATCHES "gain +a number, default 1")
+  message(FATAL_ERROR "unexpected 'plugins describe my_gain' output:\n${run_stdout}")
+endif()
+
+# 6. The example against the build tree.
+run("configure example (build tree)" ${CMAKE_COMMAND} -S ${EXAMPLE_DIR}
+    -B ${WORK_DIR}/example-build-tree -G ${GENERATOR} -DCMAKE_CXX_COMPILER=${CXX_COMPILER}
+    -DCMAKE_PREFIX_PATH=${SOMASIM_BUILD_DIR} -DCMAKE_BUILD_TYPE=Release)
+run("build example (build tree)" ${CMAKE_COMMAND} --build ${WORK_DIR}/example-build-tree)
+if(NOT EXISTS ${WORK_DIR}/example-build-tree/plugins/libsomasim_low_pass.so.index)
+  message(FATAL_ERROR "the example built against the build tree was not indexed")
+endif()
+
 message(STATUS "out-of-tree plugin OK (${plugin_api}, final_output ${final})")

@@ -585,13 +585,38 @@ class Loader {
       return;
     }
     for (const auto& item : rec) {
-      const std::string text = item.IsScalar() ? item.Scalar() : "";
+      RecordAs as = RecordAs::kFiles;
+      YAML::Node port = item;
+      if (item.IsMap()) {
+        for (const auto& kv : item) {
+          const std::string k = kv.first.IsScalar() ? kv.first.Scalar() : "";
+          if (k != "port" && k != "as")
+            error(kv.first, "", "record." + k,
+                  "unknown key" + did_you_mean(k, {"port", "as"}) + "; expected one of: port, as");
+        }
+        if (const YAML::Node a = item["as"]; a) {
+          const std::string value = a.IsScalar() ? a.Scalar() : "";
+          if (value == "video")
+            as = RecordAs::kVideo;
+          else if (value != "files")
+            error(a, "", "record.as", "expected one of: files, video; got " + describe_yaml(a));
+        }
+        // (a missing key of a const map is an invalid node: test it before reset())
+        const YAML::Node p = item["port"];
+        if (!p) {
+          error(item, "", "record", "missing 'port: node.port'");
+          continue;
+        }
+        port.reset(p);
+      }
+      const std::string text = port.IsScalar() ? port.Scalar() : "";
       const auto dot = text.find('.');
       if (dot == std::string::npos || dot == 0 || dot + 1 == text.size()) {
-        error(item, "", "record", "expected 'node.port', got " + describe_yaml(item));
+        error(port, "", "record",
+              "expected 'node.port' or {port: node.port, as: video}, got " + describe_yaml(port));
         continue;
       }
-      exp_.records.push_back({text.substr(0, dot), text.substr(dot + 1), locs_.of(item)});
+      exp_.records.push_back({text.substr(0, dot), text.substr(dot + 1), locs_.of(port), as});
     }
   }
 

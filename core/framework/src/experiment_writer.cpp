@@ -72,7 +72,13 @@ std::string Experiment::resolved_yaml() const {
   out << YAML::EndMap;
   if (!records.empty()) {
     out << YAML::Key << "record" << YAML::Value << YAML::BeginSeq;
-    for (const auto& r : records) out << r.node + "." + r.port;
+    for (const auto& r : records) {
+      if (r.as == RecordAs::kVideo)
+        out << YAML::Flow << YAML::BeginMap << YAML::Key << "port" << YAML::Value
+            << r.node + "." + r.port << YAML::Key << "as" << YAML::Value << "video" << YAML::EndMap;
+      else
+        out << r.node + "." + r.port;
+    }
     out << YAML::EndSeq;
   }
   out << YAML::EndMap;

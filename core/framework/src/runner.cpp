@@ -1,7 +1,9 @@
 #include "somasim/runner.hpp"
 
+#include <fcntl.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
 #include <fstream>
 #include <set>
@@ -53,20 +55,35 @@ std::shared_ptr<spdlog::logger> make_logger(const fs::path& dir, bool quiet) {
 // killed meanwhile) sees the old metrics.json or the new one, never half of one.
 void write_metrics(const fs::path& file, const nlohmann::ordered_json& metrics) {
   const fs::path tmp = file.string() + ".tmp";
-  {
-    std::ofstream out(tmp);
-    // Invalid UTF-8 in a message or metric is replaced, not a reason to lose the file.
-    out << metrics.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) << "\n";
-    out.close();
-    if (!out) {
-      std::error_code ec;
-      fs::remove(tmp, ec);
-      throw std::runtime_error("cannot write " + tmp.string());
-    }
+  // Invalid UTF-8 in a message or metric is replaced, not a reason to lose the file.
+  const std::string text =
+      metrics.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n";
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC | O_NOFOLLOW, 0644);
+  bool ok = fd >= 0;
+  for (std::size_t done = 0; ok && done < text.size();) {
+    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    ok = n > 0;
+    if (ok) done += static_cast<std::size_t>(n);
+  }
+  // On disk before it replaces the old file: a crash leaves the old metrics.json or the new one.
+  ok = ok && ::fsync(fd) == 0;
+  if (fd >= 0) ok = ::close(fd) == 0 && ok;
+  if (!ok) {
+    std::error_code ec;
+    fs::remove(tmp, ec);
+    throw std::runtime_error("cannot write " + tmp.string());
   }
   std::error_code ec;
   fs::rename(tmp, file, ec);
   if (ec) throw std::runtime_error("cannot write " + file.string() + ": " + ec.message());
+  // The rename itself, on disk (best effort: a folder that cannot be synced keeps the file).
+  if (const int dir = ::open(file.parent_path().empty() ? "." : file.parent_path().c_str(),
+                             O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+      dir >= 0) {
+    ::fsync(dir);
+    ::close(dir);
+  }
 }
 
 /// The plugin libraries the experiment's nodes come from, for the log.

@@ -89,8 +89,9 @@ void Simulation::start() {
     for (auto& n : nodes_) {
       if (n->spec.name != r.node) continue;
       const PortSpec* out = n->spec.spec->find_port(r.port, PortDirection::Output);
-      auto rec = out->type->make_recorder(*out->type, n->outputs.at(r.port).get(),
-                                          {out_dir_, r.node + "." + r.port});
+      const RecordTarget target{out_dir_, r.node + "." + r.port, r.as == RecordAs::kVideo,
+                                exp_.base_rate_hz / static_cast<double>(n->spec.period_ticks)};
+      auto rec = out->type->make_recorder(*out->type, n->outputs.at(r.port).get(), target);
       n->recorders.push_back(rec.get());  // indexed per node: no scan in step()
       recorders_.push_back(std::move(rec));
     }
@@ -314,7 +315,8 @@ std::string run_file_problem(const std::string& relative, const Experiment& exp)
       return std::string("is the run's ") + folder + "/ folder or inside it";
   for (const RecordSpec& r : exp.records) {
     const std::string stem = r.node + "." + r.port;  // a CSV, or a folder of images
-    if (relative == stem + ".csv" || relative == stem || relative.rfind(stem + "/", 0) == 0)
+    if (relative == stem + ".csv" || relative == stem + ".mp4" || relative == stem ||
+        relative.rfind(stem + "/", 0) == 0)
       return "is written by the recorder of '" + stem + "'";
   }
   return "";

@@ -1,4 +1,5 @@
-// The Image port: PNG encoding and the recorder that writes one PNG per new frame.
+// The Image port: PNG encoding, the recorder that writes one PNG per new frame, and the one
+// that writes a video (`record: [{port: NODE.PORT, as: video}]`).
 #include "somasim/render/ports.hpp"
 
 #include <algorithm>
@@ -10,6 +11,7 @@
 #include <fmt/format.h>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <opencv2/videoio.hpp>
 
 #include "somasim/error.hpp"
 
@@ -86,6 +88,74 @@ class ImageRecorder : public PortRecorder {
   std::uint64_t last_frame_ = 0;
 };
 
+// One video file per port: every new frame, at the camera's rate (MPEG-4 part 2 in MP4 through
+// OpenCV's FFmpeg back end; the same frames give the same bytes). RGB as it is; depth as grey
+// (0 at the camera to white at 2 m and beyond); masks as grey ids (id x 37 mod 256).
+class VideoRecorder : public PortRecorder {
+ public:
+  VideoRecorder(const Image* image, const RecordTarget& target)
+      : image_(image),
+        file_(target.dir / (target.stem + ".mp4")),
+        fps_(target.rate_hz > 0 ? target.rate_hz : 30.0) {}
+  void write(double) override {
+    if (image_->frame == 0 || image_->frame == last_frame_ || image_->data.empty()) return;
+    last_frame_ = image_->frame;
+    const cv::Mat frame = video_pixels(*image_);
+    if (!writer_.isOpened()) {
+      size_ = frame.size();
+      writer_.open(file_.string(), cv::VideoWriter::fourcc('m', 'p', '4', 'v'), fps_, size_, true);
+      if (!writer_.isOpened())
+        throw RunError(fmt::format("video '{}': cannot be written (no MP4 encoder in OpenCV?)",
+                                   file_.string()));
+    }
+    if (frame.size() != size_)
+      throw RunError(fmt::format("video '{}': frame {} is {} x {} px, the video {} x {}",
+                                 file_.string(), image_->frame, frame.cols, frame.rows, size_.width,
+                                 size_.height));
+    writer_.write(frame);
+  }
+  void flush() override {
+    if (writer_.isOpened()) writer_.release();
+  }
+
+ private:
+  static cv::Mat video_pixels(const Image& image) {
+    cv::Mat out(image.data.size(), CV_8UC3);
+    switch (image.encoding) {
+      case ImageEncoding::kRgb8:
+        cv::cvtColor(image.data, out, cv::COLOR_RGB2BGR);
+        break;
+      case ImageEncoding::kDepth32f:
+        for (int r = 0; r < out.rows; ++r)
+          for (int c = 0; c < out.cols; ++c) {
+            const float d = image.data.at<float>(r, c);
+            const auto v = static_cast<std::uint8_t>(
+                std::isfinite(d) ? std::clamp(d / 2.0f * 255.0f, 0.0f, 255.0f) : 255.0f);
+            out.at<cv::Vec3b>(r, c) = {v, v, v};
+          }
+        break;
+      case ImageEncoding::kId32s:
+        for (int r = 0; r < out.rows; ++r)
+          for (int c = 0; c < out.cols; ++c) {
+            const auto v = static_cast<std::uint8_t>(
+                (static_cast<unsigned>(image.data.at<std::int32_t>(r, c)) * 37u) % 256u);
+            out.at<cv::Vec3b>(r, c) = {v, v, v};
+          }
+        break;
+      case ImageEncoding::kNone:
+        break;
+    }
+    return out;
+  }
+
+  const Image* image_;
+  std::filesystem::path file_;
+  double fps_;
+  cv::VideoWriter writer_;
+  cv::Size size_;
+  std::uint64_t last_frame_ = 0;
+};
+
 }  // namespace
 
 void write_png(const Image& image, const std::filesystem::path& file) {
@@ -101,6 +171,7 @@ void write_png(const Image& image, const std::filesystem::path& file) {
 }
 
 std::unique_ptr<PortRecorder> make_image_recorder(const Image* image, const RecordTarget& target) {
+  if (target.video) return std::make_unique<VideoRecorder>(image, target);
   return std::make_unique<ImageRecorder>(image, target);
 }
 

@@ -322,8 +322,25 @@ class SweepReader {
   // identical runs: in grid mode two values of one axis, in zip mode two positions whose values
   // agree on every axis. Compared by a canonical key (numbers by value), in linear time.
   static std::string value_key(const AxisValue& v) {
+    // Integers beyond 2^53 are told apart exactly (a double would merge neighbours).
+    if (const auto i = exact_integer(v.text); i && (*i > kExactInDouble || *i < -kExactInDouble))
+      return *i < 0 ? fmt::format("i-{}", static_cast<unsigned long long>(-*i))
+                    : fmt::format("i{}", static_cast<unsigned long long>(*i));
     if (const auto x = parse_double(v.text)) return fmt::format("n{:.17g}", *x + 0.0);  // -0 = 0
     return "t" + v.text;
+  }
+  static constexpr __int128 kExactInDouble = __int128{1} << 53;
+  // A decimal integer of at most 64 bits' magnitude (optional sign; no fraction, no exponent).
+  static std::optional<__int128> exact_integer(const std::string& text) {
+    std::size_t at = text.size() > 1 && (text[0] == '-' || text[0] == '+') ? 1 : 0;
+    if (at == text.size() || text.size() - at > 20) return std::nullopt;
+    __int128 value = 0;
+    for (std::size_t k = at; k < text.size(); ++k) {
+      if (text[k] < '0' || text[k] > '9') return std::nullopt;
+      value = value * 10 + (text[k] - '0');
+    }
+    if (value > static_cast<__int128>(UINT64_MAX)) return std::nullopt;
+    return text[0] == '-' ? -value : value;
   }
 
   void check_runs_distinct() {

@@ -58,6 +58,65 @@ TEST_F(Cli, HelpWorksForEverySubcommand) {
     EXPECT_NE(top.out.find(sub), std::string::npos) << sub;
 }
 
+TEST_F(Cli, VersionNamesThePackageAndThePluginInterface) {
+  const CliResult r = cli({"--version"}, dir, false);
+  EXPECT_EQ(r.code, 0);
+  EXPECT_EQ(r.out.rfind("somasim 0.1.0 (plugin interface somasim-plugin-api/", 0), 0u) << r.out;
+  EXPECT_EQ(r.err, "");
+}
+
+TEST_F(Cli, WithoutATerminalProgressIsLoggedWithTheNodesCount) {
+  // stderr is a pipe here: progress comes as log lines, counted by the node that ends the run.
+  write_file(dir / "long.yaml", R"(experiment: progress_test
+duration_s: 1000
+nodes:
+  c: {plugin: counter, params: {start: 0, stop_after: 50}}
+)");
+  const CliResult r = cli({"run", "long.yaml", "--out", "p", "--progress-every", "1e-9"}, dir);
+  EXPECT_EQ(r.code, 0) << r.err;
+  const std::string log = read_file(dir / "p" / "log.txt");
+  EXPECT_NE(log.find("progress: sim 0."), std::string::npos) << log;
+  EXPECT_NE(log.find("/1000.0 s, counts 25/50, "), std::string::npos) << log;
+  EXPECT_NE(log.find(" ETA "), std::string::npos) << log;
+  EXPECT_NE(r.err.find("progress: "), std::string::npos);
+  // --quiet: none; 0: none.
+  for (const std::vector<std::string>& extra :
+       {std::vector<std::string>{"--quiet"}, {"--progress-every", "0"}}) {
+    std::vector<std::string> args = {"run", "long.yaml", "--out", "q", "--overwrite"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const CliResult q = cli(args, dir);
+    EXPECT_EQ(q.code, 0) << q.err;
+    EXPECT_EQ(read_file(dir / "q" / "log.txt").find("progress: "), std::string::npos);
+  }
+  for (const char* bad : {"-1", "nan", "1e7", "x"})
+    EXPECT_EQ(cli({"run", "long.yaml", "--out", "b", "--progress-every", bad}, dir).code, 2) << bad;
+}
+
+TEST_F(Cli, PluginNewWritesAFolderAndRefusesBadNamesAndUsedFolders) {
+  CliResult r = cli({"plugin", "new", "my_gain"}, dir, false);
+  EXPECT_EQ(r.code, 0) << r.err;
+  for (const char* f : {"CMakeLists.txt", "my_gain.cpp", "test_my_gain.cpp", "README.md"})
+    EXPECT_TRUE(fs::is_regular_file(dir / "my_gain" / f)) << f;
+  EXPECT_NE(read_file(dir / "my_gain" / "my_gain.cpp").find("class MyGain"), std::string::npos);
+  r = cli({"plugin", "new", "my_gain"}, dir, false);  // the folder is used now
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("exists and is not an empty folder"), std::string::npos) << r.err;
+  // Names: generated from a few characters each side of the rule.
+  const std::string chars = "aZ0_-./ \n$;";
+  for (char first : chars)
+    for (char second : chars) {
+      const std::string name = std::string(1, first) + second;
+      const bool valid =
+          first >= 'a' && first <= 'z' &&
+          ((second >= 'a' && second <= 'z') || (second >= '0' && second <= '9') || second == '_');
+      r = cli({"plugin", "new", name, "--dir", "n"}, dir, false);
+      EXPECT_EQ(r.code, valid ? 0 : 2) << "'" << name << "': " << r.err;
+      if (valid) fs::remove_all(dir / "n");
+      EXPECT_FALSE(!valid && fs::exists(dir / "n")) << name;
+    }
+  EXPECT_EQ(cli({"plugin", "new", std::string(64, 'a'), "--dir", "n"}, dir, false).code, 2);
+}
+
 TEST_F(Cli, UsageErrorsAreBadInput) {
   CliResult r = cli({}, dir, false);
   EXPECT_EQ(r.code, 2);

@@ -448,7 +448,25 @@ record: [c.value, s.total, nodot]
                 "'vector3' but 's.sum' gives 'scalar'\n"
                 "  exp.yaml:7:19: key 'record': node 's' (plugin 'adder') has no output 'total'; "
                 "outputs: sum\n"
-                "  exp.yaml:7:28: key 'record': expected 'node.port', got 'nodot'");
+                "  exp.yaml:7:28: key 'record': expected 'node.port' or {port: node.port, as: "
+                "video}, got 'nodot'");
+}
+
+// The map form of a record entry: `as: video` for image ports only; its keys and values checked.
+TEST(ExperimentLoader, RecordEntriesAsVideoAreCheckedWhereTheyAre) {
+  EXPECT_EQ(load_error(R"(experiment: t
+duration_s: 1
+nodes:
+  c: {plugin: counter, params: {start: 0}}
+record: [{port: c.value, as: video}, {port: c.value, as: film}, {as: video}, {port: c.value, fps: 3}]
+)"),
+            "4 errors:\n"
+            "  exp.yaml:5:17: key 'record': port 'c.value' of type 'scalar' cannot be recorded "
+            "as video (only image ports can; record it as files)\n"
+            "  exp.yaml:5:58: key 'record.as': expected one of: files, video; got 'film'\n"
+            "  exp.yaml:5:65: key 'record': missing 'port: node.port'\n"
+            "  exp.yaml:5:94: key 'record.fps': unknown key (did you mean 'as'?); expected one of: "
+            "port, as");
 }
 
 TEST(ExperimentLoader, MissingRequiredTopLevelKeys) {

@@ -172,6 +172,15 @@ TEST_F(SweepFile, ValuesThatMakeIdenticalRunsAreRefused) {
   EXPECT_EQ(error_of(head + "seeds: [1, 2]\naxes: {seed: [3, 4]}\n"),
             "s.yaml:4:8: key 'axes.seed': is also swept by 'seeds' (at s.yaml:3:8), which would "
             "override it in every run; keep one");
+  // Integers beyond 2^53 are told apart exactly (neighbours are one apart, and equal as doubles).
+  for (const char* big : {"9007199254740993", "18446744073709551615", "-9223372036854775807"}) {
+    const std::string v(big);
+    const std::string less = v.substr(0, v.size() - 1) + static_cast<char>(v.back() - 1);
+    EXPECT_EQ(error_of(head + "axes: {a.x: [" + v + ", " + less + "]}\n"), "no error") << v;
+    EXPECT_NE(error_of(head + "axes: {a.x: [" + v + ", " + v + "]}\n").find("is the same as"),
+              std::string::npos)
+        << v;
+  }
   EXPECT_EQ(error_of(head + "axes: {a.x: [1]}\n---\naxes: {a.x: [2]}\n"),
             "s.yaml: holds 2 YAML documents (separated by '---'); expected one");
 }

@@ -170,6 +170,43 @@ TEST(CameraPlugin, RecordingAndSaveEveryWritePngs) {
   EXPECT_TRUE(same_bytes(mask_png, ids));
 }
 
+TEST(CameraPlugin, SavedFramesHaveAnIndexOfTheirTimes) {
+  Harness h(graph("save_every: 2"));
+  h.input<LinkPoses>("links").poses = hand_before_eyes();
+  h.step(5);
+  h.finish();
+  std::ifstream index(h.out_dir() / "frames/cam.left_eye_rgb/index.csv");
+  std::string line, all;
+  while (std::getline(index, line)) all += line + "\n";
+  EXPECT_EQ(all, "time [s],frame,file\n0,1,000001.png\n0.2,3,000003.png\n0.4,5,000005.png\n");
+}
+
+// `as: video`: one MP4 per port, every frame, the same bytes for the same frames; any image
+// encoding (depth as grey).
+TEST(CameraPlugin, RecordingAsVideoWritesOneDeterministicMp4PerPort) {
+  auto record = [](const std::string& tag) {
+    Harness h(graph("",
+                    "record: [{port: cam.left_eye_rgb, as: video}, "
+                    "{port: cam.left_eye_depth, as: video}, cam.right_eye_rgb]\n"));
+    h.input<LinkPoses>("links").poses = hand_before_eyes();
+    h.step(6);
+    EXPECT_EQ(h.finish(), "");
+    const fs::path dir = h.out_dir();
+    EXPECT_FALSE(fs::exists(dir / "cam.left_eye_rgb"));  // no PNG folder for a video port
+    EXPECT_TRUE(fs::exists(dir / "cam.right_eye_rgb/000006.png"));
+    std::vector<std::string> bytes;
+    for (const char* f : {"cam.left_eye_rgb.mp4", "cam.left_eye_depth.mp4"}) {
+      std::ifstream in(dir / f, std::ios::binary);
+      bytes.emplace_back(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+      EXPECT_GT(bytes.back().size(), 1000u) << f << " " << tag;
+      // MP4: an 'ftyp' box first.
+      EXPECT_EQ(bytes.back().substr(4, 4), "ftyp") << f;
+    }
+    return bytes;
+  };
+  EXPECT_EQ(record("a"), record("b"));
+}
+
 TEST(CameraPlugin, UnknownCameraIsAClearError) {
   EXPECT_EQ(input_error(graph("cameras: 'left_eye, nose'")),
             "<inline>:7:23: node 'cam', key 'params.cameras': camera 'nose' is not in robot "

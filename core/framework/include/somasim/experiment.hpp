@@ -66,9 +66,14 @@ struct RobotSpec {
   SourceLocation where;        ///< the entry in the file
 };
 
+/// How a recorded port is written: `files` (its type's own files: a CSV, or a folder of
+/// images) or `video` (an image port as NODE.PORT.mp4).
+enum class RecordAs { kFiles, kVideo };
+
 struct RecordSpec {
   std::string node, port;
   SourceLocation where;
+  RecordAs as = RecordAs::kFiles;  ///< `record: [{port: NODE.PORT, as: video}]`
 };
 
 /// A `--set path=value` override from the command line.

@@ -7,6 +7,8 @@
 ///   SOMASIM_PLUGIN_LIBRARY(registrar) { registrar.add<MyPlugin>(); }
 /// @endcode
 /// where `MyPlugin` derives from somasim::Plugin and has `static PluginSpec spec()`.
+/// The framework's own port types (double, Eigen::Vector3d: somasim/port_types.hpp) come with
+/// this header; `somasim plugin new NAME` writes a plugin folder to start from.
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -19,6 +21,7 @@
 
 #include "somasim/error.hpp"
 #include "somasim/plugin_spec.hpp"
+#include "somasim/port_types.hpp"
 #include "somasim/version.hpp"
 
 namespace somasim {

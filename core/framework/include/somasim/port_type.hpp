@@ -42,7 +42,9 @@ class PortRecorder {
 /// `world.joint_state.csv`; a recorder that writes many files makes `dir / stem` a folder.
 struct RecordTarget {
   std::filesystem::path dir;
-  std::string stem;  ///< "NODE.PORT"
+  std::string stem;      ///< "NODE.PORT"
+  bool video = false;    ///< `as: video`: one video file `stem`.mp4 (image ports only)
+  double rate_hz = 0.0;  ///< the producing node's step rate [Hz] (a video's frame rate)
 };
 
 struct PortTypeInfo;
@@ -92,6 +94,12 @@ struct HasRecorder<T, std::void_t<decltype(PortTraits<T>::recorder(
 /// The PortTypeInfo of T (one instance per shared library).
 template <class T>
 const PortTypeInfo& port_type() {
+  static_assert(
+      requires { PortTraits<T>::name; },
+      "T is not a port type here: include the header that declares its PortTraits "
+      "(somasim/plugin.hpp brings double and Eigen::Vector3d; the domain types are in "
+      "somasim/robot/ports.hpp, somasim/skin/ports.hpp, somasim/pps/ports.hpp, "
+      "somasim/render/ports.hpp, ...) or specialise PortTraits<T> for your own type");
   static const PortTypeInfo info = [] {
     PortTypeInfo i;
     i.name = PortTraits<T>::name;

@@ -103,6 +103,7 @@ class Counter : public Plugin {
     *value_ += increment_;
     if (noisy_) *value_ += std::normal_distribution<double>(0, 1)(ctx.rng());
     *vector_ = offset_ * static_cast<double>(steps_);
+    if (stop_after_ > 0) ctx.report_progress(steps_, stop_after_, "counts");
     if (stop_after_ > 0 && steps_ >= stop_after_) ctx.request_stop("counted enough");
   }
   void finish(NodeContext& ctx) override {

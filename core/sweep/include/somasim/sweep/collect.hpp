@@ -6,8 +6,9 @@
 /// (header = its path), `status` (metrics.json's, or "missing"), then every number, string or
 /// boolean of the runs' metrics.json under its flat name (metrics_layout.hpp: a node metric by
 /// its own name, nested objects joined with '.', e.g. `per_part.left_forearm.thrown`; the union
-/// over runs, sorted by name; empty where a run lacks it), and last the wall-clock columns (see is_wall_clock_column()), which are the
-/// only ones that differ between two executions of the same jobs.
+/// over runs, sorted by name; empty where a run lacks it), and last the wall-clock columns (see
+/// is_wall_clock_column()), which are the only ones that differ between two executions of the same
+/// jobs.
 #include <filesystem>
 #include <optional>
 #include <string>

@@ -1,0 +1,158 @@
+#include "spectator.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+
+#include <fmt/format.h>
+
+#include "render_thread.hpp"
+#include "somasim/render/tessellate.hpp"
+#include "somasim/robot/kinematics.hpp"
+#include "somasim/units.hpp"
+
+namespace somasim::plugins {
+
+template <class V>
+void Spectator::Config::visit(V& v) {
+  v.block(robot);
+  v.field("position", position).unit("m").size(3).range(-100, 100).doc("the viewpoint, root frame");
+  v.field("look_at", look_at)
+      .unit("m")
+      .size(3)
+      .range(-100, 100)
+      .doc("the point at the image centre, root frame (the image's up is the root's +z)");
+  v.field("fov_deg", fov_deg).unit("deg").range(5, 150).doc("horizontal field of view");
+  v.field("width", width).range(16, 4096).doc("image width [px]");
+  v.field("height", height).range(16, 4096).doc("image height [px]");
+  v.field("taxel_radius", taxel_radius)
+      .unit("m")
+      .range(0.0005, 0.05)
+      .doc("radius of the sphere drawn at each taxel");
+  v.field("backend", backend).doc("OpenGL back end (as the camera's)");
+}
+
+template <class V>
+void Spectator::Ports::visit(V& v) {
+  v.port("link_poses", link_poses, "link poses of the robot (root frame)");
+  v.port("objects", objects, "the world's objects (drawn with their shapes)");
+  v.port("taxels", taxels, "skin taxels (root frame), drawn as small spheres");
+  v.port("taxel_values", taxel_values,
+         "a value in [0, 1] per taxel by label \"part/id\" (e.g. pps_learner's activations), "
+         "as the taxels' colour: grey at 0 through red to yellow at 1");
+  v.port("rgb", rgb, "rgb8 view (somasim/render/ports.hpp)");
+}
+
+PluginSpec Spectator::spec() {
+  return make_plugin_spec<Config, Ports>(
+      "spectator",
+      "A third-person view of the run: the robot, the objects and the skin's taxels coloured by "
+      "a per-taxel value (e.g. PPS activation), from a fixed viewpoint; record it as a video.");
+}
+
+Eigen::Vector3f Spectator::taxel_colour(double value) {
+  if (!std::isfinite(value)) return {0.5f, 0.5f, 0.5f};
+  const float t = static_cast<float>(std::clamp(value, 0.0, 1.0));
+  const Eigen::Vector3f low(0.25f, 0.25f, 0.3f), mid(0.95f, 0.15f, 0.05f), high(1.0f, 0.9f, 0.1f);
+  return t < 0.5f ? Eigen::Vector3f(low + (mid - low) * (2 * t))
+                  : Eigen::Vector3f(mid + (high - mid) * (2 * t - 1));
+}
+
+void Spectator::configure(NodeContext& ctx) {
+  config_ = read_config<Config>(ctx);
+  bind_ports(ctx, ports_);
+  model_ = robot::experiment_robot(ctx, config_.robot);
+  const Eigen::Vector3d eye(config_.position[0], config_.position[1], config_.position[2]);
+  const Eigen::Vector3d target(config_.look_at[0], config_.look_at[1], config_.look_at[2]);
+  const Eigen::Vector3d forward = target - eye;
+  if (forward.norm() < 1e-6)
+    config_error(ctx, config_, config_.look_at, "is the viewpoint itself; look elsewhere");
+  const Eigen::Vector3d z = forward.normalized();
+  const Eigen::Vector3d right = z.cross(Eigen::Vector3d::UnitZ());
+  if (right.norm() < 1e-6)
+    config_error(ctx, config_, config_.look_at,
+                 "is straight above or below the viewpoint (the image's up is +z); tilt the view");
+  Eigen::Matrix3d axes;
+  axes.col(0) = right.normalized();    // x: right in the image
+  axes.col(2) = z;                     // z: forward
+  axes.col(1) = z.cross(axes.col(0));  // y: down in the image
+  camera_.name = ctx.node_name();
+  camera_.pose_root.linear() = axes;
+  camera_.pose_root.translation() = eye;
+  auto& in = camera_.intrinsics;
+  in.width = config_.width;
+  in.height = config_.height;
+  in.fx = in.fy = 0.5 * config_.width / std::tan(0.5 * deg_to_rad(config_.fov_deg));
+  in.cx = 0.5 * (config_.width - 1);
+  in.cy = 0.5 * (config_.height - 1);
+  in.near = 0.02;
+  in.far = 50.0;
+
+  options_.background = {0.93f, 0.94f, 0.96f};
+  options_.read_depth = false;
+  options_.read_ids = false;
+  options_.check_drawn = false;  // taxels far away may cover no pixel
+  options_.light_direction_root = (eye - target).normalized() + Eigen::Vector3d(0, 0, 1.0);
+  bool created = false;
+  context_ = thread_render_context(config_.backend, created);
+  if (context_->backend() != config_.backend)
+    config_error(ctx, config_, config_.backend,
+                 fmt::format("'{}', but another rendering node on this thread already uses "
+                             "'{}' (one OpenGL context per thread)",
+                             render::render_backend_name(config_.backend),
+                             render::render_backend_name(context_->backend())));
+  renderer_ = std::make_unique<render::SceneRenderer>(context_->gl());
+  scene_ = std::make_unique<render::RobotScene>(*renderer_, model_);
+  taxel_mesh_ = renderer_->upload(render::tessellate_sphere(config_.taxel_radius, 8));
+  robot::RobotData rest(*model_);
+  robot::forward_kinematics(*model_, rest, Eigen::VectorXd::Zero(model_->num_dofs()));
+  rest_poses_ = rest.link_poses;
+}
+
+void Spectator::add_taxels(std::vector<render::DrawItem>& items) const {
+  const SkinTaxels* taxels = ports_.taxels.get();
+  if (!taxels) return;
+  std::unordered_map<std::string, double> values;
+  if (const TaxelValues* v = ports_.taxel_values.get())
+    for (std::size_t i = 0; i < v->labels.size() && i < v->values.size(); ++i)
+      values.emplace(v->labels[i], v->values[i]);
+  std::int32_t id = render::kFirstSceneExtraId;
+  for (const SkinPart& part : taxels->parts)
+    for (std::size_t i = 0; i < part.positions.size(); ++i) {
+      render::DrawItem item;
+      item.mesh = taxel_mesh_;
+      item.pose_root.translation() = part.positions[i];
+      double value = 0.0;
+      if (!values.empty() && i < part.taxel_ids.size()) {
+        const auto it = values.find(fmt::format("{}/{}", part.name, part.taxel_ids[i]));
+        value = it == values.end() ? std::nan("") : it->second;
+      }
+      item.colour = taxel_colour(value);
+      item.id = id++;
+      items.push_back(item);
+    }
+}
+
+void Spectator::step(NodeContext& ctx) {
+  const auto& poses = ports_.link_poses->poses.empty() ? rest_poses_ : ports_.link_poses->poses;
+  items_.clear();
+  scene_->add_robot(poses, items_);
+  if (const ObjectStates* objects = ports_.objects.get()) scene_->add_objects(*objects, items_);
+  add_taxels(items_);
+  render::RenderedImages images = renderer_->render(items_, camera_, options_);
+  Image& out = *ports_.rgb;
+  out.data = std::move(images.rgb);
+  out.encoding = ImageEncoding::kRgb8;
+  out.camera = ctx.node_name();
+  out.time_s = ctx.time_s();
+  out.frame = ++frame_;
+}
+
+void Spectator::finish(NodeContext& ctx) {
+  ctx.report_metric("frames", frame_);
+  scene_.reset();
+  renderer_.reset();
+  context_.reset();
+}
+
+}  // namespace somasim::plugins

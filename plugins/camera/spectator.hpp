@@ -1,0 +1,72 @@
+#pragma once
+// spectator: a third-person view of a run. Renders the robot, the world's objects and the skin's
+// taxels (coloured by a per-taxel value such as the PPS activation) from a fixed viewpoint, for
+// watching or recording a run (`record: [{port: NODE.rgb, as: video}]`). Positions are in the
+// robot's root frame (iCub: x backward, y to the robot's right, z up) [m].
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "somasim/config.hpp"
+#include "somasim/plugin.hpp"
+#include "somasim/plugin_ports.hpp"
+#include "somasim/render/context.hpp"
+#include "somasim/render/ports.hpp"
+#include "somasim/render/robot_scene.hpp"
+#include "somasim/render/scene_renderer.hpp"
+#include "somasim/robot/experiment_robot.hpp"
+#include "somasim/robot/ports.hpp"
+#include "somasim/skin/ports.hpp"
+
+namespace somasim::plugins {
+
+class Spectator : public Plugin {
+ public:
+  struct Config {
+    robot::RobotParam robot;
+    std::vector<double> position{-0.85, -0.55, 0.45};  // [m], root frame
+    std::vector<double> look_at{-0.25, 0.0, 0.05};     // [m], root frame
+    double fov_deg = 55.0;                             // horizontal field of view [deg]
+    int width = 640;                                   // [px]
+    int height = 480;                                  // [px]
+    double taxel_radius = 0.004;                       // [m]
+    render::RenderBackend backend = render::RenderBackend::kOsmesa;
+    template <class V>
+    void visit(V& v);
+  };
+  struct Ports {
+    In<LinkPoses> link_poses;
+    OptionalIn<ObjectStates> objects;
+    OptionalIn<SkinTaxels> taxels;
+    OptionalIn<TaxelValues> taxel_values;
+    Out<RgbImage> rgb;
+    template <class V>
+    void visit(V& v);
+  };
+  static PluginSpec spec();
+  void configure(NodeContext& ctx) override;
+  void step(NodeContext& ctx) override;
+  void finish(NodeContext& ctx) override;
+
+  /// The colour of a taxel of value `value` in [0, 1]: dark grey at 0 through red to yellow at 1
+  /// (values outside are clamped; NaN is grey).
+  static Eigen::Vector3f taxel_colour(double value);
+
+ private:
+  void add_taxels(std::vector<render::DrawItem>& items) const;
+
+  Config config_;
+  Ports ports_;
+  std::shared_ptr<const robot::RobotModel> model_;
+  std::shared_ptr<render::RenderContext> context_;
+  std::unique_ptr<render::SceneRenderer> renderer_;
+  std::unique_ptr<render::RobotScene> scene_;
+  render::MeshHandle taxel_mesh_;
+  render::Camera camera_;
+  render::RenderOptions options_;
+  std::vector<render::DrawItem> items_;
+  std::vector<Eigen::Isometry3d> rest_poses_;
+  std::uint64_t frame_ = 0;
+};
+
+}  // namespace somasim::plugins

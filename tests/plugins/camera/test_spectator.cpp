@@ -1,0 +1,121 @@
+// The `spectator` plugin through the public harness: a third-person view whose taxels show
+// their values, deterministic, and its bad-input errors.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include <opencv2/core.hpp>
+
+#include "somasim/error.hpp"
+#include "somasim/render/camera.hpp"
+#include "somasim/render/ports.hpp"
+#include "somasim/robot/ports.hpp"
+#include "somasim/skin/ports.hpp"
+#include "somasim/testing/harness.hpp"
+#include "spectator.hpp"
+
+using somasim::LinkPoses;
+using somasim::RgbImage;
+using somasim::SkinTaxels;
+using somasim::TaxelValues;
+using somasim::testing::Harness;
+
+namespace {
+
+const std::string kRobot = SOMASIM_SOURCE_DIR "/assets/robots/icub_v1.yaml";
+
+std::string graph(const std::string& params = "") {
+  return "base_rate_hz: 10\nrobots: {icub: " + kRobot +
+         "}\nnodes:\n  view:\n    plugin: spectator\n    params: {" + params +
+         "}\n    inputs: {link_poses: harness.links, taxels: harness.taxels, taxel_values: "
+         "harness.values}\n";
+}
+
+// Two taxels in front of the robot, well apart, one at value 0 and one at 1.
+void feed(Harness& h) {
+  SkinTaxels& taxels = h.input<SkinTaxels>("taxels");
+  somasim::SkinPart part;
+  part.name = "test_part";
+  part.taxel_ids = {3, 7};
+  part.positions = {Eigen::Vector3d(-0.45, -0.15, 0.25), Eigen::Vector3d(-0.45, 0.15, 0.25)};
+  part.normals = {Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitZ()};
+  taxels.parts = {part};
+  TaxelValues& values = h.input<TaxelValues>("values");
+  values.labels = {"test_part/3", "test_part/7"};
+  values.values = {0.0, 1.0};
+}
+
+// The colour at the image of root-frame point p, as the spectator's camera sees it.
+cv::Vec3b colour_at(const cv::Mat& rgb, const somasim::render::Camera& camera,
+                    const Eigen::Vector3d& p) {
+  const auto uv = camera.project(p);
+  EXPECT_TRUE(uv.has_value());
+  return rgb.at<cv::Vec3b>(static_cast<int>(std::lround((*uv)[1])),
+                           static_cast<int>(std::lround((*uv)[0])));
+}
+
+}  // namespace
+
+TEST(Spectator, DrawsTaxelsInTheColourOfTheirValuesAndIsDeterministic) {
+  const std::string params =
+      "position: [-0.9, 0, 0.3], look_at: [-0.45, 0, 0.25], fov_deg: 60, width: 320, height: "
+      "240, taxel_radius: 0.02";
+  auto render = [&] {
+    Harness h(graph(params));
+    feed(h);
+    h.step(2);
+    const auto& image = h.output<RgbImage>("view.rgb");
+    EXPECT_EQ(image.encoding, somasim::ImageEncoding::kRgb8);
+    EXPECT_EQ(image.frame, 2u);
+    EXPECT_EQ(h.finish(), "");
+    return image.data.clone();
+  };
+  const cv::Mat a = render(), b = render();
+  ASSERT_EQ(a.cols, 320);
+  ASSERT_EQ(a.rows, 240);
+  EXPECT_EQ(cv::norm(a, b, cv::NORM_INF), 0.0);
+  // The same camera, built here from the same numbers: x right, y down, z forward.
+  somasim::render::Camera camera;
+  const Eigen::Vector3d eye(-0.9, 0, 0.3), target(-0.45, 0, 0.25);
+  const Eigen::Vector3d z = (target - eye).normalized();
+  const Eigen::Vector3d x = z.cross(Eigen::Vector3d::UnitZ()).normalized();
+  camera.pose_root.linear() << x, z.cross(x), z;
+  camera.pose_root.translation() = eye;
+  camera.intrinsics = {
+      320,  240, 0.5 * 320 / std::tan(M_PI / 6), 0.5 * 320 / std::tan(M_PI / 6), 159.5, 119.5,
+      0.02, 50.0};
+  const cv::Vec3b cold = colour_at(a, camera, {-0.45, -0.15, 0.25});
+  const cv::Vec3b hot = colour_at(a, camera, {-0.45, 0.15, 0.25});
+  // Value 1: yellow (red and green high, blue low); value 0: dark grey-blue.
+  EXPECT_GT(hot[0], 150) << hot;
+  EXPECT_GT(hot[1], 120) << hot;
+  EXPECT_LT(hot[2], 80) << hot;
+  EXPECT_LT(cold[0], 110) << cold;
+  EXPECT_LT(cold[1], 110) << cold;
+}
+
+TEST(Spectator, TaxelColoursRunFromGreyThroughRedToYellow) {
+  using somasim::plugins::Spectator;
+  EXPECT_TRUE(Spectator::taxel_colour(0.0).isApprox(Eigen::Vector3f(0.25f, 0.25f, 0.3f)));
+  EXPECT_TRUE(Spectator::taxel_colour(1.0).isApprox(Eigen::Vector3f(1.0f, 0.9f, 0.1f)));
+  EXPECT_TRUE(Spectator::taxel_colour(7.0).isApprox(Spectator::taxel_colour(1.0)));
+  EXPECT_TRUE(Spectator::taxel_colour(-1.0).isApprox(Spectator::taxel_colour(0.0)));
+  EXPECT_TRUE(Spectator::taxel_colour(std::nan("")).isApprox(Eigen::Vector3f::Constant(0.5f)));
+}
+
+TEST(Spectator, AViewThatCannotBeMadeIsRefusedWhereItIsWritten) {
+  auto error = [](const std::string& params) -> std::string {
+    try {
+      Harness h(graph(params));
+    } catch (const somasim::InputError& e) {
+      return e.what();
+    }
+    return "no error";
+  };
+  EXPECT_NE(error("position: [0, 0, 1], look_at: [0, 0, 1]").find("is the viewpoint itself"),
+            std::string::npos);
+  EXPECT_NE(error("position: [0, 0, 1], look_at: [0, 0, 0]").find("straight above or below"),
+            std::string::npos);
+  EXPECT_NE(error("fov_deg: 200").find("'params.fov_deg'"), std::string::npos);
+  EXPECT_NE(error("position: [0, 1]").find("'params.position'"), std::string::npos);
+}
