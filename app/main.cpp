@@ -7,6 +7,7 @@
 #include "commands.hpp"
 #include "plugin_pages.hpp"
 #include "plugin_template.hpp"
+#include "recover.hpp"
 #include "somasim/error.hpp"
 #include "somasim/version.hpp"
 #include "somasim/yaml_text.hpp"
@@ -93,6 +94,12 @@ int main(int argc, char** argv) {
   convert_cmd->add_option("input", convert_in, "Learned map (.json or .ini)")->required();
   convert_cmd->add_option("output", convert_out, "File to write (.json or .ini)")->required();
 
+  std::string recover_dir;
+  auto* recover_cmd = app.add_subcommand(
+      "recover", "Make a killed run's folder consistent: trim partial CSV rows, status killed");
+  recover_cmd->add_option("dir", recover_dir, "Run folder whose metrics.json says running")
+      ->required();
+
   std::string graph_file;
   auto* graph_cmd = app.add_subcommand("graph", "Print an experiment's graph in Graphviz DOT");
   graph_cmd->add_option("file", graph_file, "Experiment YAML")->required();
@@ -126,6 +133,7 @@ int main(int argc, char** argv) {
     if (*plugins_cmd) return cmd_plugins(common);
     if (*graph_cmd) return cmd_graph(common, graph_file);
     if (*new_plugin_cmd) return cmd_plugin_new(new_plugin_name, new_plugin_dir);
+    if (*recover_cmd) return cmd_recover(recover_dir);
     if (*convert_cmd) return cmd_pps_convert(convert_in, convert_out);
     if (sweep.selected()) return sweep.dispatch(common);
   } catch (const somasim::InputError& e) {

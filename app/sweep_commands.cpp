@@ -1,14 +1,18 @@
 #include "sweep_commands.hpp"
 
+#include <algorithm>
 #include <regex>
 
 #include <fmt/format.h>
+#include <yaml-cpp/yaml.h>
 #include <CLI/CLI.hpp>
 
 #include "somasim/diagnostics.hpp"
 #include "somasim/error.hpp"
+#include "somasim/plugin_registry.hpp"
 #include "somasim/sweep/child_process.hpp"
 #include "somasim/sweep/collect.hpp"
+#include "somasim/sweep/labels.hpp"
 #include "somasim/sweep/run_folder.hpp"
 #include "somasim/sweep/slurm_script.hpp"
 #include "sweep_setup.hpp"
@@ -102,7 +106,7 @@ int SweepCommands::dispatch(const CommonOptions& common) const {
   if (*run_) return cmd_sweep_run(common, args_);
   if (*run_one_) return cmd_sweep_run_one(common, args_);
   if (*slurm_) return cmd_sweep_slurm(common, args_);
-  if (*collect_) return cmd_sweep_collect(args_);
+  if (*collect_) return cmd_sweep_collect(common, args_);
   return kExitBadInput;
 }
 
@@ -172,7 +176,45 @@ int cmd_sweep_slurm(const CommonOptions& common, const SweepArgs& args) {
   return kExitOk;
 }
 
-int cmd_sweep_collect(const SweepArgs& args) {
+namespace {
+
+// The label of a swept path from the parameter's declaration ("offset [m]: ..."): the plugin of
+// node N in the first run's resolved experiment, its parameter P (paths nodes.N.params.P).
+// Empty when the path is not a node parameter or the run or plugin cannot be read.
+std::string swept_parameter_label(const CommonOptions& common, const fs::path& root,
+                                  const sweep::SweepTable& table, const std::string& path) {
+  const std::vector<std::string> parts = [&] {
+    std::vector<std::string> out;
+    std::size_t start = 0;
+    for (std::size_t dot; (dot = path.find('.', start)) != std::string::npos; start = dot + 1)
+      out.push_back(path.substr(start, dot - start));
+    out.push_back(path.substr(start));
+    return out;
+  }();
+  if (parts.size() != 4 || parts[0] != "nodes" || parts[2] != "params" || table.rows.empty())
+    return "";
+  const auto folder_col = static_cast<std::size_t>(
+      std::find(table.header.begin(), table.header.end(), "folder") - table.header.begin());
+  if (folder_col >= table.header.size()) return "";
+  try {
+    const fs::path resolved = root / table.rows.front()[folder_col] / "experiment.resolved.yaml";
+    if (!fs::is_regular_file(resolved) || fs::file_size(resolved) > (std::uintmax_t{2} << 20))
+      return "";
+    const YAML::Node plugin = YAML::LoadFile(resolved.string())["nodes"][parts[1]]["plugin"];
+    if (!plugin.IsScalar()) return "";
+    PluginRegistry registry(PluginRegistry::default_search_path(common.plugin_path));
+    const PluginSpec* spec = registry.find(plugin.Scalar());
+    if (!spec) return "";
+    for (const auto& p : spec->params())
+      if (p.name == parts[3]) return sweep::parameter_label(path, p.doc, p.unit);
+  } catch (const std::exception&) {  // a label is not worth failing the table for
+  }
+  return "";
+}
+
+}  // namespace
+
+int cmd_sweep_collect(const CommonOptions& common, const SweepArgs& args) {
   const fs::path root = args.file;
   const sweep::SweepTable table = sweep::collect_table(root);
   std::string metric = args.metric.empty() ? table.summary_metric : args.metric;
@@ -195,7 +237,9 @@ int cmd_sweep_collect(const SweepArgs& args) {
       std::find(table.header.begin(), table.header.end(), "status") - table.header.begin());
   for (const auto& row : table.rows) completed += row[status_col] == "completed";
   int points = 0;
-  if (!metric.empty()) points = sweep::draw_summary(table, metric, against, png);
+  if (!metric.empty())
+    points = sweep::draw_summary(table, metric, against, png,
+                                 swept_parameter_label(common, root, table, against));
   sweep::write_file_atomically(root / "sweep.csv", sweep::table_csv(table));
   fmt::print("{}: {} runs ({} completed), {} columns\n", (root / "sweep.csv").string(),
              table.rows.size(), completed, table.header.size());

@@ -52,6 +52,6 @@ int cmd_sweep_run_one(const CommonOptions& common, const SweepArgs& args);
 /// sbatch is not on PATH.
 int cmd_sweep_slurm(const CommonOptions& common, const SweepArgs& args);
 /// Writes DIR/sweep.csv and, for a metric, DIR/sweep_METRIC.png.
-int cmd_sweep_collect(const SweepArgs& args);
+int cmd_sweep_collect(const CommonOptions& common, const SweepArgs& args);
 
 }  // namespace somasim::app

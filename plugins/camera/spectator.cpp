@@ -121,7 +121,10 @@ void Spectator::add_taxels(std::vector<render::DrawItem>& items) const {
     for (std::size_t i = 0; i < part.positions.size(); ++i) {
       render::DrawItem item;
       item.mesh = taxel_mesh_;
-      item.pose_root.translation() = part.positions[i];
+      // Half out of the skin along its normal, so that the surface does not hide it.
+      Eigen::Vector3d at = part.positions[i];
+      if (i < part.normals.size()) at += 0.5 * config_.taxel_radius * part.normals[i];
+      item.pose_root.translation() = at;
       double value = 0.0;
       if (!values.empty() && i < part.taxel_ids.size()) {
         const auto it = values.find(fmt::format("{}/{}", part.name, part.taxel_ids[i]));

@@ -24,12 +24,12 @@ class Spectator : public Plugin {
  public:
   struct Config {
     robot::RobotParam robot;
-    std::vector<double> position{-0.85, -0.55, 0.45};  // [m], root frame
-    std::vector<double> look_at{-0.25, 0.0, 0.05};     // [m], root frame
-    double fov_deg = 55.0;                             // horizontal field of view [deg]
-    int width = 640;                                   // [px]
-    int height = 480;                                  // [px]
-    double taxel_radius = 0.004;                       // [m]
+    std::vector<double> position{-1.1, -0.45, 0.55};  // [m], root frame
+    std::vector<double> look_at{-0.2, 0.0, 0.2};      // [m], root frame
+    double fov_deg = 55.0;                            // horizontal field of view [deg]
+    int width = 640;                                  // [px]
+    int height = 480;                                 // [px]
+    double taxel_radius = 0.004;                      // [m]
     render::RenderBackend backend = render::RenderBackend::kOsmesa;
     template <class V>
     void visit(V& v);

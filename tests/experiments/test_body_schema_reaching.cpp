@@ -165,7 +165,7 @@ TEST(BodySchemaParticles, FiltersOfOtherSizesRunOnTheSameImages) {
                   {"nodes.filter.params.compare_particles", "[20, 120]"},
                   {"nodes.filter.params.evaluate_frame", "30"}},
                  "particles");
-  const auto& m = run.flat;
+  const auto& m = run.metrics;
   ASSERT_EQ(m["status"], "completed") << m["error"];
   for (const char* key : {"particles_20_estimation_error_mm", "particles_60_estimation_error_mm",
                           "particles_120_estimation_error_deg", "particles_120_step_ms"})
@@ -183,7 +183,7 @@ TEST(BodySchemaEdges, BothArmsAdaptFromEdgesAndTheBimanualErrorIsReported) {
                                {"nodes.filter_right.params.particles", "100"},
                                {"nodes.filter_left.params.particles", "100"}},
                               "edges");
-  const auto& m = run.flat;
+  const auto& m = run.metrics;
   ASSERT_EQ(m["status"], "completed") << m["error"];
   for (const char* arm : {"reach_right", "reach_left"}) {
     const auto& r = m["nodes"][arm];

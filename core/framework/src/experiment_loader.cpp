@@ -210,8 +210,16 @@ class Loader {
         parent.reset(next);
       }
       const std::string& key = parts.back();
-      if (!parent[key].IsDefined()) {
+      // A whole new node (e.g. a spectator added to any config): its value names its plugin.
+      const YAML::Node& as_const = value;
+      const bool new_node =
+          parts.size() == 2 && parts[0] == "nodes" && value.IsMap() && as_const["plugin"];
+      if (!parent[key].IsDefined() && !new_node) {
         const std::vector<std::string> allowed = allowed_new_keys(root, parts);
+        if (parts.size() == 2 && parts[0] == "nodes")
+          fail("there is no node '" + key + "' in " + locs_.file() + did_you_mean(key, allowed) +
+               "; a new node is added by a map with its plugin, e.g. --set 'nodes." + key +
+               "={plugin: NAME, inputs: {...}}'");
         if (std::find(allowed.begin(), allowed.end(), key) == allowed.end())
           fail("'" + ov.path + "' does not exist in " + locs_.file() +
                " and is not a key that can be set there" + did_you_mean(key, allowed));
@@ -225,6 +233,12 @@ class Loader {
   std::vector<std::string> allowed_new_keys(const YAML::Node& root,
                                             const std::vector<std::string>& parts) {
     if (parts.size() == 1) return kTopKeys;
+    if (parts.size() == 2 && parts[0] == "nodes") {  // the existing nodes, for did_you_mean
+      std::vector<std::string> names;
+      for (const auto& kv : root["nodes"])
+        if (kv.first.IsScalar()) names.push_back(kv.first.Scalar());
+      return names;
+    }
     if (parts.size() == 3 && parts[0] == "nodes") return kNodeKeys;
     if (parts.size() == 4 && parts[0] == "nodes" && parts[2] == "params") {
       const YAML::Node plugin = root["nodes"][parts[1]]["plugin"];

@@ -9,6 +9,7 @@
 #include "somasim/error.hpp"
 #include "somasim/figures/line_plot.hpp"
 #include "somasim/sweep/collect.hpp"
+#include "somasim/sweep/labels.hpp"
 #include "somasim/yaml_text.hpp"
 
 namespace somasim::sweep {
@@ -38,7 +39,7 @@ MeanSd mean_sd(const std::vector<double>& v) {
 }  // namespace
 
 int draw_summary(const SweepTable& table, const std::string& metric, const std::string& against,
-                 const std::filesystem::path& png) {
+                 const std::filesystem::path& png, const std::string& against_label) {
   const std::size_t status_col = column(table, "status");
   std::vector<std::string> metrics(table.header.begin() + static_cast<long>(status_col) + 1,
                                    table.header.end());
@@ -70,15 +71,26 @@ int draw_summary(const SweepTable& table, const std::string& metric, const std::
                                         x_texts.begin());
     std::string others;
     for (const auto& a : table.axes)
-      if (a != against) others += (others.empty() ? "" : ", ") + a + "=" + row[column(table, a)];
+      if (a != against)
+        others += fmt::format("{}{} = {}", others.empty() ? "" : ", ",
+                              a.substr(a.rfind('.') == std::string::npos ? 0 : a.rfind('.') + 1),
+                              row[column(table, a)]);
     groups[others][x].push_back(*y);
   }
   if (groups.empty())
     throw InputError("--metric '" + metric + "': no completed run has a number for it");
+  std::size_t most_seeds = 0;
+  for (const auto& [others, by_x] : groups)
+    for (const auto& [x, ys] : by_x) most_seeds = std::max(most_seeds, ys.size());
+  const std::string x_words =
+      against_label.empty() ? parameter_label(against, "", "") : against_label;
+  const std::size_t dot = against.rfind('.');
   figures::LinePlotSpec plot;
-  plot.title = fmt::format("{} vs {} (mean +/- sd over seeds)", metric, against);
-  plot.x_label = numeric_x ? against : against + " (value index)";
-  plot.y_label = metric;
+  plot.title = fmt::format("{} against {}: mean and sd over {} seed{}", metric_label(metric),
+                           dot == std::string::npos ? against : against.substr(dot + 1), most_seeds,
+                           most_seeds == 1 ? "" : "s");
+  plot.x_label = numeric_x ? x_words : x_words + " (value index)";
+  plot.y_label = metric_label(metric);
   int points = 0;
   std::size_t colour = 0;
   for (const auto& [others, by_x] : groups) {

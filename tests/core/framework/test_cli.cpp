@@ -117,6 +117,46 @@ TEST_F(Cli, PluginNewWritesAFolderAndRefusesBadNamesAndUsedFolders) {
   EXPECT_EQ(cli({"plugin", "new", std::string(64, 'a'), "--dir", "n"}, dir, false).code, 2);
 }
 
+// A killed run (metrics.json still says running, its process gone): `recover` cuts every CSV
+// back to its last whole row, follows no link, and says `killed`; a live or ended run is refused.
+TEST_F(Cli, RecoverTrimsPartialRowsOfAKilledRunAndSaysKilled) {
+  const pid_t child = fork();
+  if (child == 0) _exit(0);
+  ASSERT_GT(child, 0);
+  waitpid(child, nullptr, 0);  // a pid that no longer runs
+  const fs::path run = dir / "killed";
+  fs::create_directories(run / "cam.rgb");
+  write_file(run / "metrics.json", "{\"experiment\": \"x\", \"status\": \"running\", \"pid\": " +
+                                       std::to_string(child) + "}\n");
+  write_file(run / "c.value.csv", "time [s],value\n0,1\n0.001,2\n0.00");
+  write_file(run / "cam.rgb" / "index.csv", "time [s],frame,file\n0,1,000001.png\n");
+  write_file(dir / "outside.csv", "a,b\n1,");
+  fs::create_symlink(dir / "outside.csv", run / "link.csv");
+  CliResult r = cli({"recover", "killed"}, dir, false);
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.out,
+            "c.value.csv: 4 bytes of a partial last row removed\nkilled: status killed (1 file "
+            "trimmed)\n");
+  EXPECT_EQ(read_file(run / "c.value.csv"), "time [s],value\n0,1\n0.001,2\n");
+  EXPECT_EQ(read_file(run / "cam.rgb" / "index.csv"), "time [s],frame,file\n0,1,000001.png\n");
+  EXPECT_EQ(read_file(dir / "outside.csv"), "a,b\n1,");  // not followed
+  const auto m = metrics("killed");
+  EXPECT_EQ(m["status"], "killed");
+  EXPECT_FALSE(m.contains("pid"));
+  EXPECT_EQ(m["recovered"].size(), 1u);
+  // Ended: nothing to recover. Running (this process's pid): refused.
+  r = cli({"recover", "killed"}, dir, false);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("ended (killed): nothing to recover"), std::string::npos) << r.err;
+  write_file(run / "metrics.json",
+             "{\"status\": \"running\", \"pid\": " + std::to_string(getpid()) + "}\n");
+  r = cli({"recover", "killed"}, dir, false);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("is still running"), std::string::npos) << r.err;
+  for (const char* bad : {"nowhere", "outside.csv"})
+    EXPECT_EQ(cli({"recover", bad}, dir, false).code, 2) << bad;
+}
+
 TEST_F(Cli, UsageErrorsAreBadInput) {
   CliResult r = cli({}, dir, false);
   EXPECT_EQ(r.code, 2);

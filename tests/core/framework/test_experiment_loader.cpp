@@ -387,6 +387,27 @@ TEST(ExperimentLoader, SetGivesAParameterToANodeWrittenWithoutParams) {
   EXPECT_EQ(exp.nodes[0].params.get<double>("start"), 3.0);
 }
 
+// --set adds a whole node when its value names a plugin (a spectator for any config); a value
+// without one is a typo of a node name, refused with the nearest name.
+TEST(ExperimentLoader, SetAddsANodeGivenItsPlugin) {
+  LoadOptions options;
+  options.overrides = {{"nodes.extra", "{plugin: counter, params: {start: 4}}"}};
+  PluginRegistry registry({kTestPluginDir});
+  const Experiment exp =
+      load_ok("experiment: t\nduration_s: 1\nnodes:\n  c: {plugin: counter, params: {start: 1}}\n",
+              registry, options);
+  ASSERT_EQ(exp.nodes.size(), 2u);
+  EXPECT_EQ(exp.nodes[1].name, "extra");
+  EXPECT_EQ(exp.nodes[1].params.get<double>("start"), 4.0);
+  options.overrides = {{"nodes.cc", "{params: {start: 4}}"}};
+  EXPECT_EQ(load_error("experiment: t\nduration_s: 1\nnodes:\n  c: {plugin: counter, params: "
+                       "{start: 1}}\n",
+                       options),
+            "--set 'nodes.cc={params: {start: 4}}': there is no node 'cc' in exp.yaml (did you "
+            "mean 'c'?); a new node is added by a map with its plugin, e.g. --set "
+            "'nodes.cc={plugin: NAME, inputs: {...}}'");
+}
+
 TEST(ExperimentLoader, SetOnMissingPath) {
   LoadOptions options;
   options.overrides = {{"nodes.cc.params.start", "1"}};

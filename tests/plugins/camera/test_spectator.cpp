@@ -84,8 +84,9 @@ TEST(Spectator, DrawsTaxelsInTheColourOfTheirValuesAndIsDeterministic) {
   camera.intrinsics = {
       320,  240, 0.5 * 320 / std::tan(M_PI / 6), 0.5 * 320 / std::tan(M_PI / 6), 159.5, 119.5,
       0.02, 50.0};
-  const cv::Vec3b cold = colour_at(a, camera, {-0.45, -0.15, 0.25});
-  const cv::Vec3b hot = colour_at(a, camera, {-0.45, 0.15, 0.25});
+  // The spheres' centres: half a radius (0.01 m) out along the taxels' normals (+z).
+  const cv::Vec3b cold = colour_at(a, camera, {-0.45, -0.15, 0.26});
+  const cv::Vec3b hot = colour_at(a, camera, {-0.45, 0.15, 0.26});
   // Value 1: yellow (red and green high, blue low); value 0: dark grey-blue.
   EXPECT_GT(hot[0], 150) << hot;
   EXPECT_GT(hot[1], 120) << hot;

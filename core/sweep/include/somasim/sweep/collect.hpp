@@ -36,10 +36,11 @@ SweepTable collect_table(const std::filesystem::path& root);
 std::string table_csv(const SweepTable& table);
 
 /// Draws `metric` against axis `against`: mean ± sd over the completed runs sharing a value
-/// (the seeds), one line per combination of the other axes' values. Writes `png`. Throws
+/// (the seeds), one line per combination of the other axes' values, the y axis labelled with the
+/// metric as a quantity and unit (metric_label), the x axis with `against_label` (e.g. the
+/// parameter's doc and unit; default: the path's last component). Writes `png`. Throws
 /// InputError (naming the nearest metric or the axes) when either is unknown, or no run has a
 /// number for the metric. Returns the number of points drawn.
 int draw_summary(const SweepTable& table, const std::string& metric, const std::string& against,
-                 const std::filesystem::path& png);
-
+                 const std::filesystem::path& png, const std::string& against_label = "");
 }  // namespace somasim::sweep
