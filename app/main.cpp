@@ -46,11 +46,11 @@ int main(int argc, char** argv) {
       ->check(CLI::Validator(
           [](std::string& text) -> std::string {
             const auto v = somasim::parse_double(text);
-            return v && std::isfinite(*v) && *v >= 0 && *v <= 1e6
+            return v && std::isfinite(*v) && (*v == 0 || (*v >= 0.1 && *v <= 1e6))
                        ? ""
-                       : "expected seconds in [0, 1e6], got " + text;
+                       : "expected 0 (never) or seconds in [0.1, 1e6], got " + text;
           },
-          "SECONDS in [0, 1e6]"))
+          "0 or SECONDS in [0.1, 1e6]"))
       ->capture_default_str();
 
   std::string validate_file;

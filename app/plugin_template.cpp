@@ -2,6 +2,7 @@
 
 #include <fstream>
 #include <regex>
+#include <set>
 
 #include <fmt/format.h>
 
@@ -48,6 +49,7 @@ cmake_minimum_required(VERSION 3.22)
 project(somasim_plugin_@NAME@ LANGUAGES CXX)
 set(CMAKE_CXX_STANDARD 20)
 set(CMAKE_CXX_STANDARD_REQUIRED ON)
+set(CMAKE_CXX_EXTENSIONS OFF)
 
 find_package(somasim REQUIRED)
 somasim_add_plugin(@NAME@ SOURCES @NAME@.cpp)
@@ -173,10 +175,46 @@ In an experiment: `plugin: @NAME@` on a node, with `--plugin-path build/plugins`
 
 std::map<std::string, std::string> plugin_template_files(const std::string& name) {
   static const std::regex valid("[a-z][a-z0-9_]{0,62}");
-  if (!std::regex_match(name, valid))
+  // The name is also a C++ namespace and file name: keywords, predefined macros and reserved
+  // identifiers ("__") would not compile.
+  static const std::set<std::string> reserved = {"alignas",       "alignof",     "and",
+                                                 "and_eq",        "asm",         "auto",
+                                                 "bitand",        "bitor",       "bool",
+                                                 "break",         "case",        "catch",
+                                                 "char",          "char8_t",     "char16_t",
+                                                 "char32_t",      "class",       "compl",
+                                                 "concept",       "const",       "consteval",
+                                                 "constexpr",     "constinit",   "const_cast",
+                                                 "continue",      "co_await",    "co_return",
+                                                 "co_yield",      "decltype",    "default",
+                                                 "delete",        "do",          "double",
+                                                 "dynamic_cast",  "else",        "enum",
+                                                 "explicit",      "export",      "extern",
+                                                 "false",         "float",       "for",
+                                                 "friend",        "goto",        "if",
+                                                 "inline",        "int",         "long",
+                                                 "mutable",       "namespace",   "new",
+                                                 "noexcept",      "not",         "not_eq",
+                                                 "nullptr",       "operator",    "or",
+                                                 "or_eq",         "private",     "protected",
+                                                 "public",        "register",    "reinterpret_cast",
+                                                 "requires",      "return",      "short",
+                                                 "signed",        "sizeof",      "static",
+                                                 "static_assert", "static_cast", "struct",
+                                                 "switch",        "template",    "this",
+                                                 "thread_local",  "throw",       "true",
+                                                 "try",           "typedef",     "typeid",
+                                                 "typename",      "union",       "unsigned",
+                                                 "using",         "virtual",     "void",
+                                                 "volatile",      "wchar_t",     "while",
+                                                 "xor",           "xor_eq",      "linux",
+                                                 "unix",          "errno",       "assert",
+                                                 "std",           "somasim",     "main"};
+  if (!std::regex_match(name, valid) || reserved.count(name) ||
+      name.find("__") != std::string::npos)
     throw InputError(fmt::format(
         "plugin name '{}': expected lower-case letters, digits and '_', starting with a letter "
-        "(at most 63 characters), e.g. my_filter",
+        "(at most 63 characters, no '__', not a C++ keyword), e.g. my_filter",
         escape_control_bytes(name)));
   auto fill = [&](const char* text) {
     std::string out = replace_all(text, "@NAME@", name);

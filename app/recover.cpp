@@ -6,7 +6,9 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstring>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -14,6 +16,7 @@
 
 #include "commands.hpp"
 #include "somasim/error.hpp"
+#include "somasim/runner.hpp"
 #include "somasim/yaml_text.hpp"
 
 namespace somasim::app {
@@ -35,9 +38,22 @@ std::uintmax_t trim_partial_row(const fs::path& file) {
   if (fd < 0) throw RunError("cannot open " + file.string());
   const off_t size = ::lseek(fd, 0, SEEK_END);
   off_t keep = size;
-  char c = '\n';
-  // Back from the end to the last newline (rows are short: read a byte at a time).
-  while (keep > 0 && ::pread(fd, &c, 1, keep - 1) == 1 && c != '\n') --keep;
+  // Back from the end, a block at a time, to the last newline.
+  char block[65536];
+  bool found = false;
+  while (keep > 0 && !found) {
+    const off_t start =
+        keep > static_cast<off_t>(sizeof block) ? keep - static_cast<off_t>(sizeof block) : 0;
+    const auto want = static_cast<std::size_t>(keep - start);
+    if (::pread(fd, block, want, start) != static_cast<ssize_t>(want)) {
+      ::close(fd);
+      throw RunError("cannot read " + file.string());
+    }
+    std::size_t i = want;
+    while (i > 0 && block[i - 1] != '\n') --i;
+    found = i > 0;
+    keep = start + static_cast<off_t>(i);
+  }
   std::uintmax_t removed = 0;
   if (keep < size) {
     if (::ftruncate(fd, keep) != 0) {
@@ -50,9 +66,34 @@ std::uintmax_t trim_partial_row(const fs::path& file) {
   return removed;
 }
 
+// The run folder's lock for as long as recover works on it.
+class FolderLock {
+ public:
+  explicit FolderLock(const fs::path& dir)
+      : fd_(::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC | O_NOFOLLOW)) {
+    if (fd_ < 0) throw InputError(fmt::format("recover: cannot open '{}'", dir.string()));
+    if (::flock(fd_, LOCK_EX | LOCK_NB) == 0) return;
+    const int error = errno;
+    if (error == EWOULDBLOCK) {
+      ::close(fd_);
+      throw InputError(fmt::format("recover: '{}' is in use by a somasim run", dir.string()));
+    }
+    fmt::print(stderr, "warning: cannot lock '{}' ({}); make sure its run has ended\n",
+               dir.string(), std::strerror(error));
+  }
+  FolderLock(const FolderLock&) = delete;
+  FolderLock& operator=(const FolderLock&) = delete;
+  ~FolderLock() { ::close(fd_); }
+
+ private:
+  int fd_;
+};
+
 }  // namespace
 
-RecoveryReport recover_run_folder(const fs::path& dir) {
+RecoveryReport recover_run_folder(const fs::path& dir_arg) {
+  // "runs/x/" names the folder itself, not a link's target.
+  const fs::path dir = dir_arg.filename().empty() ? dir_arg.parent_path() : dir_arg;
   std::error_code ec;
   if (fs::is_symlink(dir, ec) || !fs::is_directory(dir, ec))
     throw InputError(fmt::format("recover: '{}' is not a run folder", dir.string()));
@@ -60,55 +101,56 @@ RecoveryReport recover_run_folder(const fs::path& dir) {
   if (!fs::is_regular_file(fs::symlink_status(metrics_file, ec)))
     throw InputError(
         fmt::format("recover: '{}' has no metrics.json: not a run folder", dir.string()));
-  nlohmann::json metrics;
+  nlohmann::ordered_json metrics;
   try {
-    metrics = nlohmann::json::parse(read_text(metrics_file));
+    metrics = nlohmann::ordered_json::parse(read_text(metrics_file));
   } catch (const nlohmann::json::exception& e) {
     throw InputError(fmt::format("recover: {}: not JSON ({})", metrics_file.string(), e.what()));
   }
-  const std::string status = metrics.is_object() ? metrics.value("status", "") : "";
+  const auto text_of = [&](const char* key) -> std::string {
+    const auto it = metrics.is_object() ? metrics.find(key) : metrics.end();
+    return it != metrics.end() && it->is_string() ? it->get<std::string>() : "";
+  };
+  const std::string status = text_of("status");
   if (status != "running")
     throw InputError(fmt::format("recover: '{}' ended ({}): nothing to recover", dir.string(),
                                  status.empty() ? "no status" : status));
-  const long pid = metrics.value("pid", 0L);
-  if (pid > 0 && (::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM))
+  const std::string host = text_of("host");
+  if (!host.empty() && host != host_name())
+    throw InputError(fmt::format("recover: the run in '{}' ran on host '{}': recover it there",
+                                 dir.string(), host));
+  const auto pid_it = metrics.find("pid");
+  const long long pid =
+      pid_it != metrics.end() && pid_it->is_number_integer() ? pid_it->get<long long>() : 0;
+  if (pid > 0 && pid <= std::numeric_limits<pid_t>::max() &&
+      (::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM))
     throw InputError(
         fmt::format("recover: the run in '{}' (process {}) is still running", dir.string(), pid));
-  // The run's lock: a live somasim holds it whatever its pid says.
-  const int lock = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (lock >= 0 && ::flock(lock, LOCK_EX | LOCK_NB) != 0 && errno == EWOULDBLOCK) {
-    ::close(lock);
-    throw InputError(fmt::format("recover: '{}' is in use by a somasim run", dir.string()));
-  }
+  const FolderLock lock(dir);  // a live somasim holds it whatever its pid says
   RecoveryReport report;
-  for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::end(it);
-       it.increment(ec)) {
+  auto it = fs::recursive_directory_iterator(dir, ec);
+  for (; !ec && it != fs::end(it); it.increment(ec)) {
     if (it->is_symlink() || !it->is_regular_file() || it->path().extension() != ".csv") continue;
     if (const auto removed = trim_partial_row(it->path()); removed > 0)
       report.trimmed.push_back(fmt::format("{}: {} bytes of a partial last row removed",
                                            fs::relative(it->path(), dir).string(), removed));
   }
+  if (ec) throw RunError(fmt::format("recover: cannot list '{}': {}", dir.string(), ec.message()));
   metrics["status"] = "killed";
   metrics["error"] = "the run was killed before it ended; recovered by `somasim recover`";
   metrics["stop_reason"] = metrics["error"];
   metrics["recovered"] = report.trimmed;
   metrics.erase("pid");
-  const fs::path tmp = dir / "metrics.json.tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out << metrics.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
-    if (!out) throw RunError("cannot write " + tmp.string());
-  }
-  fs::rename(tmp, metrics_file);
-  if (lock >= 0) ::close(lock);
+  metrics.erase("host");
+  write_metrics_file(metrics_file, metrics);
   return report;
 }
 
 int cmd_recover(const std::string& dir) {
   const RecoveryReport report = recover_run_folder(dir);
   for (const auto& line : report.trimmed) fmt::print("{}\n", line);
-  fmt::print("{}: status killed ({} file{} trimmed)\n", dir, report.trimmed.size(),
-             report.trimmed.size() == 1 ? "" : "s");
+  fmt::print("{}: status killed ({} file{} trimmed)\n", escape_control_bytes(dir),
+             report.trimmed.size(), report.trimmed.size() == 1 ? "" : "s");
   return kExitOk;
 }
 

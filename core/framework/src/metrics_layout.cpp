@@ -27,17 +27,42 @@ std::vector<std::pair<std::string, nlohmann::json>> node_metrics_by_flat_name(
   std::vector<std::pair<std::string, nlohmann::json>> out;
   const auto nodes = metrics.find("nodes");
   if (nodes == metrics.end() || !nodes->is_object()) return out;
+  struct Entry {
+    std::string node, key;
+    const nlohmann::json* value;
+    bool qualified;
+  };
+  std::vector<Entry> entries;
   std::map<std::string, int> reporters;
   for (const auto& [node, values] : nodes->items())
     if (values.is_object())
       for (const auto& [key, value] : values.items()) ++reporters[key];
-  for (const auto& [node, values] : nodes->items()) {
-    if (!values.is_object()) continue;
-    for (const auto& [key, value] : values.items()) {
-      const bool qualified = reporters[key] > 1 || is_run_key(key) || key == "nodes";
-      out.emplace_back(qualified ? node + "." + key : key, value);
+  for (const auto& [node, values] : nodes->items())
+    if (values.is_object())
+      for (const auto& [key, value] : values.items())
+        entries.push_back(
+            {node, key, &value, reporters[key] > 1 || is_run_key(key) || key == "nodes"});
+  // Plain names must not collide with anything else once flattened (a node named like another
+  // node's metric, a metric with a '.' in its name): every entry whose flattened names meet
+  // another's is qualified, until the names are distinct.
+  for (std::size_t round = 0; round <= entries.size(); ++round) {
+    std::map<std::string, std::vector<std::size_t>> owners;
+    for (std::size_t i = 0; i < entries.size(); ++i) {
+      const Entry& e = entries[i];
+      std::vector<std::pair<std::string, nlohmann::json>> leaves;
+      flatten_into(e.qualified ? e.node + "." + e.key : e.key, *e.value, leaves);
+      if (leaves.empty()) leaves.emplace_back(e.qualified ? e.node + "." + e.key : e.key, nullptr);
+      for (const auto& leaf : leaves) owners[leaf.first].push_back(i);
     }
+    bool changed = false;
+    for (const auto& [name, who] : owners)
+      if (who.size() > 1)
+        for (std::size_t i : who)
+          if (!entries[i].qualified) entries[i].qualified = changed = true;
+    if (!changed) break;
   }
+  for (const Entry& e : entries)
+    out.emplace_back(e.qualified ? e.node + "." + e.key : e.key, *e.value);
   return out;
 }
 

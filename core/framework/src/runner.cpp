@@ -53,7 +53,9 @@ std::shared_ptr<spdlog::logger> make_logger(const fs::path& dir, bool quiet) {
 
 // Written to a temporary file in the same folder and renamed over `file`: a reader (or a run
 // killed meanwhile) sees the old metrics.json or the new one, never half of one.
-void write_metrics(const fs::path& file, const nlohmann::ordered_json& metrics) {
+}  // namespace
+
+void write_metrics_file(const fs::path& file, const nlohmann::ordered_json& metrics) {
   const fs::path tmp = file.string() + ".tmp";
   // Invalid UTF-8 in a message or metric is replaced, not a reason to lose the file.
   const std::string text =
@@ -67,7 +69,8 @@ void write_metrics(const fs::path& file, const nlohmann::ordered_json& metrics) 
     if (ok) done += static_cast<std::size_t>(n);
   }
   // On disk before it replaces the old file: a crash leaves the old metrics.json or the new one.
-  ok = ok && ::fsync(fd) == 0;
+  // (File systems without fsync — EINVAL, ENOTSUP — are taken as they are.)
+  ok = ok && (::fsync(fd) == 0 || errno == EINVAL || errno == ENOTSUP);
   if (fd >= 0) ok = ::close(fd) == 0 && ok;
   if (!ok) {
     std::error_code ec;
@@ -86,6 +89,12 @@ void write_metrics(const fs::path& file, const nlohmann::ordered_json& metrics) 
   }
 }
 
+namespace {
+
+void write_metrics(const fs::path& file, const nlohmann::ordered_json& metrics) {
+  write_metrics_file(file, metrics);
+}
+
 /// The plugin libraries the experiment's nodes come from, for the log.
 std::string plugin_libraries(const Experiment& exp) {
   std::set<std::string> libs;
@@ -99,6 +108,12 @@ std::string plugin_libraries(const Experiment& exp) {
 RunReport run_in_folder(const Experiment& exp, const RunOptions& options);
 
 }  // namespace
+
+std::string host_name() {
+  char name[256] = {};
+  if (::gethostname(name, sizeof name - 1) != 0) return "";
+  return name;
+}
 
 RunReport run_experiment(const Experiment& exp, const RunOptions& options) {
   try {
@@ -134,7 +149,8 @@ RunReport run_in_folder(const Experiment& exp, const RunOptions& options) {
   write_metrics(options.out_dir / "metrics.json", {{"experiment", exp.name},
                                                    {"status", "running"},
                                                    {"seed", exp.seed},
-                                                   {"pid", static_cast<long>(::getpid())}});
+                                                   {"pid", static_cast<long>(::getpid())},
+                                                   {"host", host_name()}});
   {
     std::ofstream resolved(options.out_dir / "experiment.resolved.yaml");
     resolved << exp.resolved_yaml();

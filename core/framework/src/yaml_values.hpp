@@ -16,8 +16,15 @@ namespace somasim::detail {
 class LocationMap {
  public:
   explicit LocationMap(std::string file) : file_(std::move(file)) {}
-  void add_override(const YAML::Node& node, const std::string& text) {
+  /// `node` and what it holds (a whole node added by --set) are located at the override; at
+  /// most 10000 nodes and 64 levels (aliases make a graph, not a tree).
+  void add_override(const YAML::Node& node, const std::string& text, int depth = 0) {
+    if (depth > 64 || overrides_.size() > 10000) return;
     overrides_.push_back({node, text});
+    if (node.IsMap())
+      for (const auto& kv : node) add_override(kv.second, text, depth + 1);
+    else if (node.IsSequence())
+      for (const auto& item : node) add_override(item, text, depth + 1);
   }
   SourceLocation of(const YAML::Node& node) const;
   const std::string& file() const { return file_; }

@@ -120,7 +120,7 @@ class VideoRecorder : public PortRecorder {
 
  private:
   static cv::Mat video_pixels(const Image& image) {
-    cv::Mat out(image.data.size(), CV_8UC3);
+    cv::Mat out = cv::Mat::zeros(image.data.size(), CV_8UC3);
     switch (image.encoding) {
       case ImageEncoding::kRgb8:
         cv::cvtColor(image.data, out, cv::COLOR_RGB2BGR);

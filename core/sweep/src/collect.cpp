@@ -17,7 +17,7 @@ namespace fs = std::filesystem;
 namespace {
 
 // Columns the table already has, and metrics.json entries that are not per-run figures.
-const std::set<std::string> kSkippedMetrics = {"status", "seed", "experiment", "pid"};
+const std::set<std::string> kSkippedMetrics = {"status", "seed", "experiment", "pid", "host"};
 
 std::optional<nlohmann::json> read_json(const fs::path& file) {
   std::ifstream in(file);

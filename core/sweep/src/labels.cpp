@@ -9,6 +9,7 @@ namespace {
 
 // Longest first: "_m_s" before "_s", "_mm" and "_ms" before "_m" and "_s".
 constexpr std::array<std::pair<const char*, const char*>, 10> kUnitSuffixes = {{
+    {"_per_s", "1/s"},
     {"_m_s", "m/s"},
     {"_deg", "deg"},
     {"_rad", "rad"},
@@ -17,7 +18,6 @@ constexpr std::array<std::pair<const char*, const char*>, 10> kUnitSuffixes = {{
     {"_hz", "Hz"},
     {"_m", "m"},
     {"_s", "s"},
-    {"_n", "N"},
     {"_px", "px"},
 }};
 

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/file.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -68,15 +69,17 @@ TEST_F(Cli, VersionNamesThePackageAndThePluginInterface) {
 TEST_F(Cli, WithoutATerminalProgressIsLoggedWithTheNodesCount) {
   // stderr is a pipe here: progress comes as log lines, counted by the node that ends the run.
   write_file(dir / "long.yaml", R"(experiment: progress_test
-duration_s: 1000
+duration_s: 100000
 nodes:
-  c: {plugin: counter, params: {start: 0, stop_after: 50}}
+  c: {plugin: counter, params: {start: 0, stop_after: 20000000}}
 )");
-  const CliResult r = cli({"run", "long.yaml", "--out", "p", "--progress-every", "1e-9"}, dir);
+  // (2e7 ticks take more than the shortest period, 0.1 s, on any machine.)
+  const CliResult r = cli({"run", "long.yaml", "--out", "p", "--progress-every", "0.1"}, dir);
   EXPECT_EQ(r.code, 0) << r.err;
   const std::string log = read_file(dir / "p" / "log.txt");
-  EXPECT_NE(log.find("progress: sim 0."), std::string::npos) << log;
-  EXPECT_NE(log.find("/1000.0 s, counts 25/50, "), std::string::npos) << log;
+  EXPECT_NE(log.find("progress: sim "), std::string::npos) << log;
+  EXPECT_NE(log.find("/100000.0 s, counts "), std::string::npos) << log;
+  EXPECT_NE(log.find("/20000000, "), std::string::npos) << log;
   EXPECT_NE(log.find(" ETA "), std::string::npos) << log;
   EXPECT_NE(r.err.find("progress: "), std::string::npos);
   // --quiet: none; 0: none.
@@ -88,7 +91,7 @@ nodes:
     EXPECT_EQ(q.code, 0) << q.err;
     EXPECT_EQ(read_file(dir / "q" / "log.txt").find("progress: "), std::string::npos);
   }
-  for (const char* bad : {"-1", "nan", "1e7", "x"})
+  for (const char* bad : {"-1", "nan", "inf", "1e7", "x", "1e-300", "0.05"})
     EXPECT_EQ(cli({"run", "long.yaml", "--out", "b", "--progress-every", bad}, dir).code, 2) << bad;
 }
 
@@ -115,6 +118,8 @@ TEST_F(Cli, PluginNewWritesAFolderAndRefusesBadNamesAndUsedFolders) {
       EXPECT_FALSE(!valid && fs::exists(dir / "n")) << name;
     }
   EXPECT_EQ(cli({"plugin", "new", std::string(64, 'a'), "--dir", "n"}, dir, false).code, 2);
+  for (const char* reserved : {"do", "if", "or", "int", "new", "linux", "a__b", "somasim"})
+    EXPECT_EQ(cli({"plugin", "new", reserved, "--dir", "n"}, dir, false).code, 2) << reserved;
 }
 
 // A killed run (metrics.json still says running, its process gone): `recover` cuts every CSV
@@ -153,6 +158,20 @@ TEST_F(Cli, RecoverTrimsPartialRowsOfAKilledRunAndSaysKilled) {
   r = cli({"recover", "killed"}, dir, false);
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("is still running"), std::string::npos) << r.err;
+  // Another machine's run; a folder another process holds (its lock).
+  write_file(run / "metrics.json", "{\"status\": \"running\", \"pid\": " + std::to_string(child) +
+                                       ", \"host\": \"elsewhere\"}\n");
+  r = cli({"recover", "killed/"}, dir, false);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("ran on host 'elsewhere': recover it there"), std::string::npos) << r.err;
+  write_file(run / "metrics.json",
+             "{\"status\": \"running\", \"pid\": " + std::to_string(child) + "}\n");
+  const int held = ::open(run.c_str(), O_RDONLY | O_DIRECTORY);
+  ASSERT_EQ(::flock(held, LOCK_EX | LOCK_NB), 0);
+  r = cli({"recover", "killed"}, dir, false);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("is in use by a somasim run"), std::string::npos) << r.err;
+  ::close(held);
   for (const char* bad : {"nowhere", "outside.csv"})
     EXPECT_EQ(cli({"recover", bad}, dir, false).code, 2) << bad;
 }
@@ -195,7 +214,7 @@ TEST_F(Cli, PluginsReportsRejectedLibraries) {
                        "rejected " +
                        kOldApiLib +
                        ": built for plugin interface 'somasim-plugin-api/0', this somasim needs "
-                       "'somasim-plugin-api/5' (rebuild the plugin)\n");
+                       "'somasim-plugin-api/6' (rebuild the plugin)\n");
 }
 
 TEST_F(Cli, DescribeShowsParamsAndPorts) {

@@ -17,7 +17,7 @@ const std::string kNoEntryWhy =
     "missing?); not loaded";
 const std::string kOldApiWhy =
     "built for plugin interface 'somasim-plugin-api/0', this somasim needs "
-    "'somasim-plugin-api/5' (rebuild the plugin)";
+    "'somasim-plugin-api/6' (rebuild the plugin)";
 
 // Loads `yaml` as "exp.yaml" against the test plugins (plus `extra_dirs`); returns the
 // InputError's message, or "" if it loaded.

@@ -61,11 +61,28 @@ TEST(MetricsLayout, FlattensScalarsAndLeavesListsOut) {
   EXPECT_EQ(flat.count("nodes"), 0u);
 }
 
-// Generated sections: random nodes reporting names from a small pool (so that names clash),
-// some nested. Every leaf must come out exactly once under a distinct flat name, and be found
-// again under it.
+// A node named like another node's metric, and a metric with a '.': names stay distinct.
+TEST(MetricsLayout, NamesThatWouldMeetAfterFlatteningAreQualified) {
+  const auto m = nlohmann::json::parse(
+      R"({"status": "completed", "nodes": {"a": {"b": 1}, "c": {"b": 2, "a": {"b": 3}},
+          "x": {"y.z": 4}, "y": {"z": 5}}})");
+  std::map<std::string, nlohmann::json> flat;
+  for (const auto& [name, value] : flatten_metrics(m)) {
+    EXPECT_TRUE(flat.emplace(name, value).second) << name << " twice";
+    EXPECT_EQ(find_metric(m, name), value) << name;
+  }
+  EXPECT_EQ(flat.at("a.b"), 1);
+  EXPECT_EQ(flat.at("c.b"), 2);
+  EXPECT_EQ(flat.at("c.a.b"), 3);
+  EXPECT_EQ(flat.at("y.z"), 4);  // x's metric "y.z" (node y's "z" stays "z")
+  EXPECT_EQ(flat.at("z"), 5);
+}
+
+// Generated sections: random nodes reporting names from a small pool (so that names clash,
+// node names among them), some nested. Every leaf must come out exactly once under a distinct flat
+// name, and be found again under it.
 TEST(MetricsLayout, GeneratedSectionsFlattenToDistinctNamesThatAreFoundAgain) {
-  const std::vector<std::string> pool = {"a", "b", "steps", "status", "seed", "x_ms", "nodes"};
+  const std::vector<std::string> pool = {"a", "b", "n0", "n1", "steps", "status", "seed", "nodes"};
   std::mt19937 rng(7);
   for (int trial = 0; trial < 300; ++trial) {
     nlohmann::json m = {{"experiment", "e"}, {"status", "completed"}, {"seed", trial}};

@@ -135,7 +135,7 @@ TEST(PluginsCommand, IndexSubcommandWritesTheIndex) {
   const CliResult r = cli({"plugins", "index", lib.string()}, dir, false);
   EXPECT_EQ(r.code, 0) << r.err;
   const std::string index = read_file(plugin_index_path(lib));
-  EXPECT_EQ(index.rfind("somasim-plugin-index 1\ninterface somasim-plugin-api/5\n", 0), 0u)
+  EXPECT_EQ(index.rfind("somasim-plugin-index 1\ninterface somasim-plugin-api/6\n", 0), 0u)
       << index;
   EXPECT_NE(index.find("plugin counter Counts its own steps (test plugin).\n"), std::string::npos);
   const CliResult bad = cli({"plugins", "index", kNoEntryLib}, dir, false);

@@ -91,7 +91,7 @@ TEST(Runner, RunFolderHasEveryOutput) {
   EXPECT_TRUE(m["wall_time_s"].is_number());
   EXPECT_TRUE(m["real_time_factor"].is_number());
   EXPECT_EQ(m["versions"]["somasim"], "0.1.0");
-  EXPECT_EQ(m["versions"]["plugin_interface"], "somasim-plugin-api/5");
+  EXPECT_EQ(m["versions"]["plugin_interface"], "somasim-plugin-api/6");
   EXPECT_TRUE(m["versions"]["compiler"].is_string());
   // Nothing is written twice: the run's own keys, then one section per node.
   for (const auto& [key, value] : m.items())

@@ -21,11 +21,11 @@
 
 namespace somasim {
 
-/// The run's own top-level keys of metrics.json, in the order they are written (`pid` only while
-/// the run is running).
-inline constexpr std::array<std::string_view, 10> kRunMetricKeys = {
+/// The run's own top-level keys of metrics.json, in the order they are written (`pid` and
+/// `host` only while the run is running; `recovered` after `somasim recover`).
+inline constexpr std::array<std::string_view, 12> kRunMetricKeys = {
     "experiment",  "status",           "error",    "stop_reason", "seed", "sim_time_s",
-    "wall_time_s", "real_time_factor", "versions", "pid"};
+    "wall_time_s", "real_time_factor", "versions", "pid",         "host", "recovered"};
 
 /// Every node metric (first level of each `nodes` section) under its flat name, in node order,
 /// with its value as reported (objects and lists kept whole).

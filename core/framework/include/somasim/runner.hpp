@@ -33,6 +33,14 @@ struct RunReport {
   nlohmann::ordered_json metrics;  ///< the content written to metrics.json
 };
 
+/// Writes metrics.json (or any JSON file of a run folder) so that a reader or a crash sees the old
+/// file or the new one: a temporary file beside it (not through a link), fsync'ed, renamed over
+/// it, and the folder fsync'ed. Throws std::runtime_error naming the file when it cannot.
+void write_metrics_file(const std::filesystem::path& file, const nlohmann::ordered_json& metrics);
+
+/// This machine's host name ("" if unknown), recorded with the pid of a running run.
+std::string host_name();
+
 /// Runs `experiment` to completion (or failure or SIGINT) and writes the run folder.
 RunReport run_experiment(const Experiment& experiment, const RunOptions& options);
 

@@ -14,7 +14,7 @@ inline constexpr const char* kVersion = "0.1.0";
 #ifdef SOMASIM_PLUGIN_INTERFACE_VERSION_OVERRIDE  // only for the loader's own tests
 inline constexpr const char* kPluginInterfaceVersion = SOMASIM_PLUGIN_INTERFACE_VERSION_OVERRIDE;
 #else
-inline constexpr const char* kPluginInterfaceVersion = "somasim-plugin-api/5";
+inline constexpr const char* kPluginInterfaceVersion = "somasim-plugin-api/6";
 #endif
 
 /// What `somasim --version` prints: the package version, the plugin interface and the compiler.

@@ -10,7 +10,7 @@ namespace somasim::sweep {
 
 /// "offset_error_max_m" -> "offset error max [m]", "triggered_rate" -> "triggered rate",
 /// "nodes.pps.rate" -> "pps rate"; suffixes read as units: _m, _mm, _s, _ms, _deg, _rad, _hz,
-/// _m_s (m/s), _n (N). A flat name's node prefix ("filter.x_mm") is kept as words.
+/// _px, _m_s (m/s), _per_s (1/s). A flat name's node prefix ("filter.x_mm") is kept as words.
 std::string metric_label(const std::string& metric);
 
 /// The label of the swept path `path` (e.g. "nodes.thrower.params.offset") given the parameter's
