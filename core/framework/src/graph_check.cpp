@@ -98,8 +98,8 @@ void check_records(const Experiment& exp, Diagnostics& diags) {
       diags.add(r.where, "", "record",
                 "port '" + r.node + "." + r.port + "' of type '" + out->type->name +
                     "' cannot be recorded (its type has neither CSV columns nor a recorder)");
-    // Video is for ports whose type records itself (images), not for CSV columns.
-    else if (out && r.as == RecordAs::kVideo && out->type->make_recorder == &make_csv_recorder)
+    // Video is for ports whose type's recorder writes one (images).
+    else if (out && r.as == RecordAs::kVideo && !out->type->records_video)
       diags.add(r.where, "", "record",
                 "port '" + r.node + "." + r.port + "' of type '" + out->type->name +
                     "' cannot be recorded as video (only image ports can; record it as files)");

@@ -13,7 +13,9 @@
 ///     units, e.g. "d [m]") and `static void csv_write(const T&, std::string& row)` (appends
 ///     ",v1,v2,..." — one leading comma per column), which make the port recordable as CSV;
 ///   - or `static std::unique_ptr<PortRecorder> recorder(const T* value, const RecordTarget&)`,
-///     a recorder of its own (an image port writes PNGs); it takes precedence over CSV.
+///     a recorder of its own (an image port writes PNGs); it takes precedence over CSV;
+///   - and `static constexpr bool records_video = true` when that recorder writes a video for
+///     `RecordTarget::video` (`record: [{port: ..., as: video}]`; image ports).
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -65,6 +67,7 @@ struct PortTypeInfo {
   /// Null: the port cannot be recorded.
   std::unique_ptr<PortRecorder> (*make_recorder)(const PortTypeInfo& type, const void* value,
                                                  const RecordTarget& target) = nullptr;
+  bool records_video = false;  ///< its recorder writes a video when asked (PortTraits)
 };
 
 namespace detail {
@@ -105,6 +108,8 @@ const PortTypeInfo& port_type() {
     i.name = PortTraits<T>::name;
     i.size_of = sizeof(T);
     if constexpr (detail::HasHeader<T>::value) i.header = PortTraits<T>::header;
+    if constexpr (requires { PortTraits<T>::records_video; })
+      i.records_video = PortTraits<T>::records_video;
     i.create = [] { return std::shared_ptr<void>(std::make_shared<T>()); };
     if constexpr (detail::HasCopy<T>::value) {
       i.copy = [](void* dst, const void* src) {

@@ -49,9 +49,10 @@ std::unique_ptr<PortRecorder> make_image_recorder(const Image* image, const Reco
 }  // namespace render
 
 namespace detail {
-/// What the three image port types share: copying and the PNG recorder.
+/// What the three image port types share: copying and the PNG (or video) recorder.
 struct ImagePortTraits {
   static constexpr const char* header = "somasim/render/ports.hpp";
+  static constexpr bool records_video = true;
   static void copy(Image& dst, const Image& src) {
     src.data.copyTo(dst.data);
     dst.encoding = src.encoding;
