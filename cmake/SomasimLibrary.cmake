@@ -13,6 +13,7 @@ function(somasim_add_library name)
     $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
   target_link_libraries(${target} PUBLIC ${ARG_PUBLIC_LIBS} PRIVATE ${ARG_PRIVATE_LIBS})
   somasim_enable_warnings(${target})
+  somasim_use_precompiled_headers(${target} library)
   set_target_properties(${target} PROPERTIES EXPORT_NAME ${name})
   install(TARGETS ${target} EXPORT somasimTargets
     LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}

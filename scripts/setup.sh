@@ -16,6 +16,7 @@ runtime_packages=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev libyaml-cpp-dev libspdlog-dev libfmt-dev nlohmann-json3-dev libcli11-dev
   libopencv-dev libbullet-dev libosmesa6-dev libegl-dev libegl-mesa0 libassimp-dev
+  libcairo2-dev libpango1.0-dev fonts-dejavu-core
   libopenmpi-dev openmpi-bin
 )
 full_packages=(
@@ -49,7 +50,8 @@ if [ "$mode" = runtime ]; then
   else
     echo "== building the CLI and its plugins (build/)"
     cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DSOMASIM_WERROR=ON \
-      -DSOMASIM_BUILD_TESTS=OFF -DSOMASIM_BUILD_BENCHMARKS=OFF -DSOMASIM_BUILD_TOOLS=OFF
+      -DSOMASIM_BUILD_TESTS=OFF -DSOMASIM_BUILD_BENCHMARKS=OFF -DSOMASIM_BUILD_TOOLS=OFF \
+      -DSOMASIM_PRECOMPILE_HEADERS=ON
     cmake --build build --parallel "$(nproc)"
   fi
   echo "== built (${SECONDS} s)"

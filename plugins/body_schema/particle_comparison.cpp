@@ -94,10 +94,10 @@ void write_particle_figure(const std::vector<SizeRecord>& records,
     low.style = high.style = figures::LineStyle::kDotted;
     low.width_px = high.width_px = 1.0;
     low.color = high.color = mean.color = figures::Color{31, 119, 180};
-    if (with_sd) low.label = "mean -/+ 1 sd";
+    if (with_sd) low.label = "mean ± 1 sd";
     figures::LinePlotSpec p;
     p.title = title;
-    p.x_label = "log10 M (particles)";
+    p.x_label = "number of particles, log10 M";
     p.y_label = y_label;
     p.series = {mean};
     if (with_sd) p.series.insert(p.series.end(), {low, high});
@@ -106,16 +106,18 @@ void write_particle_figure(const std::vector<SizeRecord>& records,
     return figures::render_line_plot(p);
   };
   const auto step_ms = [](const SizeRecord& r) { return std::vector<double>{median(r.step_ms)}; };
-  figures::save_png(
+  figures::save_figure(
       figures::compose_row(
           {panel(
-               "estimation error, position", "[mm]", [](const SizeRecord& r) { return r.error_mm; },
+               "Position", "position error [mm]", [](const SizeRecord& r) { return r.error_mm; },
                true),
            panel(
-               "estimation error, orientation", "[deg]",
+               "Orientation", "orientation error [°]",
                [](const SizeRecord& r) { return r.error_deg; }, true),
-           panel("time per filter step (median)", "[ms]", step_ms, false)},
-          12, "body schema: particles vs accuracy and cost (same movements and images)"),
+           panel("Cost", "time per filter step, median [ms]", step_ms, false)},
+          12,
+          "Body schema estimation error and cost against the number of particles (same "
+          "movements and images)"),
       file);
 }
 

@@ -285,9 +285,9 @@ void ReachController::finish(NodeContext& ctx) {
   for (const auto& [key, value] : metrics.items()) ctx.report_metric(key, value);
   if (!csv_name_.empty()) report_->write_csv(csv_path_);
   if (report_->movements_completed() > 0)
-    report_->write_figures(ctx.figure_path("body_schema_estimation.png"),
-                           ctx.figure_path("body_schema_reaching.png"),
-                           ctx.figure_path("body_schema_closed_loop.png"), "body schema");
+    report_->write_figures(
+        ctx.figure_path("body_schema_estimation.png"), ctx.figure_path("body_schema_reaching.png"),
+        ctx.figure_path("body_schema_closed_loop.png"), "node '" + ctx.node_name() + "'");
 }
 
 }  // namespace somasim::plugins

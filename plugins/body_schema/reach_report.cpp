@@ -124,7 +124,7 @@ void ReachReport::write_figures(const std::filesystem::path& estimation,
                    const std::vector<std::vector<figures::Series>>& bands) {
     figures::LinePlotSpec p;
     p.title = panel_title;
-    p.x_label = "frame";
+    p.x_label = "camera frame (one per image pair)";
     p.y_label = y_label;
     for (const auto& b : bands) p.series.insert(p.series.end(), b.begin(), b.end());
     figures::RefLine end_of_open_loop;
@@ -145,24 +145,28 @@ void ReachReport::write_figures(const std::filesystem::path& estimation,
           band(samples(b), first, end, label_b, colour_b, LineStyle::kDashed)};
     };
     return figures::compose_row(
-        {panel(what + ", position", "[mm]", first, bands(mm_a, mm_b)),
-         panel(what + ", orientation", "[deg]", first, bands(deg_a, deg_b))},
+        {panel("Position", "position error [mm]", first, bands(mm_a, mm_b)),
+         panel("Orientation", "orientation error [°]", first, bands(deg_a, deg_b))},
         16,
-        fmt::format("{}: {} ({} movements; mean; dotted: mean +/- 1 sd)", title, what, completed_));
+        fmt::format("{} over {} movements, {} (lines: mean; dotted: mean ± 1 sd)", what, completed_,
+                    title));
   };
-  figures::save_png(pair("estimation error", 1, &FrameErrors::estimation_mm,
-                         &FrameErrors::estimation_deg, "with adaptation", blue,
-                         &FrameErrors::nominal_mm, &FrameErrors::nominal_deg, "nominal model", red),
-                    estimation);
-  figures::save_png(pair("reaching error", 1, &FrameErrors::reaching_mm, &FrameErrors::reaching_deg,
-                         "real", black, &FrameErrors::reaching_est_mm,
-                         &FrameErrors::reaching_est_deg, "estimated", green),
-                    reaching);
+  figures::save_figure(
+      pair("Hand pose estimation error", 1, &FrameErrors::estimation_mm,
+           &FrameErrors::estimation_deg, "with adaptation", blue, &FrameErrors::nominal_mm,
+           &FrameErrors::nominal_deg, "nominal model", red),
+      estimation);
+  figures::save_figure(
+      pair("Reaching error", 1, &FrameErrors::reaching_mm, &FrameErrors::reaching_deg, "real",
+           black, &FrameErrors::reaching_est_mm, &FrameErrors::reaching_est_deg, "estimated",
+           green),
+      reaching);
   const int first_close = std::max(1, open_frames_ - 10);
-  figures::save_png(pair("reaching error, closed loop", first_close, &FrameErrors::reaching_mm,
-                         &FrameErrors::reaching_deg, "real", black, &FrameErrors::reaching_est_mm,
-                         &FrameErrors::reaching_est_deg, "estimated", green),
-                    closed_loop);
+  figures::save_figure(
+      pair("Reaching error in closed loop", first_close, &FrameErrors::reaching_mm,
+           &FrameErrors::reaching_deg, "real", black, &FrameErrors::reaching_est_mm,
+           &FrameErrors::reaching_est_deg, "estimated", green),
+      closed_loop);
 }
 
 }  // namespace somasim::plugins

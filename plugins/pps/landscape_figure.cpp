@@ -19,6 +19,16 @@ std::optional<double> known_offset(const TaxelValues* offsets, const std::string
   return std::nullopt;
 }
 
+/// "Taxel 3 of the left forearm: activation after 1234 samples, after learning" ("taxel" as the
+/// part's name is the single-taxel experiment's: no part named then).
+std::string landscape_title(std::string part, int id, std::uint64_t samples,
+                            const std::string& when, bool distance_only) {
+  std::replace(part.begin(), part.end(), '_', ' ');
+  const std::string of_part = part == "taxel" ? "" : " of the " + part;
+  return fmt::format("Taxel {}{}: activation from {} samples{}{}", id, of_part, samples, when,
+                     distance_only ? " (distance only)" : "");
+}
+
 }  // namespace
 
 void draw_landscapes(NodeContext& ctx, pps::BodyPartLearner& learner,
@@ -48,12 +58,11 @@ void draw_landscapes(NodeContext& ctx, pps::BodyPartLearner& learner,
     options.regression_line = !distance_only;
     options.true_offset_m =
         known_offset(true_offsets, learner.body_part() + "/" + std::to_string(id));
-    options.title = fmt::format("{}, taxel {}: {} samples{}{}", learner.body_part(), id, samples,
-                                when, distance_only ? " (distance only)" : "");
+    options.title = landscape_title(learner.body_part(), id, samples, when, distance_only);
     const std::string file = fmt::format("landscape_{}_{}{}.png", learner.body_part(), id,
                                          suffix.empty() ? "" : "_" + suffix);
-    figures::save_png(figures::render_heatmap(pps::landscape_heatmap(map, options)),
-                      ctx.figure_path(file));
+    figures::save_figure(figures::render_heatmap(pps::landscape_heatmap(map, options)),
+                         ctx.figure_path(file));
   }
 }
 

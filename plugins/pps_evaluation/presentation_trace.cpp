@@ -9,6 +9,13 @@
 #include "somasim/figures/line_plot.hpp"
 
 namespace somasim::plugins {
+namespace {
+/// "left_forearm" -> "left forearm".
+std::string human(std::string name) {
+  std::replace(name.begin(), name.end(), '_', ' ');
+  return name;
+}
+}  // namespace
 
 void PresentationTrace::add_sample(double t, const std::vector<double>& distances,
                                    const std::vector<double>& activations, double speed) {
@@ -46,8 +53,8 @@ void draw_presentation_figure(const PresentationTrace& trace, const Presentation
   order.resize(std::min<std::size_t>(order.size(), static_cast<std::size_t>(taxels)));
 
   fig::LinePlotSpec distance, activation, speed;
-  distance.y_label = "distance [cm]";
-  activation.y_label = "activation";
+  distance.y_label = "distance to the skin [cm]";
+  activation.y_label = "PPS activation";
   activation.y_range = fig::Range{0.0, 1.05};
   fig::RefLine threshold_line;
   threshold_line.value = threshold;
@@ -91,12 +98,12 @@ void draw_presentation_figure(const PresentationTrace& trace, const Presentation
                            fig::LineStyle::kDotted});
   }
   fig::StackedPlotSpec spec;
-  spec.title =
-      fmt::format("presentation {}: {} {}, aimed at {} taxel {}", record.id,
-                  motion_name(record.motion), record.shape, record.body_part, record.taxel_id);
+  spec.title = fmt::format("Presentation {}: {} {} aimed at taxel {} of the {}", record.id,
+                           motion_name(record.motion), record.shape, record.taxel_id,
+                           human(record.body_part));
   spec.x_label = "time since presentation [s]";
   spec.panels = {distance, activation, speed};
-  fig::save_png(fig::render_stacked(spec), file);
+  fig::save_figure(fig::render_stacked(spec), file);
 }
 
 }  // namespace somasim::plugins

@@ -1,5 +1,8 @@
 #include "skin_figure.hpp"
 
+#include <algorithm>
+#include <cctype>
+
 #include <fmt/format.h>
 
 #include "somasim/figures/compose.hpp"
@@ -41,7 +44,11 @@ figures::Figure render_skin_layout(const std::vector<SkinFigurePanel>& panels) {
       g.y.push_back(c.y());
     }
     figures::ScatterSpec spec;
-    spec.title = fmt::format("{}: {} taxels, {} virtual, {} events", layout.body_part,
+    std::string part = layout.body_part;
+    std::replace(part.begin(), part.end(), '_', ' ');
+    if (!part.empty())
+      part[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(part[0])));
+    spec.title = fmt::format("{}: {} taxels in {} virtual taxels, {} contact events", part,
                              layout.size(), layout.virtual_taxels.size(), p.events);
     std::tie(spec.x_label, spec.y_label) = skin::surface_axis_labels(*p.patch);
     for (auto* g : {&all, &fired, &centres, &touched})
@@ -52,7 +59,8 @@ figures::Figure render_skin_layout(const std::vector<SkinFigurePanel>& panels) {
     spec.height = 600;
     rendered.push_back(figures::render_scatter(spec));
   }
-  return figures::compose_row(rendered, 10, "Skin layout (unrolled, link frame)");
+  return figures::compose_row(
+      rendered, 10, "Skin layout: each patch unrolled onto its surface, in its link's frame");
 }
 
 }  // namespace somasim::plugins

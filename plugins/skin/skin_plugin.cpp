@@ -345,7 +345,7 @@ void SkinPlugin::finish(NodeContext& ctx) {
   std::vector<SkinFigurePanel> panels;
   for (const auto& p : parts_)
     panels.push_back({p.patch, &p.layout, p.response->fired(), p.touched_virtual, p.events});
-  figures::save_png(render_skin_layout(panels), ctx.figure_path("skin_layout.png"));
+  figures::save_figure(render_skin_layout(panels), ctx.figure_path("skin_layout.png"));
 }
 
 void SkinPlugin::report(NodeContext& ctx) {

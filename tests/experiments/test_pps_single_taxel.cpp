@@ -66,9 +66,9 @@ TEST(PpsSingleTaxelFig2, MeetsItsBoundsAndWritesEveryOutput) {
   EXPECT_LE(std::abs(run.metric("offset_estimate_m").get<double>()), 0.02);
   EXPECT_NEAR(run.metric("hit_rate").get<double>(), 0.46, 0.08);  // 1 - exp(-2^2 / (2 * 1.8^2))
   EXPECT_EQ(run.metric("negative_d_share"), 0.0);
-  for (const char* f :
-       {"experiment.resolved.yaml", "log.txt", "metrics.json", "thrower.stimulus.csv",
-        "pps.activations.csv", "pps_single_taxel.json", "figures/landscape_taxel_0.png"})
+  for (const char* f : {"experiment.resolved.yaml", "log.txt", "metrics.json",
+                        "thrower.stimulus.csv", "pps.activations.csv", "pps_single_taxel.json",
+                        "figures/landscape_taxel_0.png", "figures/landscape_taxel_0.svg"})
     EXPECT_TRUE(fs::exists(run.dir / f)) << f;
   EXPECT_EQ(read_file(run.dir / "thrower.stimulus.csv").substr(0, 24), "time [s],present,x [m],y");
 }
@@ -85,8 +85,11 @@ TEST(PpsSingleTaxel, SameSeedGivesIdenticalOutputsOtherSeedDoesNot) {
   const std::vector<somasim::Override> shorter = {{"nodes.thrower.params.throws", "60"}};
   const ExperimentRun a = run_config("pps_single_taxel_offset", shorter, "a");
   const ExperimentRun b = run_config("pps_single_taxel_offset", shorter, "b");
+  // Figures too: the second run's drawing follows the first in the same process, and its SVG must
+  // not depend on what was drawn before.
   for (const char* f :
-       {"thrower.stimulus.csv", "pps.activations.csv", "pps_single_taxel_offset.json"})
+       {"thrower.stimulus.csv", "pps.activations.csv", "pps_single_taxel_offset.json",
+        "figures/landscape_taxel_0.png", "figures/landscape_taxel_0.svg"})
     EXPECT_EQ(read_file(a.dir / f), read_file(b.dir / f)) << f;
   auto strip = [](nlohmann::json m) {
     m.erase("wall_time_s");

@@ -98,7 +98,7 @@ int run(const std::vector<std::string>& args) {
   options.bin_grid = bin_grid;
   fig::HeatmapSpec spec = somasim::pps::landscape_heatmap(map, options);
   spec.colormap = cmap;
-  fig::save_png(fig::render_heatmap(spec), positional[2]);
+  fig::save_figure(fig::render_heatmap(spec), positional[2]);
   std::cout << "wrote " << positional[2] << "\n";
   return 0;
 }

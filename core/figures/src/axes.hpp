@@ -4,8 +4,6 @@
 #include <string>
 #include <vector>
 
-#include <opencv2/core.hpp>
-
 #include "canvas.hpp"
 #include "somasim/figures/figure.hpp"
 
@@ -24,9 +22,9 @@ struct AxisTicks {
 AxisTicks make_x_ticks(Range r, int length_px);
 AxisTicks make_y_ticks(Range r, int length_px);
 
-/// Widest label, tallest label [px].
-int max_label_width(const AxisTicks& t, double scale);
-int label_height(double scale);
+/// Widest label, label height [px] at font size `size_px`.
+int max_label_width(const AxisTicks& t, double size_px);
+int label_height(double size_px);
 
 /// [lo, hi] padded by `pad_frac` of the span; a degenerate or missing extent gets a sensible
 /// range. lo/hi are the finite data extent (lo > hi means no data).
@@ -36,7 +34,7 @@ Range padded_range(double lo, double hi, double pad_frac);
 void check_range(const char* what, const char* axis, Range r);
 
 /// Light grid lines at the ticks (inside the plot area only).
-void draw_grid(cv::Mat& img, const AxesFrame& f, const AxisTicks& xt, const AxisTicks& yt);
+void draw_grid(Canvas& canvas, const AxesFrame& f, const AxisTicks& xt, const AxisTicks& yt);
 
 /// What draw_axes writes around the plot area.
 struct AxesText {
@@ -47,23 +45,31 @@ struct AxesText {
 };
 
 /// Black frame, outward ticks, tick labels and axis labels.
-void draw_axes(cv::Mat& img, const AxesFrame& f, const AxisTicks& xt, const AxisTicks& yt,
+void draw_axes(Canvas& canvas, const AxesFrame& f, const AxisTicks& xt, const AxisTicks& yt,
                const AxesText& text, const Fonts& fonts);
 
 /// Centred title at the top of the figure; returns the row below it.
-int draw_title(cv::Mat& img, const std::string& title, const Fonts& fonts);
+int draw_title(Canvas& canvas, const std::string& title, const Fonts& fonts);
 /// Height the title occupies (0 margin rows when empty; includes padding).
 int title_height(const std::string& title, const Fonts& fonts);
 
-/// Pixel position of a data point as a cv point.
-inline cv::Point2d px(const AxesFrame& f, double x, double y) {
+/// Pixel position of a data point.
+inline Point px(const AxesFrame& f, double x, double y) {
   const auto p = f.to_pixel(x, y);
   return {p[0], p[1]};
 }
 
-/// A rectangle view of the plot area.
-inline cv::Rect plot_rect(const AxesFrame& f) {
-  return {f.left, f.top, f.width, f.height};
+/// Appends points every ~10 px strictly between a and b (at most max_points - 1; none when a is
+/// not finite), so that legend placement (kBest) sees whole segments, not only their ends.
+void densify(Point a, Point b, int max_points, std::vector<Point>& out);
+
+/// Whether any of points[first...] lies in the plot area (edges included).
+bool any_inside(const AxesFrame& f, const std::vector<Point>& points, std::size_t first = 0);
+
+/// The plot area.
+inline Rect plot_rect(const AxesFrame& f) {
+  return {static_cast<double>(f.left), static_cast<double>(f.top), static_cast<double>(f.width),
+          static_cast<double>(f.height)};
 }
 
 }  // namespace somasim::figures::detail

@@ -4,209 +4,343 @@
 #include <cmath>
 #include <sstream>
 
-#include <opencv2/imgproc.hpp>
+#include <cairo.h>
+#include <glib.h>
+#include <pango/pangocairo.h>
 
+#include "drawing.hpp"
 #include "somasim/error.hpp"
 
 namespace somasim::figures::detail {
 namespace {
-constexpr int kFont = cv::FONT_HERSHEY_SIMPLEX;
-constexpr int kShift = 4;  // sub-pixel bits for cv drawing
-constexpr double kOne = 1 << kShift;
 
-cv::Point fixed(cv::Point2d p) {
-  return cv::Point(static_cast<int>(std::lround(p.x * kOne)),
-                   static_cast<int>(std::lround(p.y * kOne)));
-}
-bool finite(cv::Point2d p) {
+bool finite(Point p) {
   return std::isfinite(p.x) && std::isfinite(p.y);
 }
 
-void segment(cv::Mat& img, cv::Point2d a, cv::Point2d b, Color c, double w) {
-  // Pixel centres are at integer + 0.5 in our convention and at integers in OpenCV's.
-  cv::line(img, fixed(a - cv::Point2d(0.5, 0.5)), fixed(b - cv::Point2d(0.5, 0.5)), bgr(c),
-           std::max(1, static_cast<int>(std::lround(w))), cv::LINE_AA, kShift);
+void set_color(cairo_t* cr, Color c, double alpha = 1.0) {
+  cairo_set_source_rgba(cr, c.r / 255.0, c.g / 255.0, c.b / 255.0, alpha);
 }
+
+/// Font options that make text metrics independent of the surface drawn on (no hinting), so a
+/// layout measured here has the same size on the recording, the image and the SVG surface.
+cairo_font_options_t* unhinted_options() {
+  thread_local struct Options {
+    cairo_font_options_t* ptr = cairo_font_options_create();
+    Options() {
+      cairo_font_options_set_hint_style(ptr, CAIRO_HINT_STYLE_NONE);
+      cairo_font_options_set_hint_metrics(ptr, CAIRO_HINT_METRICS_OFF);
+      cairo_font_options_set_antialias(ptr, CAIRO_ANTIALIAS_GRAY);
+    }
+    ~Options() { cairo_font_options_destroy(ptr); }
+  } options;
+  return options.ptr;
+}
+
+struct LayoutDeleter {
+  void operator()(PangoLayout* l) const { g_object_unref(l); }
+};
+using LayoutPtr = std::unique_ptr<PangoLayout, LayoutDeleter>;
+
+std::string valid_utf8(const std::string& text) {
+  if (g_utf8_validate(text.data(), static_cast<gssize>(text.size()), nullptr)) return text;
+  gchar* fixed = g_utf8_make_valid(text.data(), static_cast<gssize>(text.size()));
+  std::string out(fixed);
+  g_free(fixed);
+  return out;
+}
+
+/// A one-line layout of `text` in the sans-serif face, for drawing on `cr`.
+LayoutPtr make_layout(cairo_t* cr, const std::string& text, double size_px, Weight weight) {
+  LayoutPtr layout(pango_cairo_create_layout(cr));
+  pango_cairo_context_set_font_options(pango_layout_get_context(layout.get()), unhinted_options());
+  pango_layout_context_changed(layout.get());
+  PangoFontDescription* font = pango_font_description_from_string("Sans");
+  pango_font_description_set_absolute_size(font, size_px * PANGO_SCALE);
+  pango_font_description_set_weight(
+      font, weight == Weight::kBold ? PANGO_WEIGHT_BOLD : PANGO_WEIGHT_NORMAL);
+  pango_layout_set_font_description(layout.get(), font);
+  pango_font_description_free(font);
+  const std::string utf8 = valid_utf8(text);
+  pango_layout_set_text(layout.get(), utf8.data(), static_cast<int>(utf8.size()));
+  return layout;
+}
+
+/// Logical extents [px] of a layout: x, y of the box's corner relative to the layout's origin.
+Rect logical_box(PangoLayout* layout) {
+  PangoRectangle logical;
+  pango_layout_get_extents(layout, nullptr, &logical);
+  return {static_cast<double>(logical.x) / PANGO_SCALE,
+          static_cast<double>(logical.y) / PANGO_SCALE,
+          static_cast<double>(logical.width) / PANGO_SCALE,
+          static_cast<double>(logical.height) / PANGO_SCALE};
+}
+
+/// A cairo context on a 1 x 1 image, per thread, for measuring text.
+cairo_t* measuring_context() {
+  thread_local struct Measure {
+    cairo_surface_t* surface = cairo_image_surface_create(CAIRO_FORMAT_A8, 1, 1);
+    cairo_t* cr = cairo_create(surface);
+    ~Measure() {
+      cairo_destroy(cr);
+      cairo_surface_destroy(surface);
+    }
+  } measure;
+  return measure.cr;
+}
+
+void set_dash(cairo_t* cr, LineStyle style, double width_px) {
+  const double w = std::max(1.0, width_px);
+  if (style == LineStyle::kDashed) {
+    // Butt caps: dashes are exactly as long as drawn.
+    const double dashes[] = {3.5 * std::max(2.0, w), 2.5 * std::max(2.0, w) + 1};
+    cairo_set_dash(cr, dashes, 2, 0);
+    cairo_set_line_cap(cr, CAIRO_LINE_CAP_BUTT);
+  } else if (style == LineStyle::kDotted) {
+    // Zero-length dashes with round caps are dots of the line's width (at least 1.6 px, so that
+    // thin dotted lines stay visible).
+    const double dot = std::max(1.6, width_px);
+    const double dashes[] = {0.0, 2.2 * dot};
+    cairo_set_dash(cr, dashes, 2, 0);
+    cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+    cairo_set_line_width(cr, dot);
+  } else {
+    cairo_set_dash(cr, nullptr, 0, 0);
+    cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+  }
+}
+
 }  // namespace
 
-cv::Size text_size(const std::string& text, double scale, int thickness) {
-  int baseline = 0;
-  return cv::getTextSize(text, kFont, scale, thickness, &baseline);
+TextSize text_size(const std::string& text, double size_px, Weight weight) {
+  if (text.empty()) return {0, 0};
+  const LayoutPtr layout = make_layout(measuring_context(), text, size_px, weight);
+  const Rect box = logical_box(layout.get());
+  return {box.width, box.height};
 }
 
-void put_text(cv::Mat& img, const std::string& text, cv::Point2d anchor, HAlign h, VAlign v,
-              double scale, Color color, int thickness, bool vertical) {
-  if (text.empty()) return;
-  int baseline = 0;
-  const cv::Size sz = cv::getTextSize(text, kFont, scale, thickness, &baseline);
-  const int pad = 2 + thickness;
-  cv::Mat mask = cv::Mat::zeros(sz.height + baseline + 2 * pad, sz.width + 2 * pad, CV_8UC1);
-  cv::putText(mask, text, cv::Point(pad, pad + sz.height), kFont, scale, cv::Scalar(255), thickness,
-              cv::LINE_AA);
-  // Alignment box (cap height) inside the mask, before rotation.
-  double box_w = sz.width, box_h = sz.height, off_x = pad, off_y = pad;
-  if (vertical) {
-    cv::rotate(mask, mask, cv::ROTATE_90_COUNTERCLOCKWISE);
-    // After rotation the cap box spans columns [pad, pad + h) and rows [pad, pad + w).
-    off_x = pad;
-    off_y = pad;
-    std::swap(box_w, box_h);
-  }
-  double x0 = anchor.x, y0 = anchor.y;
-  if (h == HAlign::kCenter) x0 -= box_w / 2;
-  if (h == HAlign::kRight) x0 -= box_w;
-  if (v == VAlign::kMiddle) y0 -= box_h / 2;
-  if (v == VAlign::kBottom) y0 -= box_h;
-  const int ox = static_cast<int>(std::lround(x0 - off_x));
-  const int oy = static_cast<int>(std::lround(y0 - off_y));
-  for (int r = 0; r < mask.rows; ++r) {
-    const int y = oy + r;
-    if (y < 0 || y >= img.rows) continue;
-    const auto* m = mask.ptr<std::uint8_t>(r);
-    auto* p = img.ptr<cv::Vec3b>(y);
-    for (int c = 0; c < mask.cols; ++c) {
-      const int x = ox + c;
-      if (x < 0 || x >= img.cols || m[c] == 0) continue;
-      const double a = m[c] / 255.0;
-      cv::Vec3b& px = p[x];
-      px[0] = static_cast<std::uint8_t>(std::lround(px[0] * (1 - a) + color.b * a));
-      px[1] = static_cast<std::uint8_t>(std::lround(px[1] * (1 - a) + color.g * a));
-      px[2] = static_cast<std::uint8_t>(std::lround(px[2] * (1 - a) + color.r * a));
-    }
-  }
+struct Canvas::State {
+  cairo_surface_t* surface = nullptr;
+  cairo_t* cr = nullptr;
+};
+
+Canvas::Canvas(int width, int height) : width_(width), height_(height), state_(new State) {
+  const cairo_rectangle_t extents{0, 0, static_cast<double>(width), static_cast<double>(height)};
+  state_->surface = cairo_recording_surface_create(CAIRO_CONTENT_COLOR_ALPHA, &extents);
+  state_->cr = cairo_create(state_->surface);
+  cairo_set_line_join(state_->cr, CAIRO_LINE_JOIN_ROUND);
+  fill_rect({0, 0, static_cast<double>(width), static_cast<double>(height)}, kWhite);
 }
 
-void draw_polyline(cv::Mat& img, const std::vector<cv::Point2d>& pts, Color color, double width_px,
-                   LineStyle style) {
-  // Round caps add about half the width at each dash end: lengthen the gaps accordingly.
-  const double w = std::max(2.0, width_px);
-  const double on = style == LineStyle::kDashed ? 3.5 * w : 0.5;
-  const double off = style == LineStyle::kDashed ? 3.0 * w + width_px + 1 : 2.0 * w + width_px;
-  double phase = 0;  // distance travelled along the current dash cycle
-  for (std::size_t i = 1; i < pts.size(); ++i) {
-    const cv::Point2d a = pts[i - 1], b = pts[i];
-    if (!finite(a) || !finite(b)) {
-      phase = 0;
+Canvas::~Canvas() {
+  if (state_->cr) cairo_destroy(state_->cr);
+  if (state_->surface) cairo_surface_destroy(state_->surface);
+}
+
+void Canvas::fill_rect(Rect r, Color color, double alpha) {
+  cairo_t* cr = state_->cr;
+  cairo_rectangle(cr, r.x, r.y, r.width, r.height);
+  set_color(cr, color, alpha);
+  cairo_fill(cr);
+}
+
+void Canvas::frame_rect(Rect r, Color color) {
+  cairo_t* cr = state_->cr;
+  cairo_set_dash(cr, nullptr, 0, 0);
+  cairo_set_line_width(cr, 1.0);
+  cairo_rectangle(cr, r.x + 0.5, r.y + 0.5, r.width - 1, r.height - 1);
+  set_color(cr, color);
+  cairo_stroke(cr);
+}
+
+void Canvas::pixel_line(std::array<int, 2> a, std::array<int, 2> b, Color color) {
+  cairo_t* cr = state_->cr;
+  cairo_set_dash(cr, nullptr, 0, 0);
+  cairo_set_line_cap(cr, CAIRO_LINE_CAP_SQUARE);
+  cairo_set_line_width(cr, 1.0);
+  cairo_move_to(cr, a[0] + 0.5, a[1] + 0.5);
+  cairo_line_to(cr, b[0] + 0.5, b[1] + 0.5);
+  set_color(cr, color);
+  cairo_stroke(cr);
+}
+
+void Canvas::polyline(const std::vector<Point>& pts, Color color, double width_px, LineStyle style,
+                      double alpha) {
+  cairo_t* cr = state_->cr;
+  cairo_set_line_width(cr, width_px);
+  set_dash(cr, style, width_px);
+  set_color(cr, color, alpha);
+  bool drawing = false;
+  for (const Point& p : pts) {
+    if (!finite(p)) {
+      if (drawing) cairo_stroke(cr);
+      drawing = false;
       continue;
     }
-    if (style == LineStyle::kSolid) {
-      segment(img, a, b, color, width_px);
-      continue;
-    }
-    const double len = cv::norm(b - a);
-    if (len == 0) continue;
-    const cv::Point2d dir = (b - a) / len;
-    double t = 0;
-    while (t < len) {
-      const double cycle = on + off;
-      const double in_cycle = std::fmod(phase, cycle);
-      if (in_cycle < on) {
-        const double run = std::min(on - in_cycle, len - t);
-        if (style == LineStyle::kDotted) {
-          cv::circle(img, fixed(a + dir * t - cv::Point2d(0.5, 0.5)),
-                     static_cast<int>(std::lround(std::max(1.0, width_px / 2) * kOne)), bgr(color),
-                     cv::FILLED, cv::LINE_AA, kShift);
-          const double skip = on + off - in_cycle;
-          t += skip;
-          phase += skip;
-          continue;
-        }
-        segment(img, a + dir * t, a + dir * (t + run), color, width_px);
-        t += run;
-        phase += run;
-      } else {
-        const double run = std::min(cycle - in_cycle, len - t);
-        t += run;
-        phase += run;
-      }
+    if (drawing) {
+      cairo_line_to(cr, p.x, p.y);
+    } else {
+      cairo_move_to(cr, p.x, p.y);
+      drawing = true;
     }
   }
+  if (drawing) cairo_stroke(cr);
 }
 
-void draw_marker(cv::Mat& img, cv::Point2d p, Marker marker, double size_px, Color color,
-                 bool outline) {
+void Canvas::marker(Point p, Marker marker, double size_px, Color color, bool outline) {
   if (!finite(p)) return;
-  const cv::Point2d c = p - cv::Point2d(0.5, 0.5);
+  cairo_t* cr = state_->cr;
   const double r = size_px / 2;
-  const cv::Scalar col = bgr(color);
-  auto poly = [&](const std::vector<cv::Point2d>& v) {
-    std::vector<cv::Point> q;
-    for (auto& x : v) q.push_back(fixed(c + x));
-    if (outline) cv::polylines(img, q, true, bgr(kWhite), 3, cv::LINE_AA, kShift);
-    cv::fillConvexPoly(img, q, col, cv::LINE_AA, kShift);
+  cairo_set_dash(cr, nullptr, 0, 0);
+  auto poly = [&](std::initializer_list<Point> v) {
+    bool first = true;
+    for (const Point& q : v) {
+      if (first)
+        cairo_move_to(cr, p.x + q.x, p.y + q.y);
+      else
+        cairo_line_to(cr, p.x + q.x, p.y + q.y);
+      first = false;
+    }
+    cairo_close_path(cr);
+  };
+  auto fill_shape = [&](const auto& shape) {
+    if (outline) {
+      shape();
+      cairo_set_line_width(cr, 2.0);
+      set_color(cr, kWhite);
+      cairo_stroke(cr);
+    }
+    shape();
+    set_color(cr, color);
+    cairo_fill(cr);
   };
   switch (marker) {
     case Marker::kCircle:
-      if (outline)
-        cv::circle(img, fixed(c), static_cast<int>(std::lround((r + 1) * kOne)), bgr(kWhite),
-                   cv::FILLED, cv::LINE_AA, kShift);
-      cv::circle(img, fixed(c), static_cast<int>(std::lround(r * kOne)), col, cv::FILLED,
-                 cv::LINE_AA, kShift);
+      fill_shape([&] {
+        cairo_new_sub_path(cr);
+        cairo_arc(cr, p.x, p.y, r, 0, 2 * M_PI);
+      });
       break;
     case Marker::kSquare:
-      poly({{-r, -r}, {r, -r}, {r, r}, {-r, r}});
+      fill_shape([&] { poly({{-r, -r}, {r, -r}, {r, r}, {-r, r}}); });
       break;
     case Marker::kTriangle:
-      poly({{0, -r * 1.15}, {r * 1.1, r * 0.75}, {-r * 1.1, r * 0.75}});
+      fill_shape([&] { poly({{0, -r * 1.15}, {r * 1.1, r * 0.75}, {-r * 1.1, r * 0.75}}); });
       break;
     case Marker::kDiamond:
-      poly({{0, -r * 1.2}, {r, 0}, {0, r * 1.2}, {-r, 0}});
+      fill_shape([&] { poly({{0, -r * 1.2}, {r, 0}, {0, r * 1.2}, {-r, 0}}); });
       break;
     case Marker::kCross:
     case Marker::kPlus: {
       const double k = marker == Marker::kCross ? r * 0.75 : r;
-      const std::array<cv::Point2d, 4> ends =
-          marker == Marker::kCross
-              ? std::array<cv::Point2d, 4>{cv::Point2d{-k, -k}, {k, k}, {-k, k}, {k, -k}}
-              : std::array<cv::Point2d, 4>{cv::Point2d{-k, 0}, {k, 0}, {0, -k}, {0, k}};
-      const int w = std::max(2, static_cast<int>(std::lround(size_px / 4)));
-      for (int i = 0; i < 4; i += 2) {
-        if (outline)
-          cv::line(img, fixed(c + ends[i]), fixed(c + ends[i + 1]), bgr(kWhite), w + 2, cv::LINE_AA,
-                   kShift);
-      }
-      for (int i = 0; i < 4; i += 2)
-        cv::line(img, fixed(c + ends[i]), fixed(c + ends[i + 1]), col, w, cv::LINE_AA, kShift);
+      const std::array<Point, 4> ends =
+          marker == Marker::kCross ? std::array<Point, 4>{Point{-k, -k}, {k, k}, {-k, k}, {k, -k}}
+                                   : std::array<Point, 4>{Point{-k, 0}, {k, 0}, {0, -k}, {0, k}};
+      const double w = std::max(2.0, std::round(size_px / 4));
+      cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+      auto strokes = [&](Color c, double width) {
+        for (int i = 0; i < 4; i += 2) {
+          cairo_move_to(cr, p.x + ends[i].x, p.y + ends[i].y);
+          cairo_line_to(cr, p.x + ends[i + 1].x, p.y + ends[i + 1].y);
+        }
+        cairo_set_line_width(cr, width);
+        set_color(cr, c);
+        cairo_stroke(cr);
+      };
+      if (outline) strokes(kWhite, w + 2);
+      strokes(color, w);
       break;
     }
   }
 }
 
-void blend_rect(cv::Mat& img, cv::Rect r, Color color, double alpha) {
-  r &= cv::Rect(0, 0, img.cols, img.rows);
-  if (r.empty()) return;
-  cv::Mat roi = img(r);
-  cv::Mat fill(roi.size(), roi.type(), bgr(color));
-  cv::addWeighted(fill, alpha, roi, 1 - alpha, 0, roi);
+void Canvas::text(const std::string& text, Point anchor, HAlign h, VAlign v, double size_px,
+                  Color color, Weight weight, bool vertical) {
+  if (text.empty()) return;
+  cairo_t* cr = state_->cr;
+  cairo_save(cr);
+  cairo_translate(cr, anchor.x, anchor.y);
+  if (vertical) cairo_rotate(cr, -M_PI / 2);
+  const LayoutPtr layout = make_layout(cr, text, size_px, weight);
+  const Rect box = logical_box(layout.get());
+  // In the text's own frame (rotated for vertical text: its x runs up the figure, its y to the
+  // right) the anchor is a point of its box.
+  const HAlign along = vertical ? (v == VAlign::kTop      ? HAlign::kRight
+                                   : v == VAlign::kBottom ? HAlign::kLeft
+                                                          : HAlign::kCenter)
+                                : h;
+  const VAlign across = vertical ? (h == HAlign::kLeft    ? VAlign::kTop
+                                    : h == HAlign::kRight ? VAlign::kBottom
+                                                          : VAlign::kMiddle)
+                                 : v;
+  double x = -box.x, y = -box.y;
+  if (along == HAlign::kCenter) x -= box.width / 2;
+  if (along == HAlign::kRight) x -= box.width;
+  if (across == VAlign::kMiddle) y -= box.height / 2;
+  if (across == VAlign::kBottom) y -= box.height;
+  cairo_move_to(cr, x, y);
+  set_color(cr, color);
+  pango_cairo_show_layout(cr, layout.get());
+  cairo_restore(cr);
 }
 
-Image to_image(const cv::Mat& m) {
-  Image out;
-  out.width = m.cols;
-  out.height = m.rows;
-  out.rgb.resize(static_cast<std::size_t>(m.cols) * m.rows * 3);
-  for (int y = 0; y < m.rows; ++y) {
-    const auto* p = m.ptr<cv::Vec3b>(y);
-    for (int x = 0; x < m.cols; ++x) {
-      const std::size_t i = 3 * (static_cast<std::size_t>(y) * m.cols + x);
-      out.rgb[i] = p[x][2];
-      out.rgb[i + 1] = p[x][1];
-      out.rgb[i + 2] = p[x][0];
+void Canvas::image(const Image& image, int x, int y) {
+  if (image.width <= 0 || image.height <= 0) return;
+  cairo_surface_t* src = cairo_image_surface_create(CAIRO_FORMAT_RGB24, image.width, image.height);
+  cairo_surface_flush(src);
+  unsigned char* data = cairo_image_surface_get_data(src);
+  const int stride = cairo_image_surface_get_stride(src);
+  for (int r = 0; r < image.height; ++r) {
+    auto* row = reinterpret_cast<std::uint32_t*>(data + static_cast<std::ptrdiff_t>(r) * stride);
+    for (int c = 0; c < image.width; ++c) {
+      const Color px = image.at(c, r);
+      row[c] = (std::uint32_t{px.r} << 16) | (std::uint32_t{px.g} << 8) | px.b;
     }
   }
+  cairo_surface_mark_dirty(src);
+  cairo_t* cr = state_->cr;
+  cairo_save(cr);
+  cairo_set_source_surface(cr, src, x, y);
+  cairo_pattern_set_filter(cairo_get_source(cr), CAIRO_FILTER_NEAREST);
+  cairo_rectangle(cr, x, y, image.width, image.height);
+  cairo_fill(cr);
+  cairo_restore(cr);
+  cairo_surface_destroy(src);
+}
+
+void Canvas::figure(const Figure& figure, int x, int y) {
+  if (!figure.drawing) {
+    image(figure.image, x, y);
+    return;
+  }
+  cairo_t* cr = state_->cr;
+  cairo_save(cr);
+  cairo_set_source_surface(cr, figure.drawing->surface(), x, y);
+  cairo_rectangle(cr, x, y, figure.image.width, figure.image.height);
+  cairo_fill(cr);
+  cairo_restore(cr);
+}
+
+void Canvas::push_clip(Rect r) {
+  cairo_save(state_->cr);
+  cairo_rectangle(state_->cr, r.x, r.y, r.width, r.height);
+  cairo_clip(state_->cr);
+}
+
+void Canvas::pop_clip() {
+  cairo_restore(state_->cr);
+}
+
+Figure Canvas::finish(std::vector<AxesFrame> axes) {
+  cairo_destroy(state_->cr);
+  state_->cr = nullptr;
+  auto drawing = std::make_shared<Drawing>(state_->surface, width_, height_);
+  state_->surface = nullptr;  // owned by the drawing now
+  Figure out;
+  out.image = drawing->rasterise();
+  out.axes = std::move(axes);
+  out.drawing = std::move(drawing);
   return out;
-}
-
-cv::Mat to_mat(const Image& image) {
-  cv::Mat m(image.height, image.width, CV_8UC3);
-  for (int y = 0; y < image.height; ++y) {
-    auto* p = m.ptr<cv::Vec3b>(y);
-    for (int x = 0; x < image.width; ++x) {
-      const Color c = image.at(x, y);
-      p[x] = cv::Vec3b(c.b, c.g, c.r);
-    }
-  }
-  return m;
 }
 
 void check_figure_size(const char* what, int width, int height) {

@@ -1,58 +1,108 @@
 #pragma once
-// Private drawing primitives of somasim_figures (OpenCV lives only in core/figures/src).
+// Private drawing layer of somasim_figures: a vector canvas over cairo with text laid out by
+// Pango. Coordinates are pixels of the figure, x to the right and y downwards; pixel (c, r)
+// covers [c, c + 1) x [r, r + 1). Everything drawn is recorded, so one drawing gives the PNG's
+// pixels and the SVG's vectors. Cairo and Pango live only in core/figures/src.
+#include <array>
+#include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
-#include <opencv2/core.hpp>
-
 #include "somasim/figures/figure.hpp"
 
-namespace somasim::figures::detail {
+namespace somasim::figures {
 
-inline cv::Scalar bgr(Color c) {
-  return cv::Scalar(c.b, c.g, c.r);
-}
+/// The recorded vector drawing of a figure (opaque outside the library).
+class Drawing;
+
+namespace detail {
+
 inline constexpr Color kBlack{0, 0, 0};
 inline constexpr Color kWhite{255, 255, 255};
 inline constexpr Color kGridGrey{225, 225, 225};
 inline constexpr Color kDarkGrey{70, 70, 70};
 
-/// Text sizes: Hershey simplex scale for ~12-17 px glyphs, times the spec's font_scale.
+/// A point in figure pixels.
+struct Point {
+  double x = 0, y = 0;
+};
+
+/// An axis-aligned rectangle in figure pixels.
+struct Rect {
+  double x = 0, y = 0, width = 0, height = 0;
+  bool contains(Point p) const {
+    return p.x >= x && p.x < x + width && p.y >= y && p.y < y + height;
+  }
+};
+
+/// Text sizes [px of the font's em], times the spec's font_scale.
 struct Fonts {
   double scale = 1.0;
-  double tick() const { return 0.55 * scale; }
-  double label() const { return 0.65 * scale; }
-  double title() const { return 0.75 * scale; }
-  double legend() const { return 0.55 * scale; }
+  double tick() const { return 14.0 * scale; }
+  double label() const { return 16.0 * scale; }
+  double title() const { return 18.0 * scale; }
+  double legend() const { return 14.0 * scale; }
 };
 
 enum class HAlign { kLeft, kCenter, kRight };
 enum class VAlign { kTop, kMiddle, kBottom };
+enum class Weight { kNormal, kBold };
 
-/// Size {width, height} of the box used to align `text` (cap height; descenders hang below).
-cv::Size text_size(const std::string& text, double scale, int thickness = 1);
+/// Size {width, height} [px] of the box `text` is aligned by (its logical extents: ascent to
+/// descent, advance width), in the sans-serif face at `size_px`.
+struct TextSize {
+  double width = 0, height = 0;
+};
+TextSize text_size(const std::string& text, double size_px, Weight weight = Weight::kNormal);
 
-/// Draws anti-aliased text aligned at `anchor`; vertical = rotated 90 degrees counter-clockwise
-/// (reads bottom to top; the box is then height x width).
-void put_text(cv::Mat& img, const std::string& text, cv::Point2d anchor, HAlign h, VAlign v,
-              double scale, Color color, int thickness = 1, bool vertical = false);
+/// A figure being drawn: starts white, `width` x `height` px.
+class Canvas {
+ public:
+  Canvas(int width, int height);
+  ~Canvas();
+  Canvas(const Canvas&) = delete;
+  Canvas& operator=(const Canvas&) = delete;
 
-/// Anti-aliased polyline through pixel points (NaN breaks it), with dash pattern.
-void draw_polyline(cv::Mat& img, const std::vector<cv::Point2d>& pts, Color color, double width_px,
-                   LineStyle style);
+  int width() const { return width_; }
+  int height() const { return height_; }
 
-/// Marker of diameter size_px centred at p (white outline for contrast when `outline`).
-void draw_marker(cv::Mat& img, cv::Point2d p, Marker marker, double size_px, Color color,
-                 bool outline = false);
+  /// Fills the rectangle with `color` at opacity `alpha`.
+  void fill_rect(Rect r, Color color, double alpha = 1.0);
+  /// A 1 px outline along the inside of the pixels bounding `r`'s edges (crisp frame).
+  void frame_rect(Rect r, Color color);
+  /// A crisp 1 px line between pixel centres of integer pixels (a) and (b).
+  void pixel_line(std::array<int, 2> a, std::array<int, 2> b, Color color);
+  /// Polyline through points (NaN breaks it), round joins and caps, dashed or dotted.
+  void polyline(const std::vector<Point>& pts, Color color, double width_px, LineStyle style,
+                double alpha = 1.0);
+  /// Marker of diameter size_px centred at p (white outline for contrast when `outline`).
+  void marker(Point p, Marker marker, double size_px, Color color, bool outline = false);
+  /// Text aligned at `anchor` by its box (text_size); vertical = rotated 90 degrees
+  /// counter-clockwise (reads bottom to top; the box is then height x width). Invalid UTF-8 is
+  /// drawn with replacement characters.
+  void text(const std::string& text, Point anchor, HAlign h, VAlign v, double size_px, Color color,
+            Weight weight = Weight::kNormal, bool vertical = false);
+  /// Paints an RGB image with its top-left corner at pixel (x, y), pixel for pixel.
+  void image(const Image& image, int x, int y);
+  /// Replays another figure's drawing (or paints its image when it has none) at (x, y).
+  void figure(const Figure& figure, int x, int y);
 
-/// Blends `color` over the rectangle with opacity alpha.
-void blend_rect(cv::Mat& img, cv::Rect r, Color color, double alpha);
+  /// Restricts drawing to `r` until the matching pop_clip().
+  void push_clip(Rect r);
+  void pop_clip();
 
-/// Converts a BGR 8UC3 Mat to an Image and back.
-Image to_image(const cv::Mat& bgr_mat);
-cv::Mat to_mat(const Image& image);
+  /// Ends drawing: the figure with its pixels and its recorded vectors.
+  Figure finish(std::vector<AxesFrame> axes);
+
+ private:
+  struct State;
+  int width_ = 0, height_ = 0;
+  std::unique_ptr<State> state_;
+};
 
 /// Throws InputError "<what>: figure size W x H px is too small; expected at least 200 x 150".
 void check_figure_size(const char* what, int width, int height);
 
-}  // namespace somasim::figures::detail
+}  // namespace detail
+}  // namespace somasim::figures

@@ -2,8 +2,6 @@
 // Private: vertical colour bar with ticks and a label, right of a heatmap.
 #include <string>
 
-#include <opencv2/core.hpp>
-
 #include "canvas.hpp"
 #include "somasim/figures/colormap.hpp"
 
@@ -17,7 +15,7 @@ int colorbar_total_width(Range values, int bar_height, const std::string& label,
                          const Fonts& fonts);
 
 /// Draws the bar in `bar` (values increase upwards), ticks and labels to its right.
-void draw_colorbar(cv::Mat& img, cv::Rect bar, Colormap map, Range values, const std::string& label,
+void draw_colorbar(Canvas& canvas, Rect bar, Colormap map, Range values, const std::string& label,
                    const Fonts& fonts);
 
 }  // namespace somasim::figures::detail

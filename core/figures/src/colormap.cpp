@@ -1,7 +1,7 @@
-// Colour maps: OpenCV look-up tables, applied to values quantised to 256 levels.
+// Colour maps: OpenCV's look-up tables, applied to values quantised to 256 levels.
 #include "somasim/figures/colormap.hpp"
 
-#include <algorithm>
+#include <array>
 #include <cmath>
 
 #include <opencv2/imgproc.hpp>
@@ -10,6 +10,57 @@
 
 namespace somasim::figures {
 namespace detail {
+namespace {
+
+using Table = std::array<Color, 256>;
+
+int opencv_map(Colormap map) {
+  switch (map) {
+    case Colormap::kPlasma:
+      return cv::COLORMAP_PLASMA;
+    case Colormap::kInferno:
+      return cv::COLORMAP_INFERNO;
+    case Colormap::kMagma:
+      return cv::COLORMAP_MAGMA;
+    case Colormap::kCividis:
+      return cv::COLORMAP_CIVIDIS;
+    case Colormap::kTurbo:
+      return cv::COLORMAP_TURBO;
+    case Colormap::kJet:
+      return cv::COLORMAP_JET;
+    case Colormap::kViridis:
+    case Colormap::kGray:
+      break;
+  }
+  return cv::COLORMAP_VIRIDIS;
+}
+
+Table make_table(Colormap map) {
+  cv::Mat levels(1, 256, CV_8UC1);
+  for (int i = 0; i < 256; ++i) levels.at<std::uint8_t>(0, i) = static_cast<std::uint8_t>(i);
+  cv::Mat bgr;
+  if (map == Colormap::kGray)
+    cv::cvtColor(levels, bgr, cv::COLOR_GRAY2BGR);
+  else
+    cv::applyColorMap(levels, bgr, opencv_map(map));
+  Table t;
+  for (int i = 0; i < 256; ++i) {
+    const cv::Vec3b c = bgr.at<cv::Vec3b>(0, i);
+    t[static_cast<std::size_t>(i)] = Color{c[2], c[1], c[0]};
+  }
+  return t;
+}
+
+const Table& table(Colormap map) {
+  static const std::array<Table, 8> kTables = {
+      make_table(Colormap::kViridis), make_table(Colormap::kPlasma),
+      make_table(Colormap::kInferno), make_table(Colormap::kMagma),
+      make_table(Colormap::kCividis), make_table(Colormap::kTurbo),
+      make_table(Colormap::kJet),     make_table(Colormap::kGray)};
+  return kTables[static_cast<std::size_t>(map)];
+}
+
+}  // namespace
 
 std::uint8_t quantise(double t) {
   if (!(t > 0)) return 0;  // also NaN (callers handle NaN before)
@@ -17,48 +68,14 @@ std::uint8_t quantise(double t) {
   return static_cast<std::uint8_t>(std::lround(t * 255.0));
 }
 
-cv::Mat apply_colormap(const cv::Mat& levels, Colormap map) {
-  cv::Mat out;
-  if (map == Colormap::kGray) {
-    cv::cvtColor(levels, out, cv::COLOR_GRAY2BGR);
-    return out;
-  }
-  int cv_map = cv::COLORMAP_VIRIDIS;
-  switch (map) {
-    case Colormap::kViridis:
-      cv_map = cv::COLORMAP_VIRIDIS;
-      break;
-    case Colormap::kPlasma:
-      cv_map = cv::COLORMAP_PLASMA;
-      break;
-    case Colormap::kInferno:
-      cv_map = cv::COLORMAP_INFERNO;
-      break;
-    case Colormap::kMagma:
-      cv_map = cv::COLORMAP_MAGMA;
-      break;
-    case Colormap::kCividis:
-      cv_map = cv::COLORMAP_CIVIDIS;
-      break;
-    case Colormap::kTurbo:
-      cv_map = cv::COLORMAP_TURBO;
-      break;
-    case Colormap::kJet:
-      cv_map = cv::COLORMAP_JET;
-      break;
-    case Colormap::kGray:
-      break;
-  }
-  cv::applyColorMap(levels, out, cv_map);
-  return out;
+Color level_color(Colormap map, std::uint8_t level) {
+  return table(map)[level];
 }
 
 }  // namespace detail
 
 Color colormap_color(Colormap map, double t) {
-  cv::Mat level(1, 1, CV_8UC1, cv::Scalar(detail::quantise(t)));
-  const cv::Vec3b c = detail::apply_colormap(level, map).at<cv::Vec3b>(0, 0);
-  return Color{c[2], c[1], c[0]};
+  return detail::level_color(map, detail::quantise(t));
 }
 
 }  // namespace somasim::figures

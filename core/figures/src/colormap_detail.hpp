@@ -2,8 +2,6 @@
 // Private colour-map helpers shared by the heatmap and the colour bar.
 #include <cstdint>
 
-#include <opencv2/core.hpp>
-
 #include "somasim/figures/colormap.hpp"
 
 namespace somasim::figures::detail {
@@ -11,7 +9,7 @@ namespace somasim::figures::detail {
 /// Normalised value t -> level 0..255 (clamped; NaN -> 0).
 std::uint8_t quantise(double t);
 
-/// CV_8UC1 levels -> CV_8UC3 BGR colours.
-cv::Mat apply_colormap(const cv::Mat& levels, Colormap map);
+/// Colour of a quantised level.
+Color level_color(Colormap map, std::uint8_t level);
 
 }  // namespace somasim::figures::detail

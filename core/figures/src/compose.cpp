@@ -32,24 +32,23 @@ Figure compose(const std::vector<Figure>& panels, int gap, const std::string& ti
   }
   const Fonts fonts{font_scale};
   const int top = title.empty() ? 0 : title_height(title, fonts);
-  cv::Mat img(h + top, w, CV_8UC3, bgr(kWhite));
-  Figure out;
+  Canvas canvas(w, h + top);
+  std::vector<AxesFrame> axes;
   int x = 0, y = top;
   for (const auto& p : panels) {
-    to_mat(p.image).copyTo(img(cv::Rect(x, y, p.image.width, p.image.height)));
+    canvas.figure(p, x, y);
     for (AxesFrame f : p.axes) {
       f.left += x;
       f.top += y;
-      out.axes.push_back(f);
+      axes.push_back(f);
     }
     if (row)
       x += p.image.width + gap;
     else
       y += p.image.height + gap;
   }
-  draw_title(img, title, fonts);
-  out.image = to_image(img);
-  return out;
+  draw_title(canvas, title, fonts);
+  return canvas.finish(std::move(axes));
 }
 
 }  // namespace

@@ -6,8 +6,6 @@
 #include <limits>
 #include <sstream>
 
-#include <opencv2/imgproc.hpp>
-
 #include "axes.hpp"
 #include "canvas.hpp"
 #include "colorbar.hpp"
@@ -101,9 +99,9 @@ double sample(const Grid& g, double fr, double fc, Resampling mode) {
   return (1 - tr) * ((1 - tc) * v00 + tc * v01) + tr * ((1 - tc) * v10 + tc * v11);
 }
 
-void fill_plot(cv::Mat& img, const AxesFrame& f, const HeatmapSpec& s, Range vr) {
-  cv::Mat levels(f.height, f.width, CV_8UC1);
-  cv::Mat missing(f.height, f.width, CV_8UC1, cv::Scalar(0));
+void fill_plot(Canvas& canvas, const AxesFrame& f, const HeatmapSpec& s, Range vr) {
+  Image cells{f.width, f.height,
+              std::vector<std::uint8_t>(static_cast<std::size_t>(f.width) * f.height * 3)};
   std::vector<double> fc(f.width);
   for (int c = 0; c < f.width; ++c) {
     const double x = f.x.lo + (c + 0.5) / f.width * (f.x.hi - f.x.lo);
@@ -112,40 +110,32 @@ void fill_plot(cv::Mat& img, const AxesFrame& f, const HeatmapSpec& s, Range vr)
   for (int r = 0; r < f.height; ++r) {
     const double y = f.y.hi - (r + 0.5) / f.height * (f.y.hi - f.y.lo);
     const double fr = frac_index(y, s.y_min, s.y_max, s.grid.rows, s.layout);
-    auto* lp = levels.ptr<std::uint8_t>(r);
-    auto* mp = missing.ptr<std::uint8_t>(r);
     for (int c = 0; c < f.width; ++c) {
       const double v = sample(s.grid, fr, fc[c], s.resampling);
-      if (std::isnan(v)) {
-        lp[c] = 0;
-        mp[c] = 1;
-      } else {
-        lp[c] = quantise((v - vr.lo) / (vr.hi - vr.lo));
-      }
+      const Color col = std::isnan(v)
+                            ? kMissing
+                            : level_color(s.colormap, quantise((v - vr.lo) / (vr.hi - vr.lo)));
+      const std::size_t i = 3 * (static_cast<std::size_t>(r) * f.width + c);
+      cells.rgb[i] = col.r;
+      cells.rgb[i + 1] = col.g;
+      cells.rgb[i + 2] = col.b;
     }
   }
-  cv::Mat colours = apply_colormap(levels, s.colormap);
-  colours.setTo(bgr(kMissing), missing);
-  colours.copyTo(img(plot_rect(f)));
+  canvas.image(cells, f.left, f.top);
 }
 
-void draw_edges(cv::Mat& img, const AxesFrame& f, const HeatmapSpec& s) {
-  if (s.x_edges.empty() && s.y_edges.empty()) return;
-  cv::Mat roi = img(plot_rect(f));
-  cv::Mat lines = roi.clone();
+void draw_edges(Canvas& canvas, const AxesFrame& f, const HeatmapSpec& s) {
+  const double top = f.top, bottom = f.top + f.height, left = f.left, right = f.left + f.width;
   for (double e : s.x_edges) {
-    const double x = px(f, e, f.y.lo).x - f.left;
-    if (x >= 0.5 && x <= f.width - 0.5)
-      draw_polyline(lines, {{x, 0}, {x, static_cast<double>(f.height)}}, kWhite, 1,
-                    LineStyle::kSolid);
+    const double x = px(f, e, f.y.lo).x;
+    if (x >= left + 0.5 && x <= right - 0.5)
+      canvas.polyline({{x, top}, {x, bottom}}, kWhite, 1, LineStyle::kSolid, 0.55);
   }
   for (double e : s.y_edges) {
-    const double y = px(f, f.x.lo, e).y - f.top;
-    if (y >= 0.5 && y <= f.height - 0.5)
-      draw_polyline(lines, {{0, y}, {static_cast<double>(f.width), y}}, kWhite, 1,
-                    LineStyle::kSolid);
+    const double y = px(f, f.x.lo, e).y;
+    if (y >= top + 0.5 && y <= bottom - 0.5)
+      canvas.polyline({{left, y}, {right, y}}, kWhite, 1, LineStyle::kSolid, 0.55);
   }
-  cv::addWeighted(lines, 0.55, roi, 0.45, 0, roi);
 }
 
 }  // namespace
@@ -169,53 +159,55 @@ Figure render_heatmap(const HeatmapSpec& s) {
   const AxisTicks xt = make_x_ticks(xr, plot_w);
   const AxesFrame frame{left, top, plot_w, plot_h, xr, yr};
 
-  cv::Mat img(s.height, s.width, CV_8UC3, bgr(kWhite));
-  fill_plot(img, frame, s, vr);
-  draw_edges(img, frame, s);
+  Canvas canvas(s.width, s.height);
+  fill_plot(canvas, frame, s, vr);
+  canvas.push_clip(plot_rect(frame));
+  draw_edges(canvas, frame, s);
 
-  // Overlays, clipped to the plot area (drawn in its ROI with shifted coordinates).
-  cv::Mat roi = img(plot_rect(frame));
-  const cv::Point2d origin(frame.left, frame.top);
+  // Overlays, clipped to the plot area.
   std::vector<LegendEntry> legend;
-  std::vector<cv::Point2d> data_px;
+  std::vector<Point> data_px;
   std::size_t next = 0;
   for (const auto& l : s.lines) {
     const Color c = l.color.value_or(kOverlay[next++ % std::size(kOverlay)]);
-    std::vector<cv::Point2d> pts;
+    std::vector<Point> pts;
+    const std::size_t first = data_px.size();
     for (std::size_t i = 0; i < l.x.size(); ++i) {
-      const cv::Point2d p = px(frame, l.x[i], l.y[i]);
-      pts.push_back(p - origin);
+      const Point p = px(frame, l.x[i], l.y[i]);
+      pts.push_back(p);
       if (!std::isfinite(p.x) || !std::isfinite(p.y)) continue;
-      if (i > 0) {  // densify so that kBest legend placement sees the whole segment
-        const cv::Point2d a = px(frame, l.x[i - 1], l.y[i - 1]);
-        const int n = std::isfinite(a.x) && std::isfinite(a.y)
-                          ? std::min(200, static_cast<int>(cv::norm(p - a) / 10))
-                          : 0;
-        for (int k = 1; k < n; ++k) data_px.push_back(a + (p - a) * (double(k) / n));
-      }
+      if (i > 0) densify(px(frame, l.x[i - 1], l.y[i - 1]), p, 200, data_px);
       data_px.push_back(p);
     }
-    draw_polyline(roi, pts, kWhite, l.width_px + 2.5, LineStyle::kSolid);
-    draw_polyline(roi, pts, c, l.width_px, l.style);
-    legend.push_back({l.label, c, true, l.style, l.width_px, std::nullopt, 8, true});
+    canvas.polyline(pts, kWhite, l.width_px + 2.5, LineStyle::kSolid);
+    canvas.polyline(pts, c, l.width_px, l.style);
+    // Only what can be seen gets a legend entry.
+    if (any_inside(frame, data_px, first))
+      legend.push_back({l.label, c, true, l.style, l.width_px, std::nullopt, 8, true});
   }
   for (const auto& p : s.points) {
     const Color c = p.color.value_or(kOverlay[next++ % std::size(kOverlay)]);
+    const std::size_t first = data_px.size();
     for (std::size_t i = 0; i < p.x.size(); ++i) {
-      const cv::Point2d q = px(frame, p.x[i], p.y[i]);
-      draw_marker(roi, q - origin, p.marker, p.size_px, c, true);
+      const Point q = px(frame, p.x[i], p.y[i]);
+      canvas.marker(q, p.marker, p.size_px, c, true);
       data_px.push_back(q);
     }
-    legend.push_back({p.label, c, false, LineStyle::kSolid, 0, p.marker, p.size_px, true});
+    if (any_inside(frame, data_px, first))
+      legend.push_back({p.label, c, false, LineStyle::kSolid, 0, p.marker, p.size_px, true});
   }
 
+  canvas.pop_clip();
   AxesText text{s.x_label, s.y_label, true, y_label_center(fonts)};
-  draw_axes(img, frame, xt, yt, text, fonts);
-  draw_colorbar(img, {frame.left + frame.width + kColorbarGap, frame.top, kColorbarWidth, plot_h},
-                s.colormap, vr, s.colorbar_label, fonts);
-  draw_legend(img, frame, legend, s.legend, fonts, data_px);
-  draw_title(img, s.title, fonts);
-  return Figure{to_image(img), {frame}};
+  draw_axes(canvas, frame, xt, yt, text, fonts);
+  draw_colorbar(
+      canvas,
+      {static_cast<double>(frame.left + frame.width + kColorbarGap), static_cast<double>(frame.top),
+       static_cast<double>(kColorbarWidth), static_cast<double>(plot_h)},
+      s.colormap, vr, s.colorbar_label, fonts);
+  draw_legend(canvas, frame, legend, s.legend, fonts, data_px);
+  draw_title(canvas, s.title, fonts);
+  return canvas.finish({frame});
 }
 
 }  // namespace somasim::figures

@@ -4,25 +4,24 @@
 #include <array>
 #include <cmath>
 
-#include <opencv2/imgproc.hpp>
-
 #include "axes.hpp"
 
 namespace somasim::figures::detail {
 
-void draw_legend(cv::Mat& img, const AxesFrame& f, const std::vector<LegendEntry>& all,
-                 LegendPosition pos, const Fonts& fonts, const std::vector<cv::Point2d>& data_px) {
+void draw_legend(Canvas& canvas, const AxesFrame& f, const std::vector<LegendEntry>& all,
+                 LegendPosition pos, const Fonts& fonts, const std::vector<Point>& data_px) {
   std::vector<LegendEntry> entries;
   for (const auto& e : all)
     if (!e.label.empty()) entries.push_back(e);
   if (entries.empty() || pos == LegendPosition::kNone) return;
 
-  const double scale = fonts.legend();
-  const int lh = label_height(scale);
-  const int row_h = std::max(lh + 10, 20);
+  const double size = fonts.legend();
+  const int lh = label_height(size);
+  const int row_h = std::max(lh + 4, 20);
   const int sample_w = 34, pad = 8, inset = 8;
   int text_w = 0;
-  for (const auto& e : entries) text_w = std::max(text_w, text_size(e.label, scale).width);
+  for (const auto& e : entries)
+    text_w = std::max(text_w, static_cast<int>(std::ceil(text_size(e.label, size).width)));
   const int box_w = pad + sample_w + 8 + text_w + pad;
   const int box_h = pad / 2 + row_h * static_cast<int>(entries.size()) + pad / 2;
 
@@ -34,39 +33,37 @@ void draw_legend(cv::Mat& img, const AxesFrame& f, const std::vector<LegendEntry
     const bool top = p == LegendPosition::kTopRight || p == LegendPosition::kTopLeft;
     const int x = right ? f.left + f.width - inset - box_w : f.left + inset;
     const int y = top ? f.top + inset : f.top + f.height - inset - box_h;
-    return cv::Rect(x, y, box_w, box_h);
+    return Rect{static_cast<double>(x), static_cast<double>(y), static_cast<double>(box_w),
+                static_cast<double>(box_h)};
   };
   if (pos == LegendPosition::kBest) {
     pos = LegendPosition::kTopRight;
     std::size_t best = static_cast<std::size_t>(-1);
     for (auto c : corners) {
-      const cv::Rect r = rect_at(c);
+      const Rect r = rect_at(c);
       std::size_t n = 0;
       for (const auto& p : data_px)
-        if (std::isfinite(p.x) && std::isfinite(p.y) &&
-            r.contains(
-                cv::Point(static_cast<int>(std::floor(p.x)), static_cast<int>(std::floor(p.y)))))
-          ++n;
+        if (std::isfinite(p.x) && std::isfinite(p.y) && r.contains(p)) ++n;
       if (n < best) {
         best = n;
         pos = c;
       }
     }
   }
-  const cv::Rect box = rect_at(pos);
-  blend_rect(img, box, kWhite, 0.85);
-  cv::rectangle(img, box, bgr(Color{160, 160, 160}), 1);
+  const Rect box = rect_at(pos);
+  canvas.fill_rect(box, kWhite, 0.85);
+  canvas.frame_rect(box, Color{160, 160, 160});
   for (std::size_t i = 0; i < entries.size(); ++i) {
     const auto& e = entries[i];
     const double cy = box.y + pad / 2.0 + row_h * (static_cast<double>(i) + 0.5);
     const double x0 = box.x + pad, x1 = x0 + sample_w;
     if (e.line) {
       if (e.halo)
-        draw_polyline(img, {{x0, cy}, {x1, cy}}, kWhite, e.width_px + 2.5, LineStyle::kSolid);
-      draw_polyline(img, {{x0, cy}, {x1, cy}}, e.color, e.width_px, e.style);
+        canvas.polyline({{x0, cy}, {x1, cy}}, kWhite, e.width_px + 2.5, LineStyle::kSolid);
+      canvas.polyline({{x0, cy}, {x1, cy}}, e.color, e.width_px, e.style);
     }
-    if (e.marker) draw_marker(img, {(x0 + x1) / 2, cy}, *e.marker, e.marker_px, e.color, e.halo);
-    put_text(img, e.label, {x1 + 8, cy}, HAlign::kLeft, VAlign::kMiddle, scale, kBlack);
+    if (e.marker) canvas.marker({(x0 + x1) / 2, cy}, *e.marker, e.marker_px, e.color, e.halo);
+    canvas.text(e.label, {x1 + 8, cy}, HAlign::kLeft, VAlign::kMiddle, size, kBlack);
   }
 }
 

@@ -4,8 +4,6 @@
 #include <string>
 #include <vector>
 
-#include <opencv2/core.hpp>
-
 #include "canvas.hpp"
 
 namespace somasim::figures::detail {
@@ -23,7 +21,7 @@ struct LegendEntry {
 
 /// Draws the entries with a non-empty label; `data_px` are the plotted points in pixels (used by
 /// kBest to pick the least covered corner).
-void draw_legend(cv::Mat& img, const AxesFrame& f, const std::vector<LegendEntry>& entries,
-                 LegendPosition pos, const Fonts& fonts, const std::vector<cv::Point2d>& data_px);
+void draw_legend(Canvas& canvas, const AxesFrame& f, const std::vector<LegendEntry>& entries,
+                 LegendPosition pos, const Fonts& fonts, const std::vector<Point>& data_px);
 
 }  // namespace somasim::figures::detail

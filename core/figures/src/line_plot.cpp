@@ -6,8 +6,6 @@
 #include <limits>
 #include <sstream>
 
-#include <opencv2/imgproc.hpp>
-
 #include "axes.hpp"
 #include "canvas.hpp"
 #include "legend.hpp"
@@ -67,55 +65,59 @@ struct PanelLayout {
   int top = 0, height = 0;
 };
 
-void draw_panel(cv::Mat& img, const AxesFrame& f, const PanelLayout& pl, const AxisTicks& xt,
+void draw_panel(Canvas& canvas, const AxesFrame& f, const PanelLayout& pl, const AxisTicks& xt,
                 const AxesText& text, const Fonts& fonts) {
   const LinePlotSpec& p = *pl.spec;
-  if (p.grid) draw_grid(img, f, xt, pl.yt);
-  cv::Mat roi = img(plot_rect(f));
-  const cv::Point2d origin(f.left, f.top);
+  if (p.grid) draw_grid(canvas, f, xt, pl.yt);
+  canvas.push_clip(plot_rect(f));
   std::vector<LegendEntry> legend, ref_legend;  // series first, then reference lines
-  std::vector<cv::Point2d> data_px;
+  std::vector<Point> data_px;
+  const double left = f.left, right = f.left + f.width, top = f.top, bottom = f.top + f.height;
   const Color ref_default{70, 70, 70};
   for (const auto& h : p.hlines) {
     const Color c = h.color.value_or(ref_default);
-    const double y = px(f, f.x.lo, h.value).y - f.top;
-    draw_polyline(roi, {{0, y}, {static_cast<double>(f.width), y}}, c, h.width_px, h.style);
-    ref_legend.push_back({h.label, c, true, h.style, h.width_px, std::nullopt, 8, false});
-    for (int x = 0; x <= f.width; x += 8) data_px.push_back({origin.x + x, origin.y + y});
+    const double y = px(f, f.x.lo, h.value).y;
+    canvas.polyline({{left, y}, {right, y}}, c, h.width_px, h.style);
+    if (y >= top && y <= bottom)
+      ref_legend.push_back({h.label, c, true, h.style, h.width_px, std::nullopt, 8, false});
+    for (int x = 0; x <= f.width; x += 8) data_px.push_back({left + x, y});
   }
   for (const auto& v : p.vlines) {
     const Color c = v.color.value_or(ref_default);
-    const double x = px(f, v.value, f.y.lo).x - f.left;
-    draw_polyline(roi, {{x, 0}, {x, static_cast<double>(f.height)}}, c, v.width_px, v.style);
-    ref_legend.push_back({v.label, c, true, v.style, v.width_px, std::nullopt, 8, false});
-    for (int y = 0; y <= f.height; y += 8) data_px.push_back({origin.x + x, origin.y + y});
+    const double x = px(f, v.value, f.y.lo).x;
+    canvas.polyline({{x, top}, {x, bottom}}, c, v.width_px, v.style);
+    if (x >= left && x <= right)
+      ref_legend.push_back({v.label, c, true, v.style, v.width_px, std::nullopt, 8, false});
+    for (int y = 0; y <= f.height; y += 8) data_px.push_back({x, top + y});
   }
   std::size_t next = 0;
   for (const auto& s : p.series) {
     const Color c = s.color.value_or(palette()[next++ % palette().size()]);
-    std::vector<cv::Point2d> pts;
+    std::vector<Point> pts;
     pts.reserve(s.x.size());
-    cv::Point2d prev(NAN, NAN);
+    Point prev{NAN, NAN};
+    const std::size_t first = data_px.size();
     for (std::size_t i = 0; i < s.x.size(); ++i) {
-      const cv::Point2d q = px(f, s.x[i], s.y[i]);
-      pts.push_back(q - origin);
-      const bool ok = std::isfinite(q.x) && std::isfinite(q.y);
-      if (ok && std::isfinite(prev.x) && std::isfinite(prev.y)) {
-        // Densify long segments so that kBest legend placement sees them.
-        const int n = std::min(50, static_cast<int>(cv::norm(q - prev) / 10));
-        for (int k = 1; k < n; ++k) data_px.push_back(prev + (q - prev) * (double(k) / n));
+      const Point q = px(f, s.x[i], s.y[i]);
+      pts.push_back(q);
+      if (std::isfinite(q.x) && std::isfinite(q.y)) {
+        densify(prev, q, 50, data_px);
+        data_px.push_back(q);
       }
-      if (ok) data_px.push_back(q);
       prev = q;
     }
-    draw_polyline(roi, pts, c, s.width_px, s.style);
+    const bool visible = any_inside(f, data_px, first);
+    canvas.polyline(pts, c, s.width_px, s.style);
     if (s.marker)
-      for (const auto& q : pts) draw_marker(roi, q, *s.marker, 4 + 2 * s.width_px, c);
-    legend.push_back({s.label, c, true, s.style, s.width_px, s.marker, 4 + 2 * s.width_px});
+      for (const auto& q : pts) canvas.marker(q, *s.marker, 4 + 2 * s.width_px, c);
+    // Only what can be seen gets a legend entry.
+    if (visible)
+      legend.push_back({s.label, c, true, s.style, s.width_px, s.marker, 4 + 2 * s.width_px});
   }
+  canvas.pop_clip();
   legend.insert(legend.end(), ref_legend.begin(), ref_legend.end());
-  draw_axes(img, f, xt, pl.yt, text, fonts);
-  draw_legend(img, f, legend, p.legend, fonts, data_px);
+  draw_axes(canvas, f, xt, pl.yt, text, fonts);
+  draw_legend(canvas, f, legend, p.legend, fonts, data_px);
 }
 
 Figure render_panels(const char* what, const std::string& title, const std::string& x_label,
@@ -129,7 +131,7 @@ Figure render_panels(const char* what, const std::string& title, const std::stri
 
   const int top = title_height(title, fonts);
   const int bottom = bottom_margin(true, !x_label.empty(), fonts);
-  const int panel_title_h = label_height(fonts.label()) + 14;
+  const int panel_title_h = label_height(fonts.label()) + 8;
   const int gap = 16;
   // Panel heights: single plot fills the figure; stacked panels have panel_height each.
   std::vector<PanelLayout> layout;
@@ -156,29 +158,29 @@ Figure render_panels(const char* what, const std::string& title, const std::stri
   }
   int plot_w = width - left - 2 * kPad;
   AxisTicks xt = make_x_ticks(xr, plot_w);
-  const int half_last = text_size(xt.labels.back(), fonts.tick()).width / 2;
+  const int half_last =
+      static_cast<int>(std::ceil(text_size(xt.labels.back(), fonts.tick()).width / 2));
   plot_w = width - left - std::max(2 * kPad, half_last + kPad);
   if (plot_w < 50)
     throw InputError(std::string(what) + ": figure width " + std::to_string(width) +
                      " px leaves no room for the plot; enlarge it");
   xt = make_x_ticks(xr, plot_w);
 
-  cv::Mat img(fig_h, width, CV_8UC3, bgr(kWhite));
-  Figure out;
+  Canvas canvas(width, fig_h);
+  std::vector<AxesFrame> axes;
   for (std::size_t i = 0; i < layout.size(); ++i) {
     const PanelLayout& pl = layout[i];
     const AxesFrame f{left, pl.top, plot_w, pl.height, xr, pl.yr};
     const bool last = i + 1 == layout.size();
     AxesText text{last ? x_label : "", pl.spec->y_label, last, y_label_center(fonts)};
-    draw_panel(img, f, pl, xt, text, fonts);
+    draw_panel(canvas, f, pl, xt, text, fonts);
     if (layout.size() > 1 || panel_height > 0)
-      put_text(img, pl.spec->title, {static_cast<double>(left), pl.top - 9.0}, HAlign::kLeft,
-               VAlign::kBottom, fonts.label(), kBlack, 1);
-    out.axes.push_back(f);
+      canvas.text(pl.spec->title, {static_cast<double>(left), pl.top - 5.0}, HAlign::kLeft,
+                  VAlign::kBottom, fonts.label(), kBlack);
+    axes.push_back(f);
   }
-  draw_title(img, title, fonts);
-  out.image = to_image(img);
-  return out;
+  draw_title(canvas, title, fonts);
+  return canvas.finish(std::move(axes));
 }
 
 }  // namespace

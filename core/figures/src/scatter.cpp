@@ -7,8 +7,6 @@
 #include <map>
 #include <sstream>
 
-#include <opencv2/imgproc.hpp>
-
 #include "axes.hpp"
 #include "canvas.hpp"
 #include "legend.hpp"
@@ -113,32 +111,35 @@ Figure render_scatter(const ScatterSpec& s) {
   xt = make_x_ticks(xr, plot_w);
   const AxesFrame f{left, top, plot_w, plot_h, xr, yr};
 
-  cv::Mat img(s.height, s.width, CV_8UC3, bgr(kWhite));
-  if (s.grid) draw_grid(img, f, xt, yt);
-  cv::Mat roi = img(plot_rect(f));
-  const cv::Point2d origin(f.left, f.top);
+  Canvas canvas(s.width, s.height);
+  if (s.grid) draw_grid(canvas, f, xt, yt);
+  canvas.push_clip(plot_rect(f));
   std::vector<LegendEntry> legend;
-  std::vector<cv::Point2d> data_px;
+  std::vector<Point> data_px;
   std::size_t next = 0;
   for (const auto& g : s.groups) {
     const Color c = g.color.value_or(palette()[next++ % palette().size()]);
+    const std::size_t first = data_px.size();
     for (std::size_t i = 0; i < g.x.size(); ++i) {
-      const cv::Point2d q = px(f, g.x[i], g.y[i]);
-      draw_marker(roi, q - origin, g.marker, g.size_px, c);
+      const Point q = px(f, g.x[i], g.y[i]);
+      canvas.marker(q, g.marker, g.size_px, c);
       data_px.push_back(q);
     }
-    legend.push_back({g.label, c, false, LineStyle::kSolid, 0, g.marker, g.size_px});
+    // Only what can be seen gets a legend entry.
+    if (any_inside(f, data_px, first))
+      legend.push_back({g.label, c, false, LineStyle::kSolid, 0, g.marker, g.size_px});
   }
   for (const auto& g : s.groups)
     for (std::size_t i = 0; i < g.annotations.size(); ++i) {
-      const cv::Point2d q = px(f, g.x[i], g.y[i]) - origin;
-      put_text(roi, g.annotations[i], {q.x + g.size_px / 2 + 2, q.y - g.size_px / 2 - 1},
-               HAlign::kLeft, VAlign::kBottom, fonts.tick() * 0.8, kDarkGrey);
+      const Point q = px(f, g.x[i], g.y[i]);
+      canvas.text(g.annotations[i], {q.x + g.size_px / 2 + 2, q.y - g.size_px / 2 + 2},
+                  HAlign::kLeft, VAlign::kBottom, fonts.tick() * 0.8, kDarkGrey);
     }
-  draw_axes(img, f, xt, yt, AxesText{s.x_label, s.y_label, true, y_label_center(fonts)}, fonts);
-  draw_legend(img, f, legend, s.legend, fonts, data_px);
-  draw_title(img, s.title, fonts);
-  return Figure{to_image(img), {f}};
+  canvas.pop_clip();
+  draw_axes(canvas, f, xt, yt, AxesText{s.x_label, s.y_label, true, y_label_center(fonts)}, fonts);
+  draw_legend(canvas, f, legend, s.legend, fonts, data_px);
+  draw_title(canvas, s.title, fonts);
+  return canvas.finish({f});
 }
 
 }  // namespace somasim::figures

@@ -27,7 +27,8 @@ void add_regression(figures::HeatmapSpec& spec, const TaxelMap& map) {
     pl.x.push_back(inside ? 100.0 * d : NAN);
     pl.y.push_back(inside ? t : NAN);
   }
-  pl.label = fmt::format("regression (Fig 8): D = {:.1f} cm at TTC = 0", 100.0 * *offset);
+  pl.label =
+      fmt::format("regression line (paper A, Fig. 8): D = {:.1f} cm at TTC = 0", 100.0 * *offset);
   pl.color = figures::Color{230, 30, 30};
   spec.lines.push_back(std::move(pl));
 }
@@ -68,9 +69,9 @@ figures::HeatmapSpec landscape_heatmap(const TaxelMap& map, const LandscapeOptio
     for (int j = 0; j <= g.ttc_bins; ++j) spec.y_edges.push_back(g.ttc_min + j * g.ttc_width());
   }
   spec.title = options.title;
-  spec.x_label = "D [cm]";
-  spec.y_label = "TTC [s]";
-  spec.colorbar_label = "activation";
+  spec.x_label = "distance to the taxel, D [cm]";
+  spec.y_label = "time to contact, TTC [s]";
+  spec.colorbar_label = "activation (probability of contact)";
   if (options.regression_line) add_regression(spec, map);
   if (options.floor_line)
     if (const auto floor = estimate_offset_floor(map))

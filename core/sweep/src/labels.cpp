@@ -47,10 +47,10 @@ std::string parameter_label(const std::string& path, const std::string& doc,
   if (!unit.empty()) label += " [" + unit + "]";
   if (doc.empty()) return label;
   std::string text = doc;
-  constexpr std::size_t kMax = 50;
+  constexpr std::size_t kMax = 70;
   if (text.size() > kMax) {
     const std::size_t cut = text.rfind(' ', kMax);
-    text = text.substr(0, cut == std::string::npos ? kMax : cut) + " ...";
+    text = text.substr(0, cut == std::string::npos ? kMax : cut) + " …";
   }
   return label + ": " + text;
 }

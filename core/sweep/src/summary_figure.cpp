@@ -1,5 +1,6 @@
 // The summary figure of a sweep: one metric against one swept value, mean ± sd over seeds.
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <map>
 
@@ -86,9 +87,12 @@ int draw_summary(const SweepTable& table, const std::string& metric, const std::
       against_label.empty() ? parameter_label(against, "", "") : against_label;
   const std::size_t dot = against.rfind('.');
   figures::LinePlotSpec plot;
-  plot.title = fmt::format("{} against {}: mean and sd over {} seed{}", metric_label(metric),
-                           dot == std::string::npos ? against : against.substr(dot + 1), most_seeds,
-                           most_seeds == 1 ? "" : "s");
+  std::string title =
+      fmt::format("{} against the swept {}: mean ± 1 sd over {} seed{}", metric_label(metric),
+                  dot == std::string::npos ? against : against.substr(dot + 1), most_seeds,
+                  most_seeds == 1 ? "" : "s");
+  title[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(title[0])));
+  plot.title = title;
   plot.x_label = numeric_x ? x_words : x_words + " (value index)";
   plot.y_label = metric_label(metric);
   int points = 0;
@@ -107,10 +111,10 @@ int draw_summary(const SweepTable& table, const std::string& metric, const std::
     low.style = high.style = figures::LineStyle::kDotted;
     low.width_px = high.width_px = 1.0;
     low.color = high.color = mean.color = c;
-    if (groups.size() == 1) low.label = "mean -/+ 1 sd";
+    if (groups.size() == 1) low.label = "mean ± 1 sd";
     plot.series.insert(plot.series.end(), {mean, low, high});
   }
-  figures::save_png(figures::render_line_plot(plot), png);
+  figures::save_figure(figures::render_line_plot(plot), png);
   return points;
 }
 

@@ -132,8 +132,13 @@ TEST(Heatmap, WritesADecodablePngOfTheRenderedPixels) {
   TempDir dir;
   const auto g = fig::render_heatmap(x_gradient());
   const auto path = dir.path() / "map.png";
-  fig::save_png(g, path);
+  fig::save_figure(g, path);
   ASSERT_TRUE(std::filesystem::exists(path));
+  // The vector drawing beside it.
+  const std::string svg = fig::test::read_bytes(dir.path() / "map.svg");
+  EXPECT_NE(svg.find("<svg"), std::string::npos);
+  EXPECT_NE(svg.find("width=\"900\""), std::string::npos);
+  EXPECT_NE(svg.find("<image"), std::string::npos);  // the cells, embedded
   const fig::Image back = fig::load_png(path);
   EXPECT_EQ(back.width, 900);
   EXPECT_EQ(back.height, 600);
@@ -147,11 +152,14 @@ TEST(Heatmap, SameInputGivesIdenticalBytes) {
   fig::HeatmapSpec s = x_gradient();
   s.lines.push_back({{0, 10}, {0, 3}, "line"});
   s.x_edges = {0, 2.5, 5, 7.5, 10};
-  fig::save_png(fig::render_heatmap(s), dir.path() / "a.png");
-  fig::save_png(fig::render_heatmap(s), dir.path() / "b.png");
-  const auto a = fig::test::read_bytes(dir.path() / "a.png");
-  EXPECT_FALSE(a.empty());
-  EXPECT_EQ(a, fig::test::read_bytes(dir.path() / "b.png"));
+  s.title = "Activation over distance and time to contact";
+  fig::save_figure(fig::render_heatmap(s), dir.path() / "a.png");
+  fig::save_figure(fig::render_heatmap(s), dir.path() / "b.png");
+  for (const char* ext : {".png", ".svg"}) {
+    const auto a = fig::test::read_bytes(dir.path() / (std::string("a") + ext));
+    EXPECT_FALSE(a.empty());
+    EXPECT_EQ(a, fig::test::read_bytes(dir.path() / (std::string("b") + ext))) << ext;
+  }
 }
 
 TEST(Heatmap, MismatchedGridSizeThrows) {
@@ -193,7 +201,7 @@ TEST(Heatmap, InvalidRangeAndOverlayThrow) {
 
 TEST(SavePng, UnwritablePathThrows) {
   const auto g = fig::render_heatmap(x_gradient());
-  EXPECT_EQ(message_of([&] { fig::save_png(g, "/nonexistent_somasim_dir/map.png"); }),
+  EXPECT_EQ(message_of([&] { fig::save_figure(g, "/nonexistent_somasim_dir/map.png"); }),
             "cannot write PNG file '/nonexistent_somasim_dir/map.png': directory "
             "'/nonexistent_somasim_dir' does not exist");
   EXPECT_EQ(message_of([&] { fig::save_png(fig::Image{}, "x.png"); }),

@@ -1,5 +1,8 @@
 #include <cmath>
 #include <functional>
+#include <string>
+#include <thread>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -106,10 +109,13 @@ TEST(LinePlot, SameInputGivesIdenticalBytes) {
   TempDir dir;
   fig::LinePlotSpec s = flat_plot();
   s.hlines.push_back({0.25, "threshold"});
-  fig::save_png(fig::render_line_plot(s), dir.path() / "a.png");
-  fig::save_png(fig::render_line_plot(s), dir.path() / "b.png");
-  EXPECT_EQ(fig::test::read_bytes(dir.path() / "a.png"),
-            fig::test::read_bytes(dir.path() / "b.png"));
+  s.title = "Activation of taxel 3 (°, σ, Δ)";
+  fig::save_figure(fig::render_line_plot(s), dir.path() / "a.png");
+  fig::save_figure(fig::render_line_plot(s), dir.path() / "b.png");
+  for (const char* ext : {".png", ".svg"})
+    EXPECT_EQ(fig::test::read_bytes(dir.path() / (std::string("a") + ext)),
+              fig::test::read_bytes(dir.path() / (std::string("b") + ext)))
+        << ext;
 }
 
 TEST(Stacked, PanelsShareTheXAxisAndStackTopToBottom) {
@@ -200,4 +206,72 @@ TEST(Compose, RowPlacesFiguresSideBySide) {
   EXPECT_EQ(col.image.width, 900);
   EXPECT_GT(col.image.height, 900);
   EXPECT_EQ(message_of([] { fig::compose_row({}); }), "compose_row: no figures to compose");
+}
+
+TEST(Legend, OnlyWhatIsDrawnInsideTheAxesGetsAnEntry) {
+  // A series wholly outside the shown x range adds nothing to the figure: not even a legend line.
+  fig::LinePlotSpec s = flat_plot();
+  s.x_range = fig::Range{0, 4};
+  const auto without = fig::render_line_plot(s);
+  s.series.push_back({{10, 11}, {0.2, 0.3}, "outside the axes"});
+  const auto with = fig::render_line_plot(s);
+  EXPECT_EQ(with.image.rgb, without.image.rgb);
+
+  fig::ScatterSpec sc;
+  sc.groups.push_back({{0, 1}, {0, 1}, "seen"});
+  sc.x_range = fig::Range{-1, 2};
+  sc.y_range = fig::Range{-1, 2};
+  const auto seen = fig::render_scatter(sc);
+  sc.groups.push_back({{5, 6}, {5, 6}, "not seen"});
+  EXPECT_EQ(fig::render_scatter(sc).image.rgb, seen.image.rgb);
+}
+
+TEST(Text, AnyUtf8IsDrawnAndInvalidBytesDoNotStopAFigure) {
+  fig::LinePlotSpec s = flat_plot();
+  const auto plain = fig::render_line_plot(s);
+  s.title = "Orientation error [°] of σ-points, Δt = 5 ms";
+  const auto unicode = fig::render_line_plot(s);
+  EXPECT_NE(unicode.image.rgb, plain.image.rgb);
+  s.title = std::string("bad bytes \xff\xfe here");
+  EXPECT_NO_THROW(fig::render_line_plot(s));
+  s.title = std::string(2000, 'W');  // shrunk to the figure's width, never clipped or thrown
+  EXPECT_NO_THROW(fig::render_line_plot(s));
+}
+
+TEST(Compose, KeepsTheVectorDrawingOfItsPanels) {
+  TempDir dir;
+  const auto row = fig::compose_row(
+      {fig::render_line_plot(flat_plot()), fig::render_line_plot(flat_plot())}, 10, "Two panels");
+  ASSERT_NE(row.drawing, nullptr);
+  fig::save_figure(row, dir.path() / "row.png");
+  const std::string svg = fig::test::read_bytes(dir.path() / "row.svg");
+  EXPECT_NE(svg.find("width=\"1810\""), std::string::npos);
+  EXPECT_EQ(svg.find("<image"), std::string::npos);  // lines and text stay vectors
+
+  // A figure made from pixels only composes too, and has no SVG to write.
+  fig::Figure pixels{fig::render_line_plot(flat_plot()).image, {}, nullptr};
+  const auto mixed = fig::compose_row({pixels}, 0);
+  EXPECT_EQ(mixed.image.rgb, pixels.image.rgb);
+  EXPECT_THROW(fig::save_svg(pixels, dir.path() / "p.svg"), somasim::InputError);
+  fig::save_figure(pixels, dir.path() / "p.png");
+  EXPECT_TRUE(std::filesystem::exists(dir.path() / "p.png"));
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "p.svg"));
+}
+
+TEST(Determinism, FiguresDrawnOnOtherThreadsGiveTheSameBytes) {
+  TempDir dir;
+  fig::LinePlotSpec s = flat_plot();
+  s.title = "Distance to the skin [cm] against time";
+  fig::save_figure(fig::render_line_plot(s), dir.path() / "main.png");
+  std::vector<std::thread> threads;
+  for (int i = 0; i < 3; ++i)
+    threads.emplace_back([&, i] {
+      fig::save_figure(fig::render_line_plot(s), dir.path() / ("t" + std::to_string(i) + ".png"));
+    });
+  for (auto& t : threads) t.join();
+  for (int i = 0; i < 3; ++i)
+    for (const char* ext : {".png", ".svg"})
+      EXPECT_EQ(fig::test::read_bytes(dir.path() / ("t" + std::to_string(i) + ext)),
+                fig::test::read_bytes(dir.path() / (std::string("main") + ext)))
+          << i << ext;
 }

@@ -42,8 +42,10 @@ TEST(Labels, ParameterLabelsUseTheDocAndUnit) {
   EXPECT_EQ(parameter_label("nodes.thrower.params.count", "", ""), "count");
   EXPECT_EQ(parameter_label("seed", "", ""), "seed");
   const std::string long_doc(200, 'x');
-  EXPECT_LE(parameter_label("a.b", "word " + long_doc, "s").size(), 70u);
-  EXPECT_EQ(parameter_label("a.b", "word " + long_doc, "s").substr(0, 14), "b [s]: word ..");
+  // A long doc is cut at a word (or at 70 characters) and marked with an ellipsis.
+  const std::string cut = parameter_label("a.b", "word " + long_doc, "s");
+  EXPECT_EQ(cut, "b [s]: word …");
+  EXPECT_EQ(parameter_label("a.b", long_doc, "s"), "b [s]: " + std::string(70, 'x') + " …");
 }
 
 }  // namespace

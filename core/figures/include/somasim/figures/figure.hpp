@@ -2,12 +2,14 @@
 /// @file
 /// Basic types of somasim_figures: colours, ranges, RGB images, axes frames and rendered figures.
 ///
-/// Every plot function renders a `Figure` (an RGB image plus the placement of its axes, so that
-/// callers and tests can map data coordinates to pixels) which `save_png` writes to disk.
-/// Text is drawn with OpenCV's Hershey fonts: ASCII only (other bytes render as '?').
+/// Every plot function renders a `Figure`: its pixels, the placement of its axes (so that callers
+/// and tests can map data coordinates to pixels) and its vector drawing, which `save_figure`
+/// writes as a PNG and an SVG beside it. Drawing is done by cairo, text laid out by Pango in the
+/// system's sans-serif face (DejaVu Sans on Debian): any UTF-8 text ("°", "σ", "Δ").
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -67,18 +69,29 @@ struct AxesFrame {
   }
 };
 
-/// A rendered figure: the image plus its axes (one per panel, top to bottom / left to right).
+/// The recorded vector drawing of a figure (opaque: written by save_figure and save_svg).
+class Drawing;
+
+/// A rendered figure: the image, its axes (one per panel, top to bottom / left to right) and the
+/// vector drawing the image was rasterised from (null for a figure made from pixels only).
 struct Figure {
   Image image;
   std::vector<AxesFrame> axes;
+  std::shared_ptr<const Drawing> drawing;
 };
 
 /// Writes `image` as a PNG file (deterministic bytes for identical pixels). Throws
 /// somasim::InputError when the image is empty or the file cannot be written.
 void save_png(const Image& image, const std::filesystem::path& path);
-inline void save_png(const Figure& figure, const std::filesystem::path& path) {
-  save_png(figure.image, path);
-}
+
+/// Writes the figure's vector drawing as an SVG file (text as glyph outlines, heatmap cells as
+/// an embedded image); identical drawings give identical bytes. Throws somasim::InputError when
+/// the figure has no drawing or the file cannot be written.
+void save_svg(const Figure& figure, const std::filesystem::path& path);
+
+/// Writes `png_path` and, when the figure has a vector drawing, the SVG of the same name beside
+/// it (`x.png` -> `x.svg`). Throws somasim::InputError as save_png and save_svg.
+void save_figure(const Figure& figure, const std::filesystem::path& png_path);
 
 /// Reads a PNG (or any format OpenCV decodes) as RGB. Throws somasim::InputError when the file
 /// is missing or cannot be decoded.
