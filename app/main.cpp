@@ -1,6 +1,10 @@
 // somasim: run experiment graphs headless. See README.md.
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -26,6 +30,10 @@ int main(int argc, char** argv) {
   app.add_option("--plugin-path", common.plugin_path,
                  "Directory searched for plugin libraries before $SOMASIM_PLUGIN_PATH and the "
                  "install dir (repeatable)");
+  std::vector<std::string> resource_path;
+  app.add_option("--resource-path", resource_path,
+                 "Directory holding URDF packages (package://NAME/... is DIR/NAME/...), searched "
+                 "before $SOMASIM_RESOURCE_PATH and $ROS_PACKAGE_PATH (repeatable)");
 
   RunArgs run;
   auto* run_cmd = app.add_subcommand("run", "Run an experiment; results go to the run folder");
@@ -118,6 +126,15 @@ int main(int argc, char** argv) {
     // Usage errors are bad input too: the same "error: ..." line as every other.
     std::fprintf(stderr, "error: %s\nRun with --help for more information.\n", e.what());
     return kExitBadInput;
+  }
+  // The resource path reaches the robot loader, and the runs a sweep starts, by the environment.
+  if (!resource_path.empty()) {
+    std::string value;
+    for (const auto& dir : resource_path)
+      value += (value.empty() ? "" : ":") + std::filesystem::absolute(dir).string();
+    if (const char* old = std::getenv("SOMASIM_RESOURCE_PATH"); old && *old)
+      value += std::string(":") + old;
+    ::setenv("SOMASIM_RESOURCE_PATH", value.c_str(), 1);
   }
   // One top-level handler: whatever escapes a command becomes one line and an exit code.
   try {

@@ -16,7 +16,7 @@ runtime_packages=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev libyaml-cpp-dev libspdlog-dev libfmt-dev nlohmann-json3-dev libcli11-dev
   libopencv-dev libbullet-dev libosmesa6-dev libegl-dev libegl-mesa0 libassimp-dev
-  libcairo2-dev libpango1.0-dev fonts-dejavu-core
+  libcairo2-dev libpango1.0-dev fonts-dejavu-core liburdfdom-dev
   libopenmpi-dev openmpi-bin
 )
 full_packages=(

@@ -4,13 +4,14 @@
 
 #include "robot_loader_internal.hpp"
 #include "somasim/yaml_text.hpp"
+#include "urdf_import.hpp"
 
 namespace somasim::robot::detail {
 
 namespace {
 
 constexpr int kMaxExtendsDepth = 8;
-const std::vector<std::string> kExtendsKeys = {"robot", "extends", "set"};
+const std::vector<std::string> kExtendsKeys = {"robot", "extends", "set", "missing_meshes"};
 
 }  // namespace
 
@@ -54,14 +55,34 @@ YAML::Node RobotLoader::resolve(const std::string& text, const std::string& disp
     diags_.throw_if_any();
   }
   bool ok = false;
-  const std::string base_text = read_text(base_path, ok);
+  std::string base_text = read_text(base_path, ok);
   if (!ok) {
     reader_.error(ext, "", "extends",
                   "cannot read '" + ext.Scalar() + "' (resolved to '" + base_path.string() +
                       "'); expected a readable robot description file");
     diags_.throw_if_any();
   }
-  YAML::Node base = resolve(base_text, base_display, base_path.parent_path(), depth + 1, chain);
+  MissingMeshes missing = MissingMeshes::kError;
+  if (const YAML::Node policy = root["missing_meshes"]; policy) {
+    const auto parsed = policy.IsScalar() ? parse_missing_meshes(policy.Scalar()) : std::nullopt;
+    if (!parsed)
+      reader_.error(policy, "", "missing_meshes",
+                    "expected error, skip or collision, got " + describe(policy));
+    else if (!is_urdf_file(base_path))
+      reader_.error(policy, "", "missing_meshes",
+                    "only a file that extends a URDF (.urdf) chooses what missing meshes do");
+    else
+      missing = *parsed;
+    diags_.throw_if_any();
+  }
+  // A URDF robot that this file completes (cameras, skin, ...): what the loader finds wrong in
+  // the converted description is located in the conversion, not in the URDF's lines.
+  const bool urdf = is_urdf_file(base_path);
+  if (urdf)
+    base_text = urdf_to_description(base_text, base_display, base_path.parent_path(), missing);
+  YAML::Node base =
+      resolve(base_text, urdf ? base_display + " (as converted from URDF)" : base_display,
+              base_path.parent_path(), depth + 1, chain);
   // Values of this file are located in this file, the rest in the base.
   if (const YAML::Node name = root["robot"]; name) {
     base["robot"] = name;

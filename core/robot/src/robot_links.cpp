@@ -60,7 +60,8 @@ void RobotLoader::read_link_properties() {
       const auto& v = *inertia;  // ixx, iyy, izz, ixy, ixz, iyz
       in.inertia << v[0], v[3], v[4], v[3], v[1], v[5], v[4], v[5], v[2];
       Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(in.inertia);
-      if (eig.eigenvalues().minCoeff() < 0) {
+      // Moments that are zero to rounding (thin parts, inertias turned into link axes) pass.
+      if (eig.eigenvalues().minCoeff() < -(1e-9 * in.inertia.cwiseAbs().maxCoeff() + 1e-15)) {
         reader_.error(n["inertia"], item, "inertia",
                       "not a physical inertia (not positive semi-definite); expected [ixx, iyy, "
                       "izz, ixy, ixz, iyz] about the centre of mass [kg m^2]");

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "robot_loader_internal.hpp"
+#include "urdf_import.hpp"
 
 namespace somasim::robot::detail {
 
@@ -87,9 +88,13 @@ RobotModel parse_robot_model(const std::string& text, const std::string& display
 RobotModel load_robot_model(const fs::path& file) {
   bool ok = false;
   const std::string text = detail::read_text(file, ok);
+  const bool urdf = detail::is_urdf_file(file);
   if (!ok)
-    throw InputError("cannot read robot description '" + file.string() +
-                     "'; expected a readable YAML file");
+    throw InputError("cannot read robot description '" + file.string() + "'; expected a readable " +
+                     (urdf ? "URDF" : "YAML") + " file");
+  if (urdf)
+    return parse_robot_model(detail::urdf_to_description(text, file.string(), file.parent_path()),
+                             file.string() + " (as converted from URDF)", file.parent_path());
   return parse_robot_model(text, file.string(), file.parent_path());
 }
 
