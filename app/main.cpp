@@ -12,6 +12,7 @@
 #include "plugin_pages.hpp"
 #include "plugin_template.hpp"
 #include "recover.hpp"
+#include "robot_commands.hpp"
 #include "somasim/error.hpp"
 #include "somasim/version.hpp"
 #include "somasim/yaml_text.hpp"
@@ -94,6 +95,17 @@ int main(int argc, char** argv) {
   new_plugin_cmd->add_option("name", new_plugin_name, "Plugin name, e.g. my_filter")->required();
   new_plugin_cmd->add_option("--dir", new_plugin_dir, "Folder to write (default: ./NAME)");
 
+  auto* robot_cmd = app.add_subcommand("robot", "Robot descriptions (YAML or URDF)");
+  robot_cmd->require_subcommand(1);
+  std::string export_robot, export_out, export_overlay;
+  auto* export_cmd = robot_cmd->add_subcommand(
+      "export-urdf", "Write a robot as URDF (frames, cameras and skin: a YAML overlay)");
+  export_cmd->add_option("robot", export_robot, "Robot description (.yaml or .urdf)")->required();
+  export_cmd->add_option("--out", export_out, "URDF file to write (default: stdout)");
+  export_cmd->add_option("--overlay", export_overlay,
+                         "Also write a YAML overlay extending the URDF with the robot's frames, "
+                         "cameras and skin patches");
+
   auto* pps_cmd = app.add_subcommand("pps", "PPS learned-map files");
   pps_cmd->require_subcommand(1);
   std::string convert_in, convert_out;
@@ -152,6 +164,7 @@ int main(int argc, char** argv) {
     if (*new_plugin_cmd) return cmd_plugin_new(new_plugin_name, new_plugin_dir);
     if (*recover_cmd) return cmd_recover(recover_dir);
     if (*convert_cmd) return cmd_pps_convert(convert_in, convert_out);
+    if (*export_cmd) return cmd_robot_export_urdf(export_robot, export_out, export_overlay);
     if (sweep.selected()) return sweep.dispatch(common);
   } catch (const somasim::InputError& e) {
     std::fprintf(stderr, "error: %s\n", somasim::escape_control_bytes(e.what()).c_str());

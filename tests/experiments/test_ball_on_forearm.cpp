@@ -28,3 +28,16 @@ TEST(BallOnForearm, SameSeedSameMetrics) {
   }
   EXPECT_EQ(a, b);
 }
+
+// configs/urdf_ball_on_forearm.yaml: the same experiment on the iCub loaded from its URDF
+// (assets/robots/icub_v1.urdf, written by `somasim robot export-urdf`) and the YAML overlay that
+// adds its skin. The skin sees the same balls as on the YAML robot.
+TEST(BallOnForearm, TheRobotLoadedFromAUrdfFeelsTheSameBalls) {
+  const std::vector<somasim::Override> shorter = {{"nodes.thrower.params.throws", "8"}};
+  const auto yaml = run_config("ball_on_forearm", shorter, "yaml");
+  const auto urdf = run_config("urdf_ball_on_forearm", shorter, "urdf");
+  ASSERT_EQ(urdf.metrics["status"], "completed") << urdf.metrics["error"];
+  for (const char* m : {"balls_thrown", "balls_touched_expected_part", "hits_on_expected_part",
+                        "events_on_other_parts"})
+    EXPECT_EQ(urdf.metric(m), yaml.metric(m)) << m;
+}

@@ -14,6 +14,7 @@
 #include "somasim/error.hpp"
 #include "somasim/robot/kinematics.hpp"
 #include "somasim/robot/robot_loader.hpp"
+#include "somasim/robot/urdf_export.hpp"
 
 namespace fs = std::filesystem;
 using namespace somasim::robot;
@@ -368,4 +369,134 @@ TEST(UrdfImportValidation, TheICubsPublishedModelLoads) {
   EXPECT_GE(model.find_joint("r_elbow"), 0);
   EXPECT_GE(model.find_link("r_hand"), 0);
   EXPECT_GT(model.total_mass(), 20.0);
+}
+
+// The published model's arm chains against icub_v1.yaml (iKin's DH tables): the pose of each
+// hand's DH frame for random joint vectors of the torso and arm, after aligning the two root
+// frames (the transform that maps one onto the other at the zero posture).
+TEST(UrdfImportValidation, TheICubsPublishedArmsAgreeWithTheDhTables) {
+  const fs::path models = fs::path(SOMASIM_SOURCE_DIR) /
+                          "../shared/body-schema-data/"
+                          "robotology-icub-models";
+  const fs::path urdf = models / "iCub/robots/iCubLisboa01/model.urdf";
+  if (!fs::exists(urdf)) GTEST_SKIP() << "../shared is absent";
+  TempDir dir;
+  const auto overlay =
+      dir.write("icub.yaml", "extends: " + fs::absolute(urdf).lexically_normal().string() +
+                                 "\nmissing_meshes: skip\n");
+  ::setenv("SOMASIM_RESOURCE_PATH", models.c_str(), 1);
+  const RobotModel published = load_robot_model(overlay);
+  ::unsetenv("SOMASIM_RESOURCE_PATH");
+  const RobotModel dh =
+      load_robot_model(fs::path(SOMASIM_SOURCE_DIR) / "assets/robots/icub_v1.yaml");
+  std::mt19937 rng(11);
+  for (const std::string side : {"r", "l"}) {
+    std::vector<std::string> joints = {"torso_pitch", "torso_roll", "torso_yaw"};
+    for (const char* j : {"shoulder_pitch", "shoulder_roll", "shoulder_yaw", "elbow",
+                          "wrist_prosup", "wrist_pitch", "wrist_yaw"})
+      joints.push_back(side + "_" + j);
+    RobotData dp(published), dd(dh);
+    auto pose = [&](const Eigen::VectorXd& values, bool of_published) {
+      const RobotModel& m = of_published ? published : dh;
+      RobotData& d = of_published ? dp : dd;
+      Eigen::VectorXd q = Eigen::VectorXd::Zero(m.num_dofs());
+      for (std::size_t k = 0; k < joints.size(); ++k)
+        q[m.dof_index(joints[k])] = values[static_cast<Eigen::Index>(k)];
+      forward_kinematics(m, d, q);
+      return link_pose(d, m.link_index(of_published ? side + "_hand_dh_frame" : side + "_hand"));
+    };
+    const Eigen::VectorXd zero = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(joints.size()));
+    const Eigen::Isometry3d align = pose(zero, true) * pose(zero, false).inverse();
+    double worst_mm = 0, worst_deg = 0;
+    for (int trial = 0; trial < 20; ++trial) {
+      Eigen::VectorXd values(static_cast<Eigen::Index>(joints.size()));
+      for (std::size_t k = 0; k < joints.size(); ++k) {
+        const int dof = dh.dof_index(joints[k]);
+        const double lo = std::max(dh.lower_limits()[dof],
+                                   published.lower_limits()[published.dof_index(joints[k])]);
+        const double hi = std::min(dh.upper_limits()[dof],
+                                   published.upper_limits()[published.dof_index(joints[k])]);
+        values[static_cast<Eigen::Index>(k)] = std::uniform_real_distribution<double>(lo, hi)(rng);
+      }
+      const Eigen::Isometry3d a = pose(values, true), b = align * pose(values, false);
+      worst_mm = std::max(worst_mm, 1000 * (a.translation() - b.translation()).norm());
+      worst_deg = std::max(
+          worst_deg, Eigen::AngleAxisd(a.linear().transpose() * b.linear()).angle() * 180 / M_PI);
+    }
+    std::printf("%s arm: largest difference over 20 postures %.4f mm, %.4f deg\n", side.c_str(),
+                worst_mm, worst_deg);
+    EXPECT_LT(worst_mm, 1.0) << side;
+    EXPECT_LT(worst_deg, 0.5) << side;
+  }
+}
+
+namespace {
+
+/// Every link pose of `a` and `b` (by link name) for random joint vectors, and their masses.
+void expect_same_robot(const RobotModel& a, const RobotModel& b, std::mt19937& rng) {
+  ASSERT_EQ(a.num_dofs(), b.num_dofs());
+  for (int d = 0; d < a.num_dofs(); ++d)
+    EXPECT_EQ(a.joint(a.dof_joint(d)).name, b.joint(b.dof_joint(d)).name) << d;
+  RobotData da(a), db(b);
+  for (int trial = 0; trial < 10; ++trial) {
+    Eigen::VectorXd q(a.num_dofs());
+    for (int d = 0; d < a.num_dofs(); ++d) {
+      const double lo = std::max(a.lower_limits()[d], -3.0),
+                   hi = std::min(a.upper_limits()[d], 3.0);
+      q[d] = std::uniform_real_distribution<double>(lo, hi)(rng);
+    }
+    forward_kinematics(a, da, q);
+    forward_kinematics(b, db, q);
+    for (int l = 0; l < a.num_links(); ++l) {
+      const int lb = b.link_index(a.link(l).name);
+      EXPECT_LT((link_pose(da, l).matrix() - link_pose(db, lb).matrix()).cwiseAbs().maxCoeff(),
+                1e-12)
+          << a.link(l).name;
+    }
+  }
+  for (int l = 0; l < a.num_links(); ++l) {
+    const Link& la = a.link(l);
+    const Link& lb = b.link(b.link_index(la.name));
+    EXPECT_NEAR(la.inertial.mass, lb.inertial.mass, 1e-12) << la.name;
+    EXPECT_LT((la.inertial.com - lb.inertial.com).norm(), 1e-12) << la.name;
+    EXPECT_LT((la.inertial.inertia - lb.inertial.inertia).cwiseAbs().maxCoeff(), 1e-12) << la.name;
+    auto count = [](const std::vector<Geometry>& shapes) {
+      std::size_t n = 0;
+      for (const auto& g : shapes) n += g.type == GeometryType::Capsule ? 3 : 1;
+      return n;
+    };
+    EXPECT_EQ(count(la.collision), lb.collision.size()) << la.name;
+  }
+  for (const Frame& f : a.frames()) {
+    const int k = b.find_frame(f.name);
+    ASSERT_GE(k, 0) << f.name;
+    EXPECT_EQ(b.link(b.frames()[static_cast<std::size_t>(k)].link).name, a.link(f.link).name);
+    EXPECT_TRUE(b.frames()[static_cast<std::size_t>(k)].pose.isApprox(f.pose, 1e-12)) << f.name;
+  }
+  EXPECT_EQ(a.cameras().size(), b.cameras().size());
+  EXPECT_EQ(a.skin_patches().size(), b.skin_patches().size());
+}
+
+}  // namespace
+
+TEST(UrdfExport, ImportOfTheExportIsTheSameRobot) {
+  std::mt19937 rng(3);
+  TempDir dir;
+  for (const char* variant : {"icub_v1", "icub_v2", "icub_v1_full_skin"}) {
+    const RobotModel original = load_robot_model(fs::path(SOMASIM_SOURCE_DIR) / "assets/robots" /
+                                                 (std::string(variant) + ".yaml"));
+    const fs::path urdf = dir.write(std::string(variant) + ".urdf", to_urdf(original));
+    const fs::path overlay =
+        dir.write(std::string(variant) + ".yaml", urdf_overlay(original, urdf.filename().string()));
+    const RobotModel back = load_robot_model(overlay);
+    SCOPED_TRACE(variant);
+    expect_same_robot(original, back, rng);
+  }
+  // Generated URDF chains survive export and import too.
+  for (int trial = 0; trial < 10; ++trial) {
+    const RandomChain chain = random_chain(rng, 1 + trial % 6);
+    const RobotModel original = load_robot_model(dir.write("c.urdf", chain.urdf));
+    const RobotModel back = load_robot_model(dir.write("c2.urdf", to_urdf(original)));
+    expect_same_robot(original, back, rng);
+  }
 }
