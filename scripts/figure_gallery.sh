@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# One figure of every kind somasim draws, from short runs: the PPS landscape, the skin layout, a
+# One figure of every kind somasim draws, from short runs: the PPS landscape, the cameras'
+# contact sheet, the skin layout, a
 # presentation trace, the body-schema estimation/reaching/closed-loop and particle figures, and a
 # sweep summary. Copies each figure (PNG, and its SVG where the build writes one) to OUT as
 # KIND.png / KIND.svg. Used to compare figures across builds (e.g. before and after a change).
@@ -31,6 +32,8 @@ keep() {
 
 run landscape pps_single_taxel_offset.yaml
 keep landscape "$(ls "$work"/landscape/figures/landscape_*.png | head -1)"
+run cameras camera_demo.yaml
+keep stereo_frames "$work/cameras/figures/stereo_frames.png"
 run skin ball_on_forearm.yaml
 keep skin_layout "$work/skin/figures/skin_layout.png"
 run avoidance pps_avoidance.yaml --set nodes.thrower.params.approaches=4

@@ -14,8 +14,8 @@ struct SheetRow {
   std::vector<cv::Mat> views;  ///< CV_8UC3 R G B, one per camera (same size)
 };
 
-/// Writes the rows as one PNG (cameras as columns, times as rows, 4 px gaps). RunError naming
-/// the file when it cannot be written.
+/// Writes the rows as one figure, PNG and SVG (cameras as columns, times as rows, 4 px gaps).
+/// InputError naming the file when it cannot be written.
 void write_contact_sheet(const std::vector<SheetRow>& rows,
                          const std::vector<std::string>& camera_names,
                          const std::filesystem::path& file);

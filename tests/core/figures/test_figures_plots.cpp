@@ -8,6 +8,7 @@
 
 #include "somasim/error.hpp"
 #include "somasim/figures/compose.hpp"
+#include "somasim/figures/image_grid.hpp"
 #include "somasim/figures/line_plot.hpp"
 #include "somasim/figures/scatter.hpp"
 #include "temp_png.hpp"
@@ -274,4 +275,21 @@ TEST(Determinism, FiguresDrawnOnOtherThreadsGiveTheSameBytes) {
       EXPECT_EQ(fig::test::read_bytes(dir.path() / ("t" + std::to_string(i) + ext)),
                 fig::test::read_bytes(dir.path() / (std::string("main") + ext)))
           << i << ext;
+}
+
+TEST(ImageGrid, ImagesKeepTheirPixelsAndSizesMustAgree) {
+  fig::Image red{20, 10, std::vector<std::uint8_t>(20 * 10 * 3, 0)};
+  for (std::size_t i = 0; i < red.rgb.size(); i += 3) red.rgb[i] = 200;
+  fig::ImageGridSpec s;
+  s.column_titles = {"left_eye", "right_eye"};
+  s.rows = {{red, red}, {red, red}};
+  const auto g = fig::render_image_grid(s);
+  ASSERT_NE(g.drawing, nullptr);
+  // Bottom-right image: its bottom-right pixel, 4 px from the figure's corner.
+  EXPECT_EQ(g.image.at(g.image.width - 5, g.image.height - 5), (fig::Color{200, 0, 0}));
+  s.rows[1][1].width = 19;
+  EXPECT_EQ(message_of([&] { fig::render_image_grid(s); }),
+            "image grid: image (1, 1) is 19 x 10 px; expected every image 20 x 10 px");
+  EXPECT_EQ(message_of([] { fig::render_image_grid({}); }),
+            "image grid: no images; expected at least one row with one image");
 }

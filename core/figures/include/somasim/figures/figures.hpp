@@ -6,6 +6,7 @@
 #include "somasim/figures/compose.hpp"
 #include "somasim/figures/figure.hpp"
 #include "somasim/figures/heatmap.hpp"
+#include "somasim/figures/image_grid.hpp"
 #include "somasim/figures/line_plot.hpp"
 #include "somasim/figures/scatter.hpp"
 #include "somasim/figures/ticks.hpp"
