@@ -103,7 +103,8 @@ void draw_axes(Canvas& canvas, const AxesFrame& f, const AxisTicks& xt, const Ax
 
 void densify(Point a, Point b, int max_points, std::vector<Point>& out) {
   if (!std::isfinite(a.x) || !std::isfinite(a.y)) return;
-  const int n = std::min(max_points, static_cast<int>(std::hypot(b.x - a.x, b.y - a.y) / 10));
+  const int n = static_cast<int>(
+      std::min(static_cast<double>(max_points), std::hypot(b.x - a.x, b.y - a.y) / 10));
   for (int k = 1; k < n; ++k) {
     const double t = static_cast<double>(k) / n;
     out.push_back({a.x + (b.x - a.x) * t, a.y + (b.y - a.y) * t});

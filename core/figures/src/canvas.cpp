@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 #include <sstream>
+
+#include <fmt/format.h>
 
 #include <cairo.h>
 #include <glib.h>
@@ -89,6 +92,30 @@ cairo_t* measuring_context() {
   return measure.cr;
 }
 
+/// Clips segment a-b to `r` (Liang-Barsky); false when nothing of it is inside.
+bool clip_segment(Point& a, Point& b, const Rect& r) {
+  double t0 = 0, t1 = 1;
+  const double dx = b.x - a.x, dy = b.y - a.y;
+  const double p[4] = {-dx, dx, -dy, dy};
+  const double q[4] = {a.x - r.x, r.x + r.width - a.x, a.y - r.y, r.y + r.height - a.y};
+  for (int i = 0; i < 4; ++i) {
+    if (p[i] == 0) {
+      if (q[i] < 0) return false;
+      continue;
+    }
+    const double t = q[i] / p[i];
+    if (p[i] < 0)
+      t0 = std::max(t0, t);
+    else
+      t1 = std::min(t1, t);
+    if (t0 > t1) return false;
+  }
+  const Point start{a.x + t0 * dx, a.y + t0 * dy}, end{a.x + t1 * dx, a.y + t1 * dy};
+  a = start;
+  b = end;
+  return true;
+}
+
 void set_dash(cairo_t* cr, LineStyle style, double width_px) {
   const double w = std::max(1.0, width_px);
   if (style == LineStyle::kDashed) {
@@ -170,19 +197,26 @@ void Canvas::polyline(const std::vector<Point>& pts, Color color, double width_p
   cairo_set_line_width(cr, width_px);
   set_dash(cr, style, width_px);
   set_color(cr, color, alpha);
+  // Segments are clipped to the figure (with a margin) in double precision: cairo's fixed-point
+  // coordinates wrap beyond about 8e6 px, which would draw far-off points as stray lines.
+  const double margin = 100 + width_px;
+  const Rect bounds{-margin, -margin, width_ + 2 * margin, height_ + 2 * margin};
   bool drawing = false;
-  for (const Point& p : pts) {
-    if (!finite(p)) {
+  Point last{NAN, NAN};  // where the current path ends
+  for (std::size_t i = 1; i < pts.size(); ++i) {
+    Point a = pts[i - 1], b = pts[i];
+    if (!finite(a) || !finite(b) || !clip_segment(a, b, bounds)) {
       if (drawing) cairo_stroke(cr);
       drawing = false;
       continue;
     }
-    if (drawing) {
-      cairo_line_to(cr, p.x, p.y);
-    } else {
-      cairo_move_to(cr, p.x, p.y);
+    if (!drawing || a.x != last.x || a.y != last.y) {
+      if (drawing) cairo_stroke(cr);
+      cairo_move_to(cr, a.x, a.y);
       drawing = true;
     }
+    cairo_line_to(cr, b.x, b.y);
+    last = b;
   }
   if (drawing) cairo_stroke(cr);
 }
@@ -256,7 +290,7 @@ void Canvas::marker(Point p, Marker marker, double size_px, Color color, bool ou
 
 void Canvas::text(const std::string& text, Point anchor, HAlign h, VAlign v, double size_px,
                   Color color, Weight weight, bool vertical) {
-  if (text.empty()) return;
+  if (text.empty() || !finite(anchor)) return;
   cairo_t* cr = state_->cr;
   cairo_save(cr);
   cairo_translate(cr, anchor.x, anchor.y);
@@ -287,6 +321,11 @@ void Canvas::text(const std::string& text, Point anchor, HAlign h, VAlign v, dou
 void Canvas::image(const Image& image, int x, int y) {
   if (image.width <= 0 || image.height <= 0) return;
   cairo_surface_t* src = cairo_image_surface_create(CAIRO_FORMAT_RGB24, image.width, image.height);
+  if (const cairo_status_t status = cairo_surface_status(src); status != CAIRO_STATUS_SUCCESS) {
+    cairo_surface_destroy(src);
+    throw InputError(fmt::format("figure: a {} x {} px image cannot be drawn ({})", image.width,
+                                 image.height, cairo_status_to_string(status)));
+  }
   cairo_surface_flush(src);
   unsigned char* data = cairo_image_surface_get_data(src);
   const int stride = cairo_image_surface_get_stride(src);
@@ -314,6 +353,7 @@ void Canvas::figure(const Figure& figure, int x, int y) {
     return;
   }
   cairo_t* cr = state_->cr;
+  const std::lock_guard lock(figure.drawing->mutex());
   cairo_save(cr);
   cairo_set_source_surface(cr, figure.drawing->surface(), x, y);
   cairo_rectangle(cr, x, y, figure.image.width, figure.image.height);
@@ -332,6 +372,8 @@ void Canvas::pop_clip() {
 }
 
 Figure Canvas::finish(std::vector<AxesFrame> axes) {
+  if (const cairo_status_t status = cairo_status(state_->cr); status != CAIRO_STATUS_SUCCESS)
+    throw RunError(std::string("figure: drawing failed: ") + cairo_status_to_string(status));
   cairo_destroy(state_->cr);
   state_->cr = nullptr;
   auto drawing = std::make_shared<Drawing>(state_->surface, width_, height_);
@@ -344,10 +386,11 @@ Figure Canvas::finish(std::vector<AxesFrame> axes) {
 }
 
 void check_figure_size(const char* what, int width, int height) {
-  if (width < 200 || height < 150) {
+  if (width < 200 || height < 150 || width > kMaxFigurePx || height > kMaxFigurePx) {
     std::ostringstream os;
-    os << what << ": figure size " << width << " x " << height
-       << " px is too small; expected at least 200 x 150";
+    os << what << ": figure size " << width << " x " << height << " px is too "
+       << (width < 200 || height < 150 ? "small" : "large") << "; expected 200 x 150 to "
+       << kMaxFigurePx << " x " << kMaxFigurePx;
     throw InputError(os.str());
   }
 }

@@ -101,7 +101,11 @@ class Canvas {
   std::unique_ptr<State> state_;
 };
 
-/// Throws InputError "<what>: figure size W x H px is too small; expected at least 200 x 150".
+/// The largest side of a figure or image cairo can draw [px].
+inline constexpr int kMaxFigurePx = 32767;
+
+/// Throws InputError "<what>: figure size W x H px is too small; expected 200 x 150 to
+/// 32767 x 32767" (or "too large").
 void check_figure_size(const char* what, int width, int height);
 
 }  // namespace detail

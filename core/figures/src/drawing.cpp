@@ -18,6 +18,7 @@ Drawing::~Drawing() {
 }
 
 Image Drawing::rasterise() const {
+  const std::lock_guard lock(mutex_);
   cairo_surface_t* target = cairo_image_surface_create(CAIRO_FORMAT_RGB24, width_, height_);
   cairo_t* cr = cairo_create(target);
   cairo_set_source_rgb(cr, 1, 1, 1);
@@ -26,10 +27,9 @@ Image Drawing::rasterise() const {
   cairo_paint(cr);
   cairo_destroy(cr);
   cairo_surface_flush(target);
-  if (cairo_surface_status(target) != CAIRO_STATUS_SUCCESS) {
+  if (const cairo_status_t status = cairo_surface_status(target); status != CAIRO_STATUS_SUCCESS) {
     cairo_surface_destroy(target);
-    throw RunError(std::string("figure: drawing failed: ") +
-                   cairo_status_to_string(cairo_surface_status(target)));
+    throw RunError(std::string("figure: drawing failed: ") + cairo_status_to_string(status));
   }
   Image out;
   out.width = width_;
@@ -93,6 +93,7 @@ std::string renumber_ids(const std::string& svg) {
 }  // namespace
 
 std::string Drawing::svg() const {
+  const std::lock_guard lock(mutex_);
   std::string out;
   cairo_surface_t* target = cairo_svg_surface_create_for_stream(append, &out, width_, height_);
   cairo_svg_surface_restrict_to_version(target, CAIRO_SVG_VERSION_1_1);

@@ -1,5 +1,6 @@
 #pragma once
 // Private: the recorded vector drawing of a figure (a cairo recording surface).
+#include <mutex>
 #include <string>
 
 #include <cairo.h>
@@ -17,6 +18,10 @@ class Drawing {
   Drawing& operator=(const Drawing&) = delete;
 
   cairo_surface_t* surface() const { return recording_; }
+  /// Held while the recording is replayed (cairo attaches snapshots to a source surface while
+  /// painting it, without a lock of its own): figures and their copies may be saved or composed
+  /// from several threads.
+  std::mutex& mutex() const { return mutex_; }
   int width() const { return width_; }
   int height() const { return height_; }
 
@@ -27,6 +32,7 @@ class Drawing {
 
  private:
   cairo_surface_t* recording_ = nullptr;
+  mutable std::mutex mutex_;
   int width_ = 0, height_ = 0;
 };
 

@@ -133,7 +133,12 @@ void write_joint(std::string& out, const RobotModel& model, const Joint& j) {
   const std::string& parent = model.link(j.parent_link).name;
   const std::string& child = model.link(j.child_link).name;
   const bool has_post = !j.post.isApprox(Eigen::Isometry3d::Identity(), 1e-15);
-  const std::string moving_child = has_post ? j.name + "_axis_frame" : child;
+  // Names of the extra link and joint, not taken by the robot's own.
+  std::string suffix;
+  while (model.find_link(j.name + "_axis_frame" + suffix) >= 0 ||
+         model.find_joint(j.name + "_post" + suffix) >= 0)
+    suffix += "_";
+  const std::string moving_child = has_post ? j.name + "_axis_frame" + suffix : child;
   // URDF has no offset: M(q + offset) = M(offset) M(q), folded into the origin.
   Eigen::Isometry3d pre = j.pre;
   if (j.type == JointType::Revolute) pre.rotate(Eigen::AngleAxisd(j.offset, j.axis));
@@ -158,9 +163,10 @@ void write_joint(std::string& out, const RobotModel& model, const Joint& j) {
   if (has_post) {
     out += fmt::format("  <link name=\"{}\"/>\n", xml_escaped(moving_child));
     out += fmt::format(
-        "  <joint name=\"{}_post\" type=\"fixed\"><parent link=\"{}\"/><child link=\"{}\"/>{}"
+        "  <joint name=\"{}\" type=\"fixed\"><parent link=\"{}\"/><child link=\"{}\"/>{}"
         "</joint>\n",
-        xml_escaped(j.name), xml_escaped(moving_child), xml_escaped(child), origin(j.post));
+        xml_escaped(j.name + "_post" + suffix), xml_escaped(moving_child), xml_escaped(child),
+        origin(j.post));
   }
 }
 

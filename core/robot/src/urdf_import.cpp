@@ -99,7 +99,8 @@ fs::path resolve_mesh(const std::string& uri, const fs::path& dir, std::string& 
   } else {
     file = dir / uri;
   }
-  file = file.lexically_normal();
+  // Absolute: the loader resolves relative names against the description's directory again.
+  file = fs::absolute(file, ec).lexically_normal();
   if (!fs::is_regular_file(file, ec))
     problem = fmt::format("'{}': no such file ({})", uri, file.string());
   return file;
@@ -221,7 +222,7 @@ void check_elements(const TiXmlElement* robot, const fs::path& dir, MissingMeshe
       if (number_attribute(mass, "value", 0) < 0)
         problems.add(mass->Row(),
                      fmt::format("link '{}': mass {} is negative; expected a mass >= 0 [kg]", name,
-                                 mass->Attribute("value")));
+                                 number_attribute(mass, "value", 0)));
       if (const auto* i = in->FirstChildElement("inertia")) {
         const double ixx = number_attribute(i, "ixx", 0), iyy = number_attribute(i, "iyy", 0),
                      izz = number_attribute(i, "izz", 0), ixy = number_attribute(i, "ixy", 0),
@@ -298,8 +299,9 @@ void check_elements(const TiXmlElement* robot, const fs::path& dir, MissingMeshe
                    upper = number_attribute(limit, "upper", 0);
       if (lower > upper)
         problems.add(limit->Row(),
-                     fmt::format("{}: limit lower {} > upper {}; expected lower <= upper", item,
-                                 limit->Attribute("lower"), limit->Attribute("upper")));
+                     fmt::format("{}: limit lower {} > upper {}; expected lower <= upper (an "
+                                 "omitted bound is 0)",
+                                 item, lower, upper));
     }
     joints.push_back(info);
   }

@@ -196,7 +196,7 @@ TEST(Heatmap, InvalidRangeAndOverlayThrow) {
   s = x_gradient();
   s.width = 100;
   EXPECT_EQ(message_of([&] { fig::render_heatmap(s); }),
-            "heatmap: figure size 100 x 600 px is too small; expected at least 200 x 150");
+            "heatmap: figure size 100 x 600 px is too small; expected 200 x 150 to 32767 x 32767");
 }
 
 TEST(SavePng, UnwritablePathThrows) {

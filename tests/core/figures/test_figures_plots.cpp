@@ -293,3 +293,28 @@ TEST(ImageGrid, ImagesKeepTheirPixelsAndSizesMustAgree) {
   EXPECT_EQ(message_of([] { fig::render_image_grid({}); }),
             "image grid: no images; expected at least one row with one image");
 }
+
+TEST(Robustness, PointsFarOffOrNotFiniteNeverSpoilTheRest) {
+  // A point 1e7 plot heights away: its segment leaves the axes at the top, nothing wraps around.
+  fig::LinePlotSpec s = flat_plot();
+  s.series = {{{0, 1}, {0.5, 1e7}, "steep"}};
+  s.x_range = fig::Range{0, 1};
+  s.grid = false;
+  const auto g2 = fig::render_line_plot(s);
+  for (double x : {0.3, 0.55, 0.93})
+    for (double y : {0.1, 0.33, 0.53, 0.9})
+      EXPECT_EQ(pixel_at(g2, 0, x, y), kWhite) << x << ", " << y;
+  // An annotated point at NaN: skipped, and the axes, legend and title are still drawn.
+  fig::ScatterSpec sc;
+  sc.title = "Title";
+  sc.groups.push_back({{0, 1, NAN}, {0, 1, 2}, "points"});
+  sc.groups.back().annotations = {"a", "b", "c"};
+  const auto with_nan = fig::render_scatter(sc);
+  sc.groups.back().annotations = {"a", "b", ""};
+  EXPECT_EQ(with_nan.image.rgb, fig::render_scatter(sc).image.rgb);
+  // Figures larger than cairo can draw are refused, not crashed on.
+  s.width = 40000;
+  EXPECT_EQ(message_of([&] { fig::render_line_plot(s); }),
+            "line plot: figure size 40000 x 600 px is too large; expected 200 x 150 to 32767 x "
+            "32767");
+}

@@ -235,6 +235,25 @@ set:
   EXPECT_EQ(model.num_dofs(), 1);
 }
 
+TEST(UrdfImport, RelativeMeshesOfAUrdfGivenByARelativePathAreFound) {
+  TempDir dir;
+  dir.write("robots/arm/meshes/part.obj",
+            "v 0 0 0\nv 0.1 0 0\nv 0 0.1 0\nv 0 0 0.1\nf 1 2 3\nf 1 2 4\nf 1 3 4\nf 2 3 4\n");
+  dir.write(
+      "robots/arm/arm.urdf",
+      two_links(std::string(kInertial) +
+                    R"(<visual><geometry><mesh filename="meshes/part.obj"/></geometry></visual>)",
+                R"(<limit lower="-1" upper="1" effort="1" velocity="1"/>)"));
+  const fs::path cwd = fs::current_path();
+  fs::current_path(dir.path());
+  const RobotModel model = load_robot_model("robots/arm/arm.urdf");
+  fs::current_path(cwd);
+  const Link& arm = model.link(model.link_index("arm"));
+  ASSERT_EQ(arm.visual.size(), 1u);
+  EXPECT_EQ(fs::path(arm.visual[0].mesh_file),
+            (dir.path() / "robots/arm/meshes/part.obj").lexically_normal());
+}
+
 TEST(UrdfImport, PackageMeshesAreFoundThroughTheResourcePath) {
   TempDir dir;
   dir.write("share/my_robot/meshes/part.obj",
@@ -295,7 +314,10 @@ TEST(UrdfImportBadInput, EveryMessageNamesTheFileTheLineAndWhatWasExpected) {
   EXPECT_EQ(fails("limits.urdf",
                   two_links("", R"(<limit lower="1" upper="-1" effort="1" velocity="1"/>)")),
             d + "/limits.urdf:8: joint 'shoulder': limit lower 1 > upper -1; expected lower <= "
-                "upper");
+                "upper (an omitted bound is 0)");
+  EXPECT_EQ(fails("lower.urdf", two_links("", R"(<limit upper="-0.5" effort="1" velocity="1"/>)")),
+            d + "/lower.urdf:8: joint 'shoulder': limit lower 0 > upper -0.5; expected lower <= "
+                "upper (an omitted bound is 0)");
   EXPECT_EQ(fails("floating.urdf", R"(<robot name="r">
 <link name="world"/><link name="body"/>
 <joint name="free" type="floating"><parent link="world"/><child link="body"/></joint>
