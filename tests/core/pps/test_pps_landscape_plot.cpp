@@ -45,7 +45,7 @@ TEST(LandscapePlot, DrawsTheFloorEstimateAndTheTrueOffsetAsVerticalLines) {
   const auto* t = line_labelled(spec, "true offset: 2.5 cm");
   ASSERT_NE(t, nullptr);
   EXPECT_DOUBLE_EQ(t->x.front(), 2.5);
-  EXPECT_NE(line_labelled(spec, "regression (Fig 8)"), nullptr);
+  EXPECT_NE(line_labelled(spec, "regression line (paper A, Fig. 8)"), nullptr);
 }
 
 TEST(LandscapePlot, OverlaysCanBeLeftOut) {
