@@ -92,10 +92,14 @@ RobotModel load_robot_model(const fs::path& file) {
   if (!ok)
     throw InputError("cannot read robot description '" + file.string() + "'; expected a readable " +
                      (urdf ? "URDF" : "YAML") + " file");
-  if (urdf)
-    return parse_robot_model(detail::urdf_to_description(text, file.string(), file.parent_path()),
-                             file.string() + " (as converted from URDF)", file.parent_path());
+  if (urdf) return parse_urdf_robot_model(text, file.string(), file.parent_path());
   return parse_robot_model(text, file.string(), file.parent_path());
+}
+
+RobotModel parse_urdf_robot_model(const std::string& xml, const std::string& display_name,
+                                  const fs::path& base_dir) {
+  return parse_robot_model(detail::urdf_to_description(xml, display_name, base_dir),
+                           display_name + " (as converted from URDF)", base_dir);
 }
 
 std::shared_ptr<const RobotModel> load_robot_model_shared(const fs::path& file) {

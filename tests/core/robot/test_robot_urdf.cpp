@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <optional>
 #include <random>
 #include <string>
 
@@ -372,21 +373,31 @@ TEST(UrdfImport, AnOverlayChoosesWhatMissingMeshesDo) {
                 "'maybe'");
 }
 
-// The iCub's published model (robotology/icub-models, as in ../shared): it loads, with the
-// meshes the shared copy has and the others left out.
-TEST(UrdfImportValidation, TheICubsPublishedModelLoads) {
-  const fs::path models = fs::path(SOMASIM_SOURCE_DIR) /
-                          "../shared/body-schema-data/"
-                          "robotology-icub-models";
+namespace {
+
+/// The iCub's published model (robotology/icub-models, as in ../shared), with the meshes the
+/// shared copy has and the others left out; nullopt when ../shared is absent.
+std::optional<RobotModel> published_icub() {
+  const fs::path models =
+      fs::path(SOMASIM_SOURCE_DIR) / "../shared/body-schema-data/robotology-icub-models";
   const fs::path urdf = models / "iCub/robots/iCubLisboa01/model.urdf";
-  if (!fs::exists(urdf)) GTEST_SKIP() << "../shared is absent";
+  if (!fs::exists(urdf)) return std::nullopt;
   TempDir dir;
   const auto overlay =
       dir.write("icub.yaml", "extends: " + fs::absolute(urdf).lexically_normal().string() +
                                  "\nmissing_meshes: skip\n");
   ::setenv("SOMASIM_RESOURCE_PATH", models.c_str(), 1);
-  const RobotModel model = load_robot_model(overlay);
+  RobotModel model = load_robot_model(overlay);
   ::unsetenv("SOMASIM_RESOURCE_PATH");
+  return model;
+}
+
+}  // namespace
+
+TEST(UrdfImportValidation, TheICubsPublishedModelLoads) {
+  const auto published = published_icub();
+  if (!published) GTEST_SKIP() << "../shared is absent";
+  const RobotModel& model = *published;
   EXPECT_GT(model.num_dofs(), 30);
   EXPECT_GE(model.find_joint("r_elbow"), 0);
   EXPECT_GE(model.find_link("r_hand"), 0);
@@ -397,18 +408,9 @@ TEST(UrdfImportValidation, TheICubsPublishedModelLoads) {
 // hand's DH frame for random joint vectors of the torso and arm, after aligning the two root
 // frames (the transform that maps one onto the other at the zero posture).
 TEST(UrdfImportValidation, TheICubsPublishedArmsAgreeWithTheDhTables) {
-  const fs::path models = fs::path(SOMASIM_SOURCE_DIR) /
-                          "../shared/body-schema-data/"
-                          "robotology-icub-models";
-  const fs::path urdf = models / "iCub/robots/iCubLisboa01/model.urdf";
-  if (!fs::exists(urdf)) GTEST_SKIP() << "../shared is absent";
-  TempDir dir;
-  const auto overlay =
-      dir.write("icub.yaml", "extends: " + fs::absolute(urdf).lexically_normal().string() +
-                                 "\nmissing_meshes: skip\n");
-  ::setenv("SOMASIM_RESOURCE_PATH", models.c_str(), 1);
-  const RobotModel published = load_robot_model(overlay);
-  ::unsetenv("SOMASIM_RESOURCE_PATH");
+  const auto loaded = published_icub();
+  if (!loaded) GTEST_SKIP() << "../shared is absent";
+  const RobotModel& published = *loaded;
   const RobotModel dh =
       load_robot_model(fs::path(SOMASIM_SOURCE_DIR) / "assets/robots/icub_v1.yaml");
   std::mt19937 rng(11);

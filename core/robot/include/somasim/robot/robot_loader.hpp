@@ -12,8 +12,8 @@
 
 namespace somasim::robot {
 
-/// Loads a robot description file. Relative paths inside it (extends, mesh files) are relative
-/// to the file's directory.
+/// Loads a robot description file: somasim's YAML, or a URDF (extension .urdf). Relative paths
+/// inside it (extends, mesh files) are relative to the file's directory.
 RobotModel load_robot_model(const std::filesystem::path& file);
 
 /// The same, as a shared immutable model (for tools and tests; plugins get the experiment's
@@ -24,5 +24,11 @@ std::shared_ptr<const RobotModel> load_robot_model_shared(const std::filesystem:
 /// paths.
 RobotModel parse_robot_model(const std::string& text, const std::string& display_name,
                              const std::filesystem::path& base_dir);
+
+/// Parses URDF text (read with urdfdom; assets/robots/README.md says what is kept);
+/// `display_name` names it in messages (with the element's line), `base_dir` resolves relative
+/// mesh files. Missing meshes are errors.
+RobotModel parse_urdf_robot_model(const std::string& xml, const std::string& display_name,
+                                  const std::filesystem::path& base_dir);
 
 }  // namespace somasim::robot
