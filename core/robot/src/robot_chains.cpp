@@ -49,6 +49,10 @@ void RobotLoader::read_chain(const std::string& name, const YAML::Node& key,
   if (!reader_.expect_map(node, item, "", "a map with 'links' (and 'base', 'H0', 'HN', 'tip')"))
     return;
   reader_.check_keys(node, kChainKeys, item, "");
+  if (!node["links"] && node["tip"]) {  // along the tree: resolved once the model is built
+    tree_chains_.push_back({name, key, node});
+    return;
+  }
   ChainInfo info;
   info.name = name;
   int cur = 0;
@@ -167,6 +171,53 @@ void RobotLoader::read_chain(const std::string& name, const YAML::Node& key,
   info.tip_frame = reader_.string(node, "tip", item, "", false).value_or(name + "_tip");
   chain_tips_.push_back({info.tip_frame, cur, x * *hn, node["tip"] ? node["tip"] : key, item});
   chains_.push_back(std::move(info));
+}
+
+std::vector<ChainInfo> RobotLoader::tree_chains(const RobotModel& model) {
+  std::vector<ChainInfo> out;
+  for (const TreeChain& tc : tree_chains_) {
+    const std::string item = "chain '" + tc.name + "'";
+    reader_.check_keys(tc.node, {"base", "tip"}, item, "");
+    const std::string base = reader_.string(tc.node, "base", item, "", false).value_or(root_name_);
+    const auto tip = reader_.string(tc.node, "tip", item, "", true);
+    if (!tip) continue;
+    if (model.find_chain(tc.name) || std::any_of(out.begin(), out.end(), [&](const ChainInfo& c) {
+          return c.name == tc.name;
+        })) {
+      reader_.error(tc.key, item, "", "a chain of this name already exists");
+      continue;
+    }
+    const int base_link = model.find_link(base);
+    if (base_link < 0) {
+      reader_.error(tc.node["base"], item, "base", "unknown link " + in_quotes(base));
+      continue;
+    }
+    int tip_link = -1;
+    if (const int f = model.find_frame(*tip); f >= 0)
+      tip_link = model.frames()[static_cast<std::size_t>(f)].link;
+    else
+      tip_link = model.find_link(*tip);
+    if (tip_link < 0) {
+      reader_.error(tc.node["tip"], item, "tip",
+                    "unknown frame or link " + in_quotes(*tip) + "; expected a frame or a link");
+      continue;
+    }
+    ChainInfo info{tc.name, base_link, *tip, {}};
+    int l = tip_link;
+    for (; l != base_link && l > 0; l = model.link(l).parent_link) {
+      const Joint& j = model.joint(model.link(l).parent_joint);
+      if (j.type != JointType::Fixed) info.joints.insert(info.joints.begin(), j.name);
+    }
+    if (l != base_link) {
+      reader_.error(tc.node["tip"], item, "tip",
+                    in_quotes(*tip) + " is not below the base link " + in_quotes(base) +
+                        "; expected a tip on the tree below the base");
+      continue;
+    }
+    out.push_back(std::move(info));
+  }
+  diags_.throw_if_any();
+  return out;
 }
 
 }  // namespace somasim::robot::detail

@@ -70,8 +70,13 @@ RobotModel RobotLoader::build() {
   std::vector<Joint> joints;
   for (auto& jb : joints_) joints.push_back(std::move(jb.joint));
   for (auto& c : chains_) c.base_link = link_index_.at(old_link_names_.at(c.base_link));
-  return RobotModel(name_, std::move(built_links_), std::move(joints), std::move(frames_),
-                    std::move(cameras_), std::move(skin_patches_), std::move(chains_));
+  RobotModel model(name_, std::move(built_links_), std::move(joints), std::move(frames_),
+                   std::move(cameras_), std::move(skin_patches_), std::move(chains_));
+  if (tree_chains_.empty()) return model;
+  std::vector<ChainInfo> chains = model.chains();
+  for (ChainInfo& c : tree_chains(model)) chains.push_back(std::move(c));
+  return RobotModel(model.name(), model.links(), model.joints(), model.frames(), model.cameras(),
+                    model.skin_patches(), std::move(chains));
 }
 
 }  // namespace somasim::robot::detail

@@ -101,6 +101,9 @@ class RobotLoader {
   // --- DH chains (robot_chains.cpp) --------------------------------------------------------------
   void read_chains(const YAML::Node& chains);
   void read_chain(const std::string& name, const YAML::Node& key, const YAML::Node& node);
+  // A chain given by `base` and `tip` only (no DH links): its joints are the movable joints on
+  // the tree's path from base to tip, found once the model is built (URDF robots).
+  std::vector<ChainInfo> tree_chains(const RobotModel& model);
 
   // --- link properties: geometry, mass, inertia (robot_links.cpp) --------------------------------
   void read_link_properties();
@@ -139,6 +142,11 @@ class RobotLoader {
   int num_dofs_ = 0;
   std::vector<ChainInfo> chains_;
   std::vector<ChainTip> chain_tips_;
+  struct TreeChain {
+    std::string name;
+    YAML::Node key, node;
+  };
+  std::vector<TreeChain> tree_chains_;
   std::vector<std::string> old_link_names_;
   std::set<std::string> unattached_ok_;  // children of joints that failed to load
   std::vector<Link> built_links_;

@@ -223,6 +223,13 @@ std::string urdf_overlay(const RobotModel& model, const std::string& urdf_file) 
         << YAML::Value << c.far;
     out << YAML::EndMap;
   }
+  // Chains along the tree: the joints between base and tip are the URDF's own.
+  for (const ChainInfo& c : model.chains()) {
+    out << YAML::Key << "chains." + c.name << YAML::Value << YAML::Flow << YAML::BeginMap;
+    out << YAML::Key << "base" << YAML::Value << model.link(c.base_link).name;
+    out << YAML::Key << "tip" << YAML::Value << c.tip_frame;
+    out << YAML::EndMap;
+  }
   for (const SkinPatch& s : model.skin_patches()) {
     out << YAML::Key << "skin." + s.body_part << YAML::Value << YAML::Flow << YAML::BeginMap;
     out << YAML::Key << "link" << YAML::Value << model.link(s.link).name;

@@ -497,6 +497,13 @@ void expect_same_robot(const RobotModel& a, const RobotModel& b, std::mt19937& r
     EXPECT_EQ(b.link(b.frames()[static_cast<std::size_t>(k)].link).name, a.link(f.link).name);
     EXPECT_TRUE(b.frames()[static_cast<std::size_t>(k)].pose.isApprox(f.pose, 1e-12)) << f.name;
   }
+  for (const ChainInfo& c : a.chains()) {
+    const ChainInfo* other = b.find_chain(c.name);
+    ASSERT_NE(other, nullptr) << c.name;
+    EXPECT_EQ(b.link(other->base_link).name, a.link(c.base_link).name) << c.name;
+    EXPECT_EQ(other->tip_frame, c.tip_frame) << c.name;
+    EXPECT_EQ(other->joints, c.joints) << c.name;
+  }
   EXPECT_EQ(a.cameras().size(), b.cameras().size());
   EXPECT_EQ(a.skin_patches().size(), b.skin_patches().size());
 }
@@ -523,4 +530,43 @@ TEST(UrdfExport, ImportOfTheExportIsTheSameRobot) {
     const RobotModel back = load_robot_model(dir.write("c2.urdf", to_urdf(original)));
     expect_same_robot(original, back, rng);
   }
+}
+
+TEST(UrdfImport, ChainsAlongTheTreeNameTheJointsBetweenBaseAndTip) {
+  TempDir dir;
+  dir.write("order.urdf", R"(<robot name="r">
+  <link name="base"/><link name="a"/><link name="b"/><link name="c"/><link name="side"/>
+  <joint name="j1" type="revolute"><parent link="base"/><child link="a"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+  <joint name="fix" type="fixed"><parent link="a"/><child link="b"/></joint>
+  <joint name="j2" type="revolute"><parent link="b"/><child link="c"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+  <joint name="j3" type="revolute"><parent link="base"/><child link="side"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+</robot>)");
+  const auto ok = dir.write("ok.yaml", R"(extends: order.urdf
+set:
+  frames.tool: {link: c, origin: {xyz: [0, 0, 0.1]}}
+  chains.arm: {tip: tool}
+  chains.forearm: {base: a, tip: c}
+)");
+  const RobotModel model = load_robot_model(ok);
+  ASSERT_NE(model.find_chain("arm"), nullptr);
+  EXPECT_EQ(model.find_chain("arm")->joints, (std::vector<std::string>{"j1", "j2"}));
+  EXPECT_EQ(model.find_chain("arm")->tip_frame, "tool");
+  EXPECT_EQ(model.find_chain("forearm")->joints, (std::vector<std::string>{"j2"}));
+  const auto bad = dir.write("bad.yaml", R"(extends: order.urdf
+set:
+  chains.crossed: {base: side, tip: c}
+  chains.nowhere: {tip: hand}
+)");
+  const std::string m = message_of([&] { load_robot_model(bad); });
+  EXPECT_NE(m.find("chain 'crossed', key 'tip': 'c' is not below the base link 'side'; expected a "
+                   "tip on the tree below the base"),
+            std::string::npos)
+      << m;
+  EXPECT_NE(m.find("chain 'nowhere', key 'tip': unknown frame or link 'hand'; expected a frame "
+                   "or a link"),
+            std::string::npos)
+      << m;
 }

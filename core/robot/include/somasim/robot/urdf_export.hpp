@@ -9,8 +9,8 @@
 /// an extra link named `<joint>_axis_frame`, a capsule becomes a cylinder and two spheres, mesh
 /// files are written relative to the URDF's directory (or absolute), joints with limits of 10³ rad
 /// or more are continuous. Loading the URDF (and overlay) back gives the same link poses for every
-/// q, the same masses, centres of mass and inertias, and the same shapes. DH chain definitions are
-/// not kept: the chains' joints and links are.
+/// q, the same masses, centres of mass and inertias, and the same shapes. DH chains become chains
+/// along the tree (base link and tip: the same joints), in the overlay.
 #include <filesystem>
 #include <string>
 
@@ -23,7 +23,7 @@ namespace somasim::robot {
 std::string to_urdf(const RobotModel& model, const std::filesystem::path& mesh_base = {});
 
 /// A robot-description overlay (YAML) that `extends: urdf_file` and adds the model's frames,
-/// cameras and skin patches.
+/// cameras, skin patches and chains (as chains along the tree).
 std::string urdf_overlay(const RobotModel& model, const std::string& urdf_file);
 
 }  // namespace somasim::robot
