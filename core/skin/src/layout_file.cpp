@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "somasim/error.hpp"
+#include "somasim/skin/icub_positions_file.hpp"
 
 namespace somasim::skin {
 namespace {
@@ -34,6 +35,7 @@ std::vector<std::string> split_fields(const std::string& line) {
 
 SkinLayout load_layout_file(const std::filesystem::path& file, const std::string& body_part,
                             int link) {
+  if (is_icub_positions_file(file)) return load_icub_positions_file(file, body_part, link);
   const std::string name = file.string();
   std::ifstream in(file);
   if (!in)

@@ -12,6 +12,9 @@
 /// The optional 8th column is the taxel's module (virtual taxel id, integer >= 0): all lines
 /// must then have it. Without it, every taxel is its own virtual taxel (same id) - the format
 /// of a list of triangle centres.
+///
+/// load_layout_file also reads the iCub's own taxel positions files (icub_positions_file.hpp),
+/// recognised by their header.
 #include <filesystem>
 #include <string>
 
