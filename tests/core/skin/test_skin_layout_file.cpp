@@ -120,3 +120,44 @@ TEST_F(LayoutFile, MissingFile) {
               p.string() + ": cannot open the skin layout file (no such file)");
   }
 }
+
+// The iCub's skinGui positions files: row k is taxel k, all-zero rows are no taxel, modules
+// from taxel2Repr (-1: the taxel is its own module).
+TEST_F(LayoutFile, ReadsIcubPositionsFiles) {
+  const std::string path = write(
+      "name    l_forearm\n"
+      "spatial_sampling    taxel\n"
+      "taxel2Repr (3 3 -1 3\n 3 -1)\n"
+      "[calibration]\n"
+      "0.01 0 0 0 0 1\n"
+      "0.02 0 0 0 0 2\n"
+      "0 0 0 0 0 0\n"
+      "0.03 0 0 0 0 1\n"
+      "0.04 0 0 0 1 0\n"
+      "0.05 0 0 1 0 0\n");
+  const SkinLayout l = load_layout_file(path, "left_forearm", 4);
+  EXPECT_EQ(l.body_part, "left_forearm");
+  EXPECT_EQ(l.link, 4);
+  EXPECT_EQ(l.ids, (std::vector<int>{0, 1, 3, 4, 5}));
+  EXPECT_DOUBLE_EQ(l.positions[2].x(), 0.03);
+  EXPECT_DOUBLE_EQ(l.normals[1].z(), 1.0);  // normalised
+  ASSERT_EQ(l.virtual_taxels.size(), 2u);
+  EXPECT_EQ(l.virtual_taxels[0].id, 3);
+  EXPECT_EQ(l.virtual_taxels[0].members.size(), 4u);
+  EXPECT_EQ(l.virtual_taxels[1].id, 5);  // -1: its own module
+}
+
+TEST_F(LayoutFile, IcubPositionsFileErrors) {
+  const std::string head = "name l_hand\ntaxel2Repr (0 0)\n[calibration]\n";
+  EXPECT_EQ(error_of(head + "0.01 0 0 0 0 1\n0.02 0 0\n"),
+            "FILE:5: expected 6 numbers (x y z nx ny nz) for taxel 1, got 3 fields");
+  EXPECT_EQ(error_of(head + "0.01 0 0 0 0 x\n"), "FILE:4: 'x' is not a finite number (taxel 0)");
+  EXPECT_EQ(error_of(head + "0.01 0 0 0 0 0\n"),
+            "FILE:4: taxel 0 has a position but a zero normal");
+  EXPECT_EQ(error_of(head + "0 0 0 0 0 0\n"),
+            "FILE: no taxels (expected rows 'x y z nx ny nz' after [calibration])");
+  EXPECT_EQ(error_of("name l_hand\ntaxel2Repr (0 -2)\n[calibration]\n0.01 0 0 0 0 1\n"),
+            "FILE:2: taxel2Repr entry '-2' is not an integer >= -1");
+  EXPECT_EQ(error_of("name l_hand\ntaxel2Repr (0 0\n"),
+            "FILE:2: the taxel2Repr list is never closed (expected ')')");
+}
