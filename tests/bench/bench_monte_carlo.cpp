@@ -8,11 +8,16 @@
 #include <filesystem>
 #include <string>
 
+#include <unistd.h>
+
 namespace {
 
 const std::string kConfig =
     std::string(SOMASIM_SOURCE_DIR) + "/configs/pps_single_taxel_offset.yaml";
-const std::string kOut = (std::filesystem::temp_directory_path() / "somasim-bench-mc").string();
+// Every repetition writes a whole run into this folder, emptied first (--overwrite).
+const std::string kOut = (std::filesystem::temp_directory_path() /
+                          ("somasim-bench-mc-" + std::to_string(::getpid())))
+                             .string();
 
 void run_command(benchmark::State& state, const std::string& command) {
   for (auto _ : state) {
@@ -24,8 +29,9 @@ void run_command(benchmark::State& state, const std::string& command) {
 }
 
 void BM_MonteCarlo500Throws_WholeProcess(benchmark::State& state) {
-  run_command(state, std::string(SOMASIM_BIN) + " run " + kConfig + " --quiet --out " + kOut +
+  run_command(state, std::string(SOMASIM_BIN) + " run " + kConfig + " --quiet --overwrite --out " + kOut +
                          " > /dev/null");
+  std::filesystem::remove_all(kOut);
 }
 
 void BM_Baseline_ValidateOnly(benchmark::State& state) {
