@@ -61,8 +61,7 @@ void check_blowup(const RobotMultiBody& robot, const ObjectManager& objects,
       fail(fmt::format("joint '{}' moves at {:.1f} rad/s (max_joint_speed: {} rad/s)", name,
                        std::abs(dq), limits.max_joint_speed));
   }
-  for (int i = 0; i < objects.size(); ++i) {
-    if (!objects.present(i)) continue;
+  for (int i : objects.live()) {
     const btRigidBody& body = objects.body(i);
     const Eigen::Vector3d v = to_eigen(body.getLinearVelocity());
     if (!to_eigen(body.getWorldTransform()).matrix().allFinite() || !v.allFinite() ||

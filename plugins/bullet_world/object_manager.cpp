@@ -1,5 +1,6 @@
 #include "object_manager.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -15,8 +16,7 @@ ObjectManager::ObjectManager(btMultiBodyDynamicsWorld& world, ShapeStore& shapes
     : world_(world), shapes_(shapes), material_(material), guide_(guide) {}
 
 ObjectManager::~ObjectManager() {
-  for (auto& o : objects_)
-    if (o.body) world_.removeRigidBody(o.body.get());
+  for (int i : live_) world_.removeRigidBody(objects_[static_cast<std::size_t>(i)].body.get());
 }
 
 int ObjectManager::add(const ObjectSpawn& s, double t) {
@@ -70,6 +70,7 @@ int ObjectManager::add(const ObjectSpawn& s, double t) {
   o.last_pose = s.pose;
   o.last_linear = s.motion == ObjectMotion::kStatic ? Eigen::Vector3d::Zero() : s.linear_velocity;
   objects_.push_back(std::move(o));
+  live_.push_back(index);
   return index;
 }
 
@@ -80,35 +81,34 @@ void ObjectManager::remove(int i) {
   world_.removeRigidBody(o.body.get());
   o.body.reset();
   o.motion_state.reset();
+  live_.erase(std::lower_bound(live_.begin(), live_.end(), i));
+  removed_since_write_.push_back(i);
+}
+
+int ObjectManager::remove_if(const std::function<bool(int)>& doomed) {
+  std::vector<int> remove_now;
+  for (int i : live_)
+    if (doomed(i)) remove_now.push_back(i);
+  for (int i : remove_now) remove(i);
+  return static_cast<int>(remove_now.size());
 }
 
 int ObjectManager::remove_expired(double t) {
-  int n = 0;
-  for (int i = 0; i < size(); ++i)
-    if (present(i) && t >= objects_[i].remove_time - 1e-12) {
-      remove(i);
-      ++n;
-    }
-  return n;
+  return remove_if([&](int i) { return t >= objects_[i].remove_time - 1e-12; });
 }
 
 int ObjectManager::remove_beyond(double radius) {
-  int n = 0;
-  for (int i = 0; i < size(); ++i)
-    if (present(i) &&
-        (objects_[i].motion == ObjectMotion::kDynamic ||
-         objects_[i].motion == ObjectMotion::kGuided) &&
-        pose(i).translation().norm() > radius) {
-      remove(i);
-      ++n;
-    }
-  return n;
+  return remove_if([&](int i) {
+    return (objects_[i].motion == ObjectMotion::kDynamic ||
+            objects_[i].motion == ObjectMotion::kGuided) &&
+           pose(i).translation().norm() > radius;
+  });
 }
 
 void ObjectManager::drive(double t, double dt) {
   const double w = guide_.bandwidth;
-  for (auto& o : objects_) {
-    if (!o.body) continue;
+  for (int i : live_) {
+    Object& o = objects_[static_cast<std::size_t>(i)];
     if (o.motion == ObjectMotion::kKinematic) {
       Eigen::Isometry3d p = o.start_pose;
       p.translation() += (t + dt - o.spawn_time) * o.velocity;
@@ -126,13 +126,7 @@ void ObjectManager::drive(double t, double dt) {
 }
 
 int ObjectManager::remove_named(const std::string& name) {
-  int n = 0;
-  for (int i = 0; i < size(); ++i)
-    if (present(i) && objects_[static_cast<std::size_t>(i)].name == name) {
-      remove(i);
-      ++n;
-    }
-  return n;
+  return remove_if([&](int i) { return objects_[static_cast<std::size_t>(i)].name == name; });
 }
 
 Eigen::Isometry3d ObjectManager::pose(int i) const {
@@ -141,8 +135,9 @@ Eigen::Isometry3d ObjectManager::pose(int i) const {
   return to_eigen(o.body->getWorldTransform());
 }
 
-void ObjectManager::write_states(ObjectStates& s) const {
+void ObjectManager::write_states(ObjectStates& s) {
   const std::size_t n = objects_.size();
+  if (written_ != &s || s.names.size() != written_slots_) written_slots_ = 0;  // all of it
   s.names.resize(n);
   s.present.resize(n);
   s.poses.resize(n);
@@ -152,24 +147,32 @@ void ObjectManager::write_states(ObjectStates& s) const {
   s.shape.resize(n);
   s.size.resize(n);
   s.mesh.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
+  const auto write_slot = [&](std::size_t i) {
     const Object& o = objects_[i];
     s.names[i] = o.name;
-    s.present[i] = o.body != nullptr;
     s.radius[i] = o.radius;
     s.shape[i] = o.shape;
     s.size[i] = o.size;
     s.mesh[i] = o.mesh;
-    if (o.body) {
-      s.poses[i] = to_eigen(o.body->getWorldTransform());
-      s.linear_velocity[i] = to_eigen(o.body->getLinearVelocity());
-      s.angular_velocity[i] = to_eigen(o.body->getAngularVelocity());
-    } else {
+    s.present[i] = o.body != nullptr;
+    if (!o.body) {
       s.poses[i] = o.last_pose;
       s.linear_velocity[i].setZero();
       s.angular_velocity[i].setZero();
     }
+  };
+  for (std::size_t i = written_slots_; i < n; ++i) write_slot(i);  // spawned since
+  for (int i : removed_since_write_) write_slot(static_cast<std::size_t>(i));
+  for (int i : live_) {
+    const btRigidBody& body = *objects_[static_cast<std::size_t>(i)].body;
+    const auto k = static_cast<std::size_t>(i);
+    s.poses[k] = to_eigen(body.getWorldTransform());
+    s.linear_velocity[k] = to_eigen(body.getLinearVelocity());
+    s.angular_velocity[k] = to_eigen(body.getAngularVelocity());
   }
+  removed_since_write_.clear();
+  written_ = &s;
+  written_slots_ = n;
 }
 
 }  // namespace somasim::bullet_world

@@ -4,11 +4,13 @@
 /// (moved at a constant velocity by setting their pose every step) or guided (dynamic bodies
 /// pulled along the same constant-velocity path by a bounded force: see ObjectGuide). Objects
 /// keep their index for the whole run; removed ones stay as empty slots
-/// (ObjectStates::present = false).
+/// (ObjectStates::present = false). What runs every step (drive, the removals, write_states)
+/// costs per object present, not per object ever spawned: a long run does not slow down.
 ///
 /// Object frame: the shape's centre (mesh: the mesh file's origin). ObjectSpawn::size:
 /// sphere (r, -, -); box half extents; cylinder (r, half height, -) along z; mesh: per-axis scale
 /// (0 = 1). Poses and velocities in the root frame.
+#include <functional>
 #include <limits>
 #include <memory>
 #include <string>
@@ -69,6 +71,8 @@ class ObjectManager {
   int remove_named(const std::string& name);
 
   int size() const { return static_cast<int>(objects_.size()); }
+  /// Indices of the objects present, ascending.
+  const std::vector<int>& live() const { return live_; }
   const std::string& name(int i) const { return objects_[i].name; }
   bool present(int i) const { return objects_[i].body != nullptr; }
   const btRigidBody& body(int i) const { return *objects_[i].body; }
@@ -76,8 +80,10 @@ class ObjectManager {
   ObjectMotion motion(int i) const { return objects_[i].motion; }
   Eigen::Isometry3d pose(int i) const;
 
-  /// Writes every object's state (removed ones keep their last state, present = false).
-  void write_states(ObjectStates& states) const;
+  /// Writes every object's state (removed ones keep their last state, present = false). Only
+  /// what changed since the previous call into the same `states` is written (new slots, objects
+  /// removed since, the present objects' motion); any other `states` is written whole.
+  void write_states(ObjectStates& states);
 
  private:
   struct Object {
@@ -98,11 +104,20 @@ class ObjectManager {
     Eigen::Vector3d last_linear = Eigen::Vector3d::Zero();
     Eigen::Vector3d last_angular = Eigen::Vector3d::Zero();
   };
+  /// Removes the present objects for which `doomed(index)` holds; returns how many.
+  int remove_if(const std::function<bool(int)>& doomed);
+
   btMultiBodyDynamicsWorld& world_;
   ShapeStore& shapes_;
   ObjectMaterial material_;
   ObjectGuide guide_;
   std::vector<Object> objects_;
+  std::vector<int> live_;  // indices of present objects, ascending
+  // write_states' bookkeeping: the states it last wrote, how many slots they hold, and the
+  // objects removed since (their slots still show them present).
+  const ObjectStates* written_ = nullptr;
+  std::size_t written_slots_ = 0;
+  std::vector<int> removed_since_write_;
 };
 
 }  // namespace somasim::bullet_world

@@ -149,11 +149,9 @@ void CameraPlugin::configure(NodeContext& ctx) {
   if (!config_.sheet_times.empty() && !want_rgb_)
     config_error(ctx, config_, config_.sheet_times,
                  "the contact sheet needs the rgb output (outputs: rgb ...)");
-  options_.read_rgb = want_rgb_;
-  options_.read_depth = want_depth_;
-  options_.read_ids = want_mask_;
   options_.check_drawn = true;  // an item in view that draws nothing is an error (never blank)
   options_.light_direction_root = Eigen::Vector3d(0.7, 0.2, 1.0);  // above, behind the eyes
+  choose_images(ctx);
 
   const render::RenderBackend backend = config_.backend;
   const std::string backend_name = render::render_backend_name(backend);
@@ -181,12 +179,29 @@ void CameraPlugin::configure(NodeContext& ctx) {
     spec.id = render::kFirstSceneExtraId;
     backdrop_ = make_backdrop(*renderer_, spec, ctx.rng());
   }
-  ctx.log().info("camera: {} view(s) of robot '{}' ({} triangles), outputs{}{}{}", views_.size(),
-                 model_->name(), scene_->triangle_count(), want_rgb_ ? " rgb" : "",
-                 want_depth_ ? " depth" : "", want_mask_ ? " mask" : "");
+  std::string read;
+  for (const View& v : views_)
+    read += fmt::format(" {}:{}{}{}", v.slot, v.options.read_rgb ? " rgb" : "",
+                        v.options.read_depth ? " depth" : "", v.options.read_ids ? " mask" : "");
+  ctx.log().info("camera: {} view(s) of robot '{}' ({} triangles), outputs{}{}{}; read:{}",
+                 views_.size(), model_->name(), scene_->triangle_count(), want_rgb_ ? " rgb" : "",
+                 want_depth_ ? " depth" : "", want_mask_ ? " mask" : "", read);
   link_poses_ = &ports_.link_poses.get();
   objects_ = ports_.objects.get();
   rest_poses_ = rest.link_poses;
+}
+
+void CameraPlugin::choose_images(const NodeContext& ctx) {
+  const bool saving = config_.save_every > 0;
+  const bool sheet = !config_.sheet_times.empty();
+  for (View& v : views_) {
+    const auto read = [&](const char* kind) { return ctx.is_read(v.slot + "_" + kind) || saving; };
+    v.options = options_;
+    v.options.read_rgb = want_rgb_ && (read(kRgb) || sheet);
+    v.options.read_depth = want_depth_ && read(kDepth);
+    v.options.read_ids = want_mask_ && read(kMask);
+    v.rendered = v.options.read_rgb || v.options.read_depth || v.options.read_ids;
+  }
 }
 
 void CameraPlugin::step(NodeContext& ctx) {
@@ -196,13 +211,15 @@ void CameraPlugin::step(NodeContext& ctx) {
                          ctx.time_s() + 1e-9 >= config_.sheet_times[sheet_.size()];
   if (sheet_row) sheet_.push_back({ctx.time_s(), {}});
   for (const View& v : views_) {
+    if (!v.rendered) continue;
     const render::Camera camera = render::camera_for(*model_, v.camera, poses);
     const Eigen::Vector3d viewpoint = camera.pose_root.translation();
     items_.clear();
     scene_->add_robot(poses, items_, &viewpoint);
     if (objects_) scene_->add_objects(*objects_, items_);
     items_.insert(items_.end(), backdrop_.begin(), backdrop_.end());
-    render::RenderedImages images = renderer_->render(items_, camera, options_);
+    render::RenderedImages images = renderer_->render(items_, camera, v.options);
+    ++views_rendered_;
     auto fill = [&](Image* out, cv::Mat data, ImageEncoding encoding) {
       out->data = std::move(data);
       out->encoding = encoding;
@@ -210,9 +227,9 @@ void CameraPlugin::step(NodeContext& ctx) {
       out->time_s = ctx.time_s();
       out->frame = frame_;
     };
-    if (want_rgb_) fill(v.rgb, images.rgb, ImageEncoding::kRgb8);
-    if (want_depth_) fill(v.depth, images.depth, ImageEncoding::kDepth32f);
-    if (want_mask_) fill(v.mask, images.ids, ImageEncoding::kId32s);
+    if (v.options.read_rgb) fill(v.rgb, images.rgb, ImageEncoding::kRgb8);
+    if (v.options.read_depth) fill(v.depth, images.depth, ImageEncoding::kDepth32f);
+    if (v.options.read_ids) fill(v.mask, images.ids, ImageEncoding::kId32s);
     if (config_.save_every > 0 &&
         (frame_ - 1) % static_cast<std::uint64_t>(config_.save_every) == 0)
       save_frames(ctx, v);
@@ -239,6 +256,7 @@ void CameraPlugin::save_frames(NodeContext& ctx, const View& view) {
 
 void CameraPlugin::finish(NodeContext& ctx) {
   ctx.report_metric("frames", frame_);
+  ctx.report_metric("views_rendered", views_rendered_);
   if (!sheet_.empty()) {
     std::vector<std::string> names;
     for (const View& v : views_) names.push_back(v.camera);

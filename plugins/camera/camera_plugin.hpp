@@ -1,6 +1,9 @@
 #pragma once
 // camera: the robot's eyes. Renders the views of the robot model's cameras (default the iCub's
-// left_eye and right_eye) from the world's link and object poses, with OSMesa or EGL.
+// left_eye and right_eye) from the world's link and object poses, with OSMesa or EGL. Only the
+// images something reads are rendered and read back: an output port wired to another node or
+// recorded, or what save_every and the contact sheet need; a view none of whose images is read
+// is not rendered at all.
 #include <array>
 #include <memory>
 #include <string>
@@ -64,8 +67,11 @@ class CameraPlugin : public Plugin {
     Image* rgb = nullptr;
     Image* depth = nullptr;
     Image* mask = nullptr;
+    render::RenderOptions options;  // what this view reads back
+    bool rendered = false;          // anything of this view is read
   };
   void parse_background(NodeContext& ctx);
+  void choose_images(const NodeContext& ctx);
   void save_frames(NodeContext& ctx, const View& view);
 
   std::shared_ptr<const robot::RobotModel> model_;
@@ -76,6 +82,7 @@ class CameraPlugin : public Plugin {
   render::RenderOptions options_;
   bool want_rgb_ = false, want_depth_ = false, want_mask_ = false;
   std::uint64_t frame_ = 0;
+  std::uint64_t views_rendered_ = 0;  // renders (one per view whose images are read, per frame)
   std::vector<View> views_;
   std::vector<SheetRow> sheet_;
   std::vector<render::DrawItem> items_;  // reused every frame

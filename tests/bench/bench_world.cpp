@@ -6,6 +6,9 @@
 //   BM_RawBulletStep/L (baseline): the same scene (same robot, motors, filter and ball) stepped
 //                     with btMultiBodyDynamicsWorld::stepSimulation, the ball spawns and the
 //                     limit-constraint switching only.
+//   BM_WorldAfterObjects/N: BM_WorldPlugin/1 after N objects have come and gone (a long run's
+//                     history: N = 0, 2,000, 20,000); the same rate at every N means the step
+//                     costs per object present, not per object ever spawned.
 // L = 0: every joint held by its motor; L = 1: `locked_joints: all` (the robot as static
 // geometry). items_per_second = physics steps per second; real time factor = steps/s / 1000.
 // Define SOMASIM_BENCH_NO_LOCKED to build the L = 0 cases against a version without locking.
@@ -80,6 +83,39 @@ BENCHMARK(BM_WorldPlugin)
     ->Arg(1)
 #endif
     ->Unit(benchmark::kMicrosecond);
+
+void BM_WorldAfterObjects(benchmark::State& state) {
+  const auto history = static_cast<std::uint64_t>(state.range(0));
+  const auto model = somasim::robot::load_robot_model_shared(kRobot);
+  somasim::testing::Harness h(
+      "base_rate_hz: 1000\nrobots: {icub: " + kRobot +
+      "}\nnodes:\n  world: {plugin: bullet_world, params: {initial_posture_deg: '" + kPosture +
+      "', locked_joints: all}, inputs: {spawns: harness.spawns}}\n");
+  auto& spawns = h.input<somasim::ObjectSpawns>("spawns");
+  // The history: `history` small balls 2 m away, in batches of 1,000, each gone a step later.
+  for (std::uint64_t done = 0; done < history;) {
+    spawns.recent.clear();
+    for (int k = 0; k < 1000 && done < history; ++k, ++done) {
+      somasim::ObjectSpawn s;
+      s.id = done + 1;
+      s.name = "old" + std::to_string(done);
+      s.size.x() = 0.01;
+      s.pose.translation() = Eigen::Vector3d(2.0 + 0.03 * (k % 30), 0.03 * (k / 30), 1.0);
+      s.remove_after_s = 1e-3;
+      spawns.recent.push_back(s);
+    }
+    h.step(2);
+  }
+  std::uint64_t step = 0;
+  for (auto _ : state) {
+    if (step % kThrowPeriod == 0) spawns.recent = {ball(history + step / kThrowPeriod + 1, *model)};
+    h.step();
+    ++step;
+  }
+  state.SetItemsProcessed(state.iterations());
+  h.finish();
+}
+BENCHMARK(BM_WorldAfterObjects)->Arg(0)->Arg(2000)->Arg(20000)->Unit(benchmark::kMicrosecond);
 
 void BM_RawBulletStep(benchmark::State& state) {
   const bool locked = state.range(0) != 0;

@@ -32,6 +32,16 @@ Simulation::~Simulation() {
   }
 }
 
+bool Simulation::output_read(const std::string& node, const std::string& port) const {
+  if (all_outputs_read_) return true;
+  for (const RecordSpec& r : exp_.records)
+    if (r.node == node && r.port == port) return true;
+  for (const NodeSpec& n : exp_.nodes)
+    for (const auto& w : n.inputs)
+      if (w.from_node == node && w.from_port == port) return true;
+  return false;
+}
+
 double Simulation::time_s() const {
   return static_cast<double>(tick_) / exp_.base_rate_hz;
 }
@@ -222,6 +232,9 @@ const Params& NodeContext::params() const {
 }
 bool NodeContext::is_wired(const std::string& port) const {
   return rt_.inputs.count(port) != 0;
+}
+bool NodeContext::is_read(const std::string& port) const {
+  return rt_.sim.output_read(rt_.spec.name, port);
 }
 double NodeContext::time_s() const {
   return rt_.sim.time_s();

@@ -10,6 +10,7 @@
 #include "somasim/metrics_layout.hpp"
 #include "somasim/plugin_registry.hpp"
 #include "somasim/runner.hpp"
+#include "somasim/testing/harness.hpp"
 #include "test_support.hpp"
 
 namespace somasim::test {
@@ -206,4 +207,26 @@ TEST(Runner, SameSeedGivesByteIdenticalOutputs) {
 }
 
 }  // namespace
+// NodeContext::is_read: an output is read when another node's input is wired to it (delayed or
+// not) or the experiment records it; the harness counts every output as read.
+TEST(Runner, OutputsAreReadWhenWiredOrRecorded) {
+  TempDir dir;
+  const RunResult r = run(dir,
+                          "experiment: probe\nduration_s: 0.1\n"
+                          "nodes:\n"
+                          "  probe: {plugin: read_probe}\n"
+                          "  sink: {plugin: adder, inputs: {a: probe.a, b: {from: probe.a, delayed: "
+                          "true}}}\n"
+                          "record: [probe.c]\n");
+  ASSERT_EQ(r.report.status, RunStatus::Completed) << r.report.error;
+  const auto m = metrics_of(r.dir)["nodes"]["probe"];
+  EXPECT_EQ(m["read_a"], true);
+  EXPECT_EQ(m["read_b"], false);
+  EXPECT_EQ(m["read_c"], true);
+  somasim::testing::Harness h("nodes:\n  probe: {plugin: read_probe}\n", {kTestPluginDir});
+  h.finish();
+  EXPECT_EQ(h.metric("probe", "read_b"), true);
+}
+
 }  // namespace somasim::test
+

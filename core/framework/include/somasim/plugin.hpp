@@ -54,6 +54,10 @@ class NodeContext {
     return *static_cast<const T*>(port_storage(port, PortDirection::Input, port_type<T>()));
   }
   bool is_wired(const std::string& input_port) const;
+  /// Whether anything reads this node's output `output_port`: another node's input is wired to
+  /// it or the experiment records it (tests through the harness count every output as read).
+  /// A producer may skip computing outputs nothing reads (e.g. a camera's depth images).
+  bool is_read(const std::string& output_port) const;
 
   double time_s() const;      ///< current simulated time [s]
   std::int64_t tick() const;  ///< current base tick (0-based)

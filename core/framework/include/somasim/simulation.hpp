@@ -66,6 +66,13 @@ class Simulation {
   /// The node that was stepping when step() threw (for messages).
   const std::string& current_node() const { return current_node_; }
 
+  /// Whether `port` of `node` is read: an input of another node is wired to it, a recorder
+  /// records it, or every output counts as read (set_all_outputs_read: the test harness, which
+  /// may read any output).
+  bool output_read(const std::string& node, const std::string& port) const;
+  /// Makes every output count as read (call before configure()).
+  void set_all_outputs_read(bool all) { all_outputs_read_ = all; }
+
   /// Test harness: the storage behind inputs wired to "harness.NAME".
   void* harness_port(const std::string& name, const std::string& type_name);
   /// Any node's output storage (test harness and tools).
@@ -104,6 +111,7 @@ class Simulation {
   std::string stop_reason_;
   std::string current_node_;
   bool configured_ = false;
+  bool all_outputs_read_ = false;
 };
 
 }  // namespace somasim

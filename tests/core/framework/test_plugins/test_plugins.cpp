@@ -1,4 +1,5 @@
 // Small plugins used by the core's tests (scheduler, loader, runner). Not installed.
+#include <map>
 #include <fstream>
 #include <memory>
 #include <random>
@@ -250,6 +251,32 @@ class ListAndRobot : public Plugin {
 
 }  // namespace somasim::test
 
+namespace somasim::test {
+
+// Reports which of its outputs something reads (NodeContext::is_read), as metrics.
+class ReadProbe : public Plugin {
+ public:
+  static PluginSpec spec() {
+    PluginSpec s("read_probe", "Reports which of its outputs are read (test plugin).");
+    s.output<double>("a", "an output");
+    s.output<double>("b", "another output");
+    s.output<double>("c", "a third output");
+    return s;
+  }
+  void configure(NodeContext& ctx) override {
+    for (const char* port : {"a", "b", "c"}) read_[port] = ctx.is_read(port);
+  }
+  void step(NodeContext&) override {}
+  void finish(NodeContext& ctx) override {
+    for (const auto& [port, read] : read_) ctx.report_metric(std::string("read_") + port, read);
+  }
+
+ private:
+  std::map<std::string, bool> read_;
+};
+
+}  // namespace somasim::test
+
 SOMASIM_PLUGIN_LIBRARY(registrar) {
   registrar.add<somasim::test::BufferSource>();
   registrar.add<somasim::test::BufferSink>();
@@ -258,4 +285,5 @@ SOMASIM_PLUGIN_LIBRARY(registrar) {
   registrar.add<somasim::test::Counter>();
   registrar.add<somasim::test::Adder>();
   registrar.add<somasim::test::VectorSink>();
+  registrar.add<somasim::test::ReadProbe>();
 }
