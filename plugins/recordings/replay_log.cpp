@@ -23,14 +23,13 @@ recordings::DatadumperLog read_replay_log_at(NodeContext& ctx, const std::string
     ctx.param_error(key, e.what());
   }
   if (log.content != expected)
-    ctx.param_error(key, fmt::format("{}: the log holds {} (info.log: 'Type: {}'); this node "
-                                     "replays {}",
-                                     params.log.path.string(),
-                                     log.content == recordings::DumpContent::kImage ? "images"
-                                                                                    : "Bottles",
-                                     log.type,
-                                     expected == recordings::DumpContent::kImage ? "images"
-                                                                                 : "Bottles"));
+    ctx.param_error(
+        key,
+        fmt::format("{}: the log holds {} (info.log: 'Type: {}'); this node "
+                    "replays {}",
+                    params.log.path.string(),
+                    log.content == recordings::DumpContent::kImage ? "images" : "Bottles", log.type,
+                    expected == recordings::DumpContent::kImage ? "images" : "Bottles"));
   return log;
 }
 
@@ -55,7 +54,9 @@ void report_replay(NodeContext& ctx, const recordings::DatadumperLog& log,
   ctx.report_metric("longest_gap_s", longest);
   nlohmann::json dropped = nlohmann::json::array();
   for (const auto& r : t.reversals)
-    dropped.push_back({{"line", r.line}, {"stamp_s", r.stamp_s}, {"previous_line", r.previous_line},
+    dropped.push_back({{"line", r.line},
+                       {"stamp_s", r.stamp_s},
+                       {"previous_line", r.previous_line},
                        {"previous_s", r.previous_s}});
   ctx.report_metric("dropped_lines", dropped);
 }

@@ -20,17 +20,20 @@ struct ReplayLogParams {
   double offset_s = 0.0;  // [s]
   template <class V>
   void visit(V& v) {
-    v.field("log", log).doc(
-        "the yarpdatadumper log's data.log (info.log beside it), relative to the experiment "
-        "file");
+    v.field("log", log)
+        .doc(
+            "the yarpdatadumper log's data.log (info.log beside it), relative to the experiment "
+            "file");
     v.field("stamp_columns", stamp_columns)
-        .doc("time stamps after the packet id: receive (default dump) or receive_send (dumped "
-             "with --txTime)");
+        .doc(
+            "time stamps after the packet id: receive (default dump) or receive_send (dumped "
+            "with --txTime)");
     v.field("replay_stamp", replay_stamp)
         .doc("the stamp that times the replay: receive, or send (needs receive_send)");
     v.field("backwards_stamps", backwards_stamps)
-        .doc("a line stamped earlier than the previous one: error (refuse the log) or drop it "
-             "(listed in the report)");
+        .doc(
+            "a line stamped earlier than the previous one: error (refuse the log) or drop it "
+            "(listed in the report)");
     v.field("gap_factor", gap_factor)
         .at_least(1.0)
         .doc("a step between stamps longer than this many median steps is reported as a gap");

@@ -15,13 +15,15 @@ void YarpEncoderReplay::Config::visit(V& v) {
   v.block(robot);
   v.block(log);
   v.field("joints", joints)
-      .doc("the robot joint of each value of a line, in order ('-' leaves a value out), e.g. "
-           "[l_shoulder_pitch, l_shoulder_roll, l_shoulder_yaw, l_elbow, l_wrist_prosup, "
-           "l_wrist_pitch, l_wrist_yaw] for the first 7 of /icub/left_arm/state:o");
+      .doc(
+          "the robot joint of each value of a line, in order ('-' leaves a value out), e.g. "
+          "[l_shoulder_pitch, l_shoulder_roll, l_shoulder_yaw, l_elbow, l_wrist_prosup, "
+          "l_wrist_pitch, l_wrist_yaw] for the first 7 of /icub/left_arm/state:o");
   v.field("units", units).doc("unit of revolute joints' values: deg (YARP's encoders) or rad");
   v.field("interpolation", interpolation)
-      .doc("between two messages: linear (state and velocity from the two) or hold (the last "
-           "message, zero velocity)");
+      .doc(
+          "between two messages: linear (state and velocity from the two) or hold (the last "
+          "message, zero velocity)");
 }
 
 template <class V>
@@ -102,10 +104,11 @@ void YarpEncoderReplay::decode(NodeContext& ctx) {
       if (value_dof_[i] < 0) continue;
       const recordings::BottleValue& v = values[i];
       if (!v.is_number() || !std::isfinite(v.number()))
-        config_error(ctx, config_, config_.log.log,
-                     fmt::format("{}:{}:{}: value {} (joint '{}') must be a finite number, got {}",
-                                 file, e.line, v.column, i + 1, config_.joints[i],
-                                 v.is_number() ? "a non-finite number" : recordings::kind_name(v.kind)));
+        config_error(
+            ctx, config_, config_.log.log,
+            fmt::format("{}:{}:{}: value {} (joint '{}') must be a finite number, got {}", file,
+                        e.line, v.column, i + 1, config_.joints[i],
+                        v.is_number() ? "a non-finite number" : recordings::kind_name(v.kind)));
       const int dof = value_dof_[i];
       const robot::Joint& joint = model_->joint(model_->dof_joint(dof));
       double q = v.number();

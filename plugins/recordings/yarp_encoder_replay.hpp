@@ -34,7 +34,9 @@ constexpr std::span<const NamedValue<ReplayInterpolation>> name_table(ReplayInte
 enum class AngleUnit : std::uint8_t { kDegrees, kRadians };
 inline constexpr NamedValue<AngleUnit> kAngleUnitNames[] = {{AngleUnit::kDegrees, "deg"},
                                                             {AngleUnit::kRadians, "rad"}};
-constexpr std::span<const NamedValue<AngleUnit>> name_table(AngleUnit) { return kAngleUnitNames; }
+constexpr std::span<const NamedValue<AngleUnit>> name_table(AngleUnit) {
+  return kAngleUnitNames;
+}
 
 class YarpEncoderReplay : public Plugin {
  public:

@@ -10,8 +10,9 @@ template <class V>
 void YarpImageReplay::Config::visit(V& v) {
   v.block(log);
   v.field("camera", camera)
-      .doc("the camera the images came from, written into each image (e.g. left_eye); a label "
-           "for consumers, not checked against a robot");
+      .doc(
+          "the camera the images came from, written into each image (e.g. left_eye); a label "
+          "for consumers, not checked against a robot");
 }
 
 template <class V>
@@ -49,8 +50,8 @@ void YarpImageReplay::step(NodeContext& ctx) {
     height_ = bgr.rows;
   } else if (bgr.cols != width_ || bgr.rows != height_) {
     throw RunError(fmt::format("{}:{}: image '{}' is {}x{} px; the log's first image is {}x{}",
-                               (log_.folder / "data.log").string(), e.line, file.string(),
-                               bgr.cols, bgr.rows, width_, height_));
+                               (log_.folder / "data.log").string(), e.line, file.string(), bgr.cols,
+                               bgr.rows, width_, height_));
   }
   RgbImage& out = *ports_.image;
   cv::cvtColor(bgr, out.data, cv::COLOR_BGR2RGB);

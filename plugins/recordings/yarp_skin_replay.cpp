@@ -33,24 +33,28 @@ template <class V>
 void YarpSkinReplay::Config::visit(V& v) {
   v.block(log);
   v.field("parts", parts)
-      .doc("iCub skin part = body part name, e.g. [left_forearm=left_forearm, right_hand="
-           "right_palm] (the iCub part by name or SkinPart id: 1 left_hand, 2 left_forearm, "
-           "3 left_upper_arm, 4 right_hand, 5 right_forearm, 6 right_upper_arm, 7 front_torso); "
-           "empty: every part keeps its iCub name. Contacts on other parts are counted and "
-           "left out");
+      .doc(
+          "iCub skin part = body part name, e.g. [left_forearm=left_forearm, right_hand="
+          "right_palm] (the iCub part by name or SkinPart id: 1 left_hand, 2 left_forearm, "
+          "3 left_upper_arm, 4 right_hand, 5 right_forearm, 6 right_upper_arm, 7 front_torso); "
+          "empty: every part keeps its iCub name. Contacts on other parts are counted and "
+          "left out");
   v.field("layout_files", layout_files)
-      .doc("body part = skin layout file (somasim layout files or the iCub's skinGui positions "
-           "files), relative to the experiment file: taxel ids become the ids of their virtual "
-           "taxels (modules); ids not in the layout are counted as unknown_taxels");
+      .doc(
+          "body part = skin layout file (somasim layout files or the iCub's skinGui positions "
+          "files), relative to the experiment file: taxel ids become the ids of their virtual "
+          "taxels (modules); ids not in the layout are counted as unknown_taxels");
   v.field("min_taxels", min_taxels)
       .range(1, 100000)
-      .doc("a contact touches its part only with at least this many taxels (the released PPS "
-           "code: 3)");
+      .doc(
+          "a contact touches its part only with at least this many taxels (the released PPS "
+          "code: 3)");
   v.field("new_event_after_s", new_event_after_s)
       .unit("s")
       .at_least(0.0)
-      .doc("a touch is a new event when its part was untouched this long before (0: every "
-           "line's contact is an event)");
+      .doc(
+          "a touch is a new event when its part was untouched this long before (0: every "
+          "line's contact is an event)");
   v.field("keep_events_s", keep_events_s)
       .unit("s")
       .at_least(0.0)
@@ -102,7 +106,8 @@ void YarpSkinReplay::read_part_map(NodeContext& ctx) {
     if (!id) {
       std::string names;
       for (int k = 1; recordings::icub_skin_part_name(k); ++k)
-        names += fmt::format("{}{} ({})", k > 1 ? ", " : "", *recordings::icub_skin_part_name(k), k);
+        names +=
+            fmt::format("{}{} ({})", k > 1 ? ", " : "", *recordings::icub_skin_part_name(k), k);
       config_error(ctx, config_, config_.parts,
                    fmt::format("'{}' is not an iCub skin part; expected one of: {}", left, names));
     }
@@ -123,8 +128,9 @@ void YarpSkinReplay::read_layouts(NodeContext& ctx) {
       config_error(ctx, config_, config_.layout_files,
                    fmt::format("expected 'BODY_PART=FILE' items, got '{}'", item));
     if (!mapped.count(part))
-      config_error(ctx, config_, config_.layout_files,
-                   fmt::format("body part '{}' is not among the replayed parts (see 'parts')", part));
+      config_error(
+          ctx, config_, config_.layout_files,
+          fmt::format("body part '{}' is not among the replayed parts (see 'parts')", part));
     if (layouts_.count(part))
       config_error(ctx, config_, config_.layout_files,
                    fmt::format("body part '{}' has two layout files", part));
@@ -221,8 +227,8 @@ void YarpSkinReplay::finish(NodeContext& ctx) {
   report_replay(ctx, log_, *cursor_);
   nlohmann::json parts = nlohmann::json::object();
   for (const auto& [name, s] : parts_)
-    parts[name] = {{"contacts", s.contacts}, {"events", s.events},
-                   {"unknown_taxels", s.unknown_taxels}};
+    parts[name] = {
+        {"contacts", s.contacts}, {"events", s.events}, {"unknown_taxels", s.unknown_taxels}};
   ctx.report_metric("parts", parts);
   nlohmann::json unmapped = nlohmann::json::object();
   for (const auto& [id, n] : unmapped_contacts_)

@@ -6,6 +6,7 @@
 #include <benchmark/benchmark.h>
 
 #include <chrono>
+#include <random>
 
 #include "../core/body_schema/real_arm_views.hpp"
 #include "somasim/body_schema/hypothesis_scorer.hpp"
@@ -71,5 +72,30 @@ BENCHMARK(BM_FilterStepOverBareRender)
     ->Args({2000, 2})
     ->Unit(benchmark::kMillisecond)
     ->UseManualTime();
+
+// The estimate's KDE (the argmax of ω_i + α/M Σ_m ω_m K(β_i, β_m)) over M particles spread as a
+// filter's mid-movement cloud (7 offsets, σ 2°): what the O(M²) estimate costs as M grows.
+Eigen::MatrixXd kde_cloud(int m, Eigen::VectorXd& weights) {
+  std::mt19937_64 rng(5);
+  std::normal_distribution<double> noise(0.0, 2.0);
+  Eigen::MatrixXd p(7, m);
+  for (Eigen::Index k = 0; k < p.size(); ++k) p.data()[k] = noise(rng);
+  weights =
+      Eigen::VectorXd::NullaryExpr(m, [&] { return std::uniform_real_distribution<>(0, 1)(rng); });
+  weights /= weights.sum();
+  return p;
+}
+
+void BM_KdeArgmax(benchmark::State& state) {
+  Eigen::VectorXd w;
+  const Eigen::MatrixXd p = kde_cloud(static_cast<int>(state.range(0)), w);
+  for (auto _ : state) benchmark::DoNotOptimize(kde_argmax(p, w, KdeOptions{}));
+}
+BENCHMARK(BM_KdeArgmax)
+    ->ArgName("M")
+    ->Arg(200)
+    ->Arg(2000)
+    ->Arg(10000)
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace

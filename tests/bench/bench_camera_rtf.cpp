@@ -1,8 +1,9 @@
 // The `camera` node (both eyes, RGB + depth + id mask, textured backdrop, ~30 Hz; nothing reads
-// its images, so it renders none) inside the 1 kHz ball_on_forearm world: real-time factor (sim time / wall time of the run loop, from the
-// run's metrics.json) of configs/ball_on_forearm_camera.yaml beside, in the same iteration,
-// configs/ball_on_forearm.yaml (the same world without the camera) as the baseline. Whole
-// `somasim run` child processes; run folders under the system temp folder.
+// its images, so it renders none) inside the 1 kHz ball_on_forearm world: real-time factor (sim
+// time / wall time of the run loop, from the run's metrics.json) of
+// configs/ball_on_forearm_camera.yaml beside, in the same iteration, configs/ball_on_forearm.yaml
+// (the same world without the camera) as the baseline. Whole `somasim run` child processes; run
+// folders under the system temp folder.
 //
 // Counters (means over iterations): rtf_without, rtf_with, slowdown = rtf_without / rtf_with,
 // camera_frames (stereo frames rendered per run), sim_s (simulated seconds per run).

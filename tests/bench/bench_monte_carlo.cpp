@@ -15,9 +15,9 @@ namespace {
 const std::string kConfig =
     std::string(SOMASIM_SOURCE_DIR) + "/configs/pps_single_taxel_offset.yaml";
 // Every repetition writes a whole run into this folder, emptied first (--overwrite).
-const std::string kOut = (std::filesystem::temp_directory_path() /
-                          ("somasim-bench-mc-" + std::to_string(::getpid())))
-                             .string();
+const std::string kOut =
+    (std::filesystem::temp_directory_path() / ("somasim-bench-mc-" + std::to_string(::getpid())))
+        .string();
 
 void run_command(benchmark::State& state, const std::string& command) {
   for (auto _ : state) {
@@ -29,8 +29,8 @@ void run_command(benchmark::State& state, const std::string& command) {
 }
 
 void BM_MonteCarlo500Throws_WholeProcess(benchmark::State& state) {
-  run_command(state, std::string(SOMASIM_BIN) + " run " + kConfig + " --quiet --overwrite --out " + kOut +
-                         " > /dev/null");
+  run_command(state, std::string(SOMASIM_BIN) + " run " + kConfig + " --quiet --overwrite --out " +
+                         kOut + " > /dev/null");
   std::filesystem::remove_all(kOut);
 }
 

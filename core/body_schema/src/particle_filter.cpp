@@ -97,27 +97,7 @@ FilterUpdate OffsetParticleFilter::update(const std::vector<double>& likelihoods
 }
 
 int OffsetParticleFilter::kde_best(const Eigen::VectorXd& weights) const {
-  const Eigen::Index m_count = particles_.cols();
-  const double inv_two_var = 0.5 / (kde_.sigma_deg * kde_.sigma_deg);
-  // |Σ| = σ^(2 dims) for Σ = σ² I.
-  const double norm = std::pow(kde_.sigma_deg, -2.0 * static_cast<double>(particles_.rows()));
-  const double scale = kde_.alpha * norm / static_cast<double>(m_count);
-  int best = 0;
-  double best_score = -1.0;
-  for (Eigen::Index i = 0; i < m_count; ++i) {
-    double neighbours = 0.0;
-    for (Eigen::Index m = 0; m < m_count; ++m) {
-      if (weights[m] == 0.0) continue;
-      const double d2 = (particles_.col(i) - particles_.col(m)).squaredNorm();
-      neighbours += weights[m] * std::exp(-d2 * inv_two_var);
-    }
-    const double score = weights[i] + scale * neighbours;
-    if (score > best_score) {  // strict: the lowest index wins ties
-      best_score = score;
-      best = static_cast<int>(i);
-    }
-  }
-  return best;
+  return kde_argmax(particles_, weights, kde_);
 }
 
 void OffsetParticleFilter::resample_systematic(const Eigen::VectorXd& weights) {
@@ -142,6 +122,31 @@ std::vector<int> systematic_resample(const Eigen::VectorXd& weights, double u0) 
     chosen[static_cast<std::size_t>(m)] = i;
   }
   return chosen;
+}
+
+int kde_argmax(const Eigen::MatrixXd& particles, const Eigen::VectorXd& weights,
+               const KdeOptions& kde) {
+  const Eigen::Index m_count = particles.cols();
+  const double inv_two_var = 0.5 / (kde.sigma_deg * kde.sigma_deg);
+  // |Σ| = σ^(2 dims) for Σ = σ² I.
+  const double norm = std::pow(kde.sigma_deg, -2.0 * static_cast<double>(particles.rows()));
+  const double scale = kde.alpha * norm / static_cast<double>(m_count);
+  int best = 0;
+  double best_score = -1.0;
+  for (Eigen::Index i = 0; i < m_count; ++i) {
+    double neighbours = 0.0;
+    for (Eigen::Index m = 0; m < m_count; ++m) {
+      if (weights[m] == 0.0) continue;
+      const double d2 = (particles.col(i) - particles.col(m)).squaredNorm();
+      neighbours += weights[m] * std::exp(-d2 * inv_two_var);
+    }
+    const double score = weights[i] + scale * neighbours;
+    if (score > best_score) {  // strict: the lowest index wins ties
+      best_score = score;
+      best = static_cast<int>(i);
+    }
+  }
+  return best;
 }
 
 }  // namespace somasim::body_schema

@@ -15,7 +15,9 @@ namespace somasim::recordings {
 
 namespace {
 
-bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r'; }
+bool is_space(char c) {
+  return c == ' ' || c == '\t' || c == '\r';
+}
 
 // The next space-separated word of `line` from `pos` (advanced past it); empty at the end.
 std::string_view next_word(std::string_view line, std::size_t& pos, std::size_t& start) {
@@ -51,33 +53,35 @@ InfoLog read_info_log(const std::filesystem::path& file) {
     const std::string_view text(line);
     if (text.rfind("Type:", 0) == 0) {
       std::string type(text.substr(5));
-      type.erase(std::remove_if(type.begin(), type.end(),
-                                [](char c) { return is_space(c) || c == ';'; }),
-                 type.end());
+      type.erase(
+          std::remove_if(type.begin(), type.end(), [](char c) { return is_space(c) || c == ';'; }),
+          type.end());
       if (type == "Bottle") {
         info.content = DumpContent::kBottle;
       } else if (type.rfind("Image", 0) == 0) {
         info.content = DumpContent::kImage;
       } else {
-        throw InputError(fmt::format("{}:{}:7: unknown log type '{}' (expected Bottle, Image or "
-                                     "Image:FORMAT)",
-                                     file.string(), number, type));
+        throw InputError(
+            fmt::format("{}:{}:7: unknown log type '{}' (expected Bottle, Image or "
+                        "Image:FORMAT)",
+                        file.string(), number, type));
       }
       info.type = type;
       typed = true;
-    } else if (const auto close = text.find("] "); !text.empty() && text[0] == '[' &&
-                                                   close != std::string_view::npos) {
+    } else if (const auto close = text.find("] ");
+               !text.empty() && text[0] == '[' && close != std::string_view::npos) {
       std::size_t pos = close + 2, start = 0;
       const std::string_view port = next_word(text, pos, start);
-      if (!port.empty() && std::find(info.ports.begin(), info.ports.end(), port) ==
-                               info.ports.end())
+      if (!port.empty() &&
+          std::find(info.ports.begin(), info.ports.end(), port) == info.ports.end())
         info.ports.emplace_back(port);
     }
   }
   if (!typed)
-    throw InputError(fmt::format("{}: no 'Type:' line (expected 'Type: Bottle;' or "
-                                 "'Type: Image;')",
-                                 file.string()));
+    throw InputError(
+        fmt::format("{}: no 'Type:' line (expected 'Type: Bottle;' or "
+                    "'Type: Image;')",
+                    file.string()));
   return info;
 }
 
@@ -89,8 +93,8 @@ double parse_stamp(std::string_view word, const std::filesystem::path& file, int
     throw InputError(fmt::format("{}: expected {} (a number of seconds), got '{}'",
                                  located(file, line, column), what, word));
   if (!std::isfinite(v))
-    throw InputError(fmt::format("{}: {} '{}' is not finite", located(file, line, column), what,
-                                 word));
+    throw InputError(
+        fmt::format("{}: {} '{}' is not finite", located(file, line, column), what, word));
   return v;
 }
 
@@ -126,13 +130,15 @@ DumpEntry parse_line(std::string_view text, const std::filesystem::path& file, i
 
 void check_image(const DatadumperLog& log, const DumpEntry& e, const std::filesystem::path& file) {
   if (e.content.empty())
-    throw InputError(fmt::format("{}: expected an image file name after the time stamp",
-                                 located(file, e.line, static_cast<std::size_t>(e.content_column - 1))));
+    throw InputError(
+        fmt::format("{}: expected an image file name after the time stamp",
+                    located(file, e.line, static_cast<std::size_t>(e.content_column - 1))));
   const std::filesystem::path image = log.image_file(e);
   if (const std::string why = input_file_problem(image); !why.empty())
-    throw InputError(fmt::format("{}: image file '{}' {}",
-                                 located(file, e.line, static_cast<std::size_t>(e.content_column - 1)),
-                                 image.string(), why));
+    throw InputError(
+        fmt::format("{}: image file '{}' {}",
+                    located(file, e.line, static_cast<std::size_t>(e.content_column - 1)),
+                    image.string(), why));
 }
 
 DumpTimeline make_timeline(const std::vector<DumpEntry>& entries, double gap_factor) {
@@ -165,8 +171,9 @@ std::filesystem::path DatadumperLog::image_file(const DumpEntry& entry) const {
 DatadumperLog read_datadumper_log(const std::filesystem::path& data_log,
                                   const DumpReadOptions& options) {
   if (options.stamp == ReplayStamp::kSend && options.columns != StampColumns::kReceiveAndSend)
-    throw InputError("replaying by the sender's stamps needs logs dumped with both stamps "
-                     "(stamp columns 'receive_send')");
+    throw InputError(
+        "replaying by the sender's stamps needs logs dumped with both stamps "
+        "(stamp columns 'receive_send')");
   DatadumperLog log;
   log.folder = data_log.parent_path();
   InfoLog info = read_info_log(log.folder / "info.log");
@@ -191,8 +198,8 @@ DatadumperLog read_datadumper_log(const std::filesystem::path& data_log,
         throw InputError(fmt::format(
             "{}: time stamp {:.6f} is earlier than {:.6f} on line {} (stamps must not go "
             "backwards; backwards_stamps: drop leaves such lines out)",
-            located(data_log, number, static_cast<std::size_t>(e.stamp_column - 1)),
-            e.stamp_s, prev.stamp_s, prev.line));
+            located(data_log, number, static_cast<std::size_t>(e.stamp_column - 1)), e.stamp_s,
+            prev.stamp_s, prev.line));
       reversals.push_back({number, prev.line, e.stamp_s, prev.stamp_s});
       continue;
     }
@@ -208,7 +215,8 @@ DatadumperLog read_datadumper_log(const std::filesystem::path& data_log,
 
 std::string describe_timeline(const DatadumperLog& log, std::size_t max_listed) {
   const DumpTimeline& t = log.timeline;
-  std::string s = fmt::format("{} messages over {:.3f} s", log.entries.size(), t.last_s - t.first_s);
+  std::string s =
+      fmt::format("{} messages over {:.3f} s", log.entries.size(), t.last_s - t.first_s);
   if (t.median_step_s > 0.0) s += fmt::format(" (median {:.1f} Hz)", 1.0 / t.median_step_s);
   s += fmt::format("; {} gap{}", t.gaps.size(), t.gaps.size() == 1 ? "" : "s");
   for (std::size_t i = 0; i < t.gaps.size() && i < max_listed; ++i)

@@ -11,16 +11,16 @@ namespace somasim::recordings {
 namespace {
 
 constexpr std::array<std::string_view, 14> kSkinPartNames = {
-    "unknown",         "left_hand",      "left_forearm",    "left_upper_arm", "right_hand",
-    "right_forearm",   "right_upper_arm", "front_torso",    "left_upper_leg", "left_lower_leg",
-    "left_foot",       "right_upper_leg", "right_lower_leg", "right_foot"};
+    "unknown",       "left_hand",       "left_forearm",    "left_upper_arm", "right_hand",
+    "right_forearm", "right_upper_arm", "front_torso",     "left_upper_leg", "left_lower_leg",
+    "left_foot",     "right_upper_leg", "right_lower_leg", "right_foot"};
 
 constexpr const char* kLayout =
     "((ID BODY_PART LINK SKIN_PART) (CoP) (force) (moment) (centre) (normal) (TAXELS) PRESSURE)";
 
 [[noreturn]] void fail(int column, std::size_t contact, const std::string& what) {
-  throw BottleSyntaxError(column,
-                          fmt::format("skin contact {}: {}; a contact is {}", contact, what, kLayout));
+  throw BottleSyntaxError(
+      column, fmt::format("skin contact {}: {}; a contact is {}", contact, what, kLayout));
 }
 
 std::int64_t integer_at(const BottleValue& v, std::size_t contact, const char* field) {
@@ -40,9 +40,8 @@ Eigen::Vector3d vector_at(const BottleValue& v, std::size_t contact, const char*
   if (v.kind != BottleValue::Kind::kList || v.list.size() != 3)
     fail(v.column, contact,
          fmt::format("{} must be a list of 3 numbers, got {}", field,
-                     v.kind == BottleValue::Kind::kList
-                         ? fmt::format("a list of {}", v.list.size())
-                         : std::string(kind_name(v.kind))));
+                     v.kind == BottleValue::Kind::kList ? fmt::format("a list of {}", v.list.size())
+                                                        : std::string(kind_name(v.kind))));
   Eigen::Vector3d out;
   for (int k = 0; k < 3; ++k) {
     const BottleValue& x = v.list[static_cast<std::size_t>(k)];
@@ -57,11 +56,11 @@ SkinContactRecord decode_contact(const BottleValue& v, std::size_t contact) {
   if (v.kind != BottleValue::Kind::kList)
     fail(v.column, contact, fmt::format("expected a list, got {}", kind_name(v.kind)));
   const BottleList& f = v.list;
-  if (f.size() != 8)
-    fail(v.column, contact, fmt::format("expected 8 fields, got {}", f.size()));
+  if (f.size() != 8) fail(v.column, contact, fmt::format("expected 8 fields, got {}", f.size()));
   SkinContactRecord r;
   if (f[0].kind != BottleValue::Kind::kList || f[0].list.size() != 4)
-    fail(f[0].column, contact, "the first field must be the 4 integers (ID BODY_PART LINK SKIN_PART)");
+    fail(f[0].column, contact,
+         "the first field must be the 4 integers (ID BODY_PART LINK SKIN_PART)");
   r.contact_id = integer_at(f[0].list[0], contact, "the contact id");
   r.body_part = small_integer_at(f[0].list[1], contact, "the body part");
   r.link = small_integer_at(f[0].list[2], contact, "the link");
@@ -72,8 +71,8 @@ SkinContactRecord decode_contact(const BottleValue& v, std::size_t contact) {
   r.geometric_centre = vector_at(f[4], contact, "the geometric centre");
   r.normal = vector_at(f[5], contact, "the normal");
   if (f[6].kind != BottleValue::Kind::kList)
-    fail(f[6].column, contact, fmt::format("the taxels must be a list of ids, got {}",
-                                           kind_name(f[6].kind)));
+    fail(f[6].column, contact,
+         fmt::format("the taxels must be a list of ids, got {}", kind_name(f[6].kind)));
   for (const BottleValue& t : f[6].list) {
     const int id = small_integer_at(t, contact, "a taxel id");
     if (id < 0) fail(t.column, contact, fmt::format("taxel id {} is negative", id));

@@ -12,8 +12,12 @@ namespace {
 
 constexpr int kMaxDepth = 64;
 
-bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n'; }
-bool ends_token(char c) { return is_space(c) || c == '(' || c == ')'; }
+bool is_space(char c) {
+  return c == ' ' || c == '\t' || c == '\r' || c == '\n';
+}
+bool ends_token(char c) {
+  return is_space(c) || c == '(' || c == ')';
+}
 
 BottleValue word_value(std::string_view word, int column) {
   BottleValue v;
@@ -63,7 +67,8 @@ class Parser {
       const std::size_t start = pos_;
       const char c = text_[pos_];
       if (c == '(') {
-        if (depth + 1 > kMaxDepth) fail(start, fmt::format("lists nested deeper than {}", kMaxDepth));
+        if (depth + 1 > kMaxDepth)
+          fail(start, fmt::format("lists nested deeper than {}", kMaxDepth));
         ++pos_;
         BottleValue v;
         v.kind = BottleValue::Kind::kList;

@@ -21,8 +21,8 @@ std::vector<std::string> words(const std::string& text) {
 }
 
 bool is_key_line(const std::string& first_word) {
-  return first_word == "name" || first_word == "spatial_sampling" ||
-         first_word == "taxel2Repr" || first_word == "[calibration]";
+  return first_word == "name" || first_word == "spatial_sampling" || first_word == "taxel2Repr" ||
+         first_word == "[calibration]";
 }
 
 std::string strip_comment(const std::string& line) {
@@ -66,8 +66,8 @@ bool is_icub_positions_file(const std::filesystem::path& file) {
   return false;
 }
 
-SkinLayout load_icub_positions_file(const std::filesystem::path& file,
-                                    const std::string& body_part, int link) {
+SkinLayout load_icub_positions_file(const std::filesystem::path& file, const std::string& body_part,
+                                    int link) {
   const std::string name = file.string();
   std::ifstream in(file);
   if (!in)
@@ -124,8 +124,7 @@ SkinLayout load_icub_positions_file(const std::filesystem::path& file,
   keys.reserve(layout.ids.size());
   for (int id : layout.ids) {
     const auto k = static_cast<std::size_t>(id);
-    keys.push_back(k < representatives.size() && representatives[k] >= 0 ? representatives[k]
-                                                                         : id);
+    keys.push_back(k < representatives.size() && representatives[k] >= 0 ? representatives[k] : id);
   }
   group_by_key(layout, keys);
   return layout;

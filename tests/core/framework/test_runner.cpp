@@ -211,13 +211,14 @@ TEST(Runner, SameSeedGivesByteIdenticalOutputs) {
 // not) or the experiment records it; the harness counts every output as read.
 TEST(Runner, OutputsAreReadWhenWiredOrRecorded) {
   TempDir dir;
-  const RunResult r = run(dir,
-                          "experiment: probe\nduration_s: 0.1\n"
-                          "nodes:\n"
-                          "  probe: {plugin: read_probe}\n"
-                          "  sink: {plugin: adder, inputs: {a: probe.a, b: {from: probe.a, delayed: "
-                          "true}}}\n"
-                          "record: [probe.c]\n");
+  const RunResult r =
+      run(dir,
+          "experiment: probe\nduration_s: 0.1\n"
+          "nodes:\n"
+          "  probe: {plugin: read_probe}\n"
+          "  sink: {plugin: adder, inputs: {a: probe.a, b: {from: probe.a, delayed: "
+          "true}}}\n"
+          "record: [probe.c]\n");
   ASSERT_EQ(r.report.status, RunStatus::Completed) << r.report.error;
   const auto m = metrics_of(r.dir)["nodes"]["probe"];
   EXPECT_EQ(m["read_a"], true);
@@ -229,4 +230,3 @@ TEST(Runner, OutputsAreReadWhenWiredOrRecorded) {
 }
 
 }  // namespace somasim::test
-

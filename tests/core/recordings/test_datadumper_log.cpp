@@ -23,8 +23,8 @@ class LogFolder {
            ("somasim_dump_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
     fs::create_directories(dir_);
     if (!type.empty())
-      std::ofstream(dir_ / "info.log") << "Type: " << type
-                                       << ";\n[1.0] /icub/left_arm/state:o [connected]\n";
+      std::ofstream(dir_ / "info.log")
+          << "Type: " << type << ";\n[1.0] /icub/left_arm/state:o [connected]\n";
     std::ofstream(dir_ / "data.log") << data;
   }
   ~LogFolder() { fs::remove_all(dir_); }
@@ -93,9 +93,10 @@ TEST(DatadumperLog, ReceiveAndSendStamps) {
 
 TEST(DatadumperLog, BackwardsStampsRefusedOrDropped) {
   LogFolder f("Bottle", "1 5.0 a\n2 5.1 b\n3 5.05 c\n4 5.2 d\n");
-  EXPECT_EQ(error_of(f), f.data().string() +
-                             ":3:3: time stamp 5.050000 is earlier than 5.100000 on line 2 (stamps "
-                             "must not go backwards; backwards_stamps: drop leaves such lines out)");
+  EXPECT_EQ(error_of(f),
+            f.data().string() +
+                ":3:3: time stamp 5.050000 is earlier than 5.100000 on line 2 (stamps "
+                "must not go backwards; backwards_stamps: drop leaves such lines out)");
   DumpReadOptions options;
   options.backwards = BackwardsStamps::kDrop;
   const DatadumperLog log = read_datadumper_log(f.data(), options);
@@ -125,8 +126,9 @@ TEST(DatadumperLog, MalformedLinesAreLocated) {
   DumpReadOptions options;
   options.columns = StampColumns::kReceiveAndSend;
   EXPECT_EQ(error_of(two, options),
-            two.data().string() + ":1:7: expected the sender's time stamp (a number of seconds), "
-                                  "got 'x'");
+            two.data().string() +
+                ":1:7: expected the sender's time stamp (a number of seconds), "
+                "got 'x'");
   LogFolder empty("Bottle", "\n\n");
   EXPECT_EQ(error_of(empty), empty.data().string() + ": no messages (an empty log)");
 }

@@ -65,8 +65,8 @@ PartCheck check_part(const DatadumperLog& log, int skin_part, const std::string&
         ++found;
       }
       if (found == c.taxels.size() && found > 0)
-        out.worst_centre_m =
-            std::max(out.worst_centre_m, (sum / static_cast<double>(found) - c.geometric_centre).norm());
+        out.worst_centre_m = std::max(
+            out.worst_centre_m, (sum / static_cast<double>(found) - c.geometric_centre).norm());
     }
   return out;
 }

@@ -15,7 +15,8 @@ BottleValue random_value(std::mt19937_64& rng, int depth) {
   const int kind = std::uniform_int_distribution<int>(0, depth < 4 ? 3 : 2)(rng);
   if (kind == 0) {
     v.kind = BottleValue::Kind::kInt;
-    v.integer = std::uniform_int_distribution<std::int64_t>(-1'000'000'000'000, 1'000'000'000'000)(rng);
+    v.integer =
+        std::uniform_int_distribution<std::int64_t>(-1'000'000'000'000, 1'000'000'000'000)(rng);
   } else if (kind == 1) {
     v.kind = BottleValue::Kind::kFloat;
     const double e = std::uniform_real_distribution<double>(-12, 12)(rng);

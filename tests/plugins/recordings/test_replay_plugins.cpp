@@ -60,8 +60,10 @@ TEST(YarpEncoderReplay, DrivesJointsAtTheRecordedTimes) {
                                      "1 1000.0 -30 30 0 10 0 0 0\n"
                                      "2 1000.1 -30 30 0 20 0 0 0\n"
                                      "3 1000.3 -30 30 0 40 0 0 0\n");
-  Harness h(robot_line() + "duration_s: 2\nbase_rate_hz: 100\nnodes:\n  arm:\n"
-            "    plugin: yarp_encoder_replay\n    params:\n      log: " + log.string() +
+  Harness h(robot_line() +
+            "duration_s: 2\nbase_rate_hz: 100\nnodes:\n  arm:\n"
+            "    plugin: yarp_encoder_replay\n    params:\n      log: " +
+            log.string() +
             "\n      offset_s: 0.5\n      joints: [l_shoulder_pitch, l_shoulder_roll, "
             "l_shoulder_yaw, l_elbow, '-', '-', '-']\n");
   const auto& state = h.output<somasim::JointState>("arm.state");
@@ -93,8 +95,10 @@ TEST(YarpEncoderReplay, DrivesJointsAtTheRecordedTimes) {
 TEST(YarpEncoderReplay, RefusesBadLogsAndMappings) {
   TempDir dir;
   const auto yaml = [&](const fs::path& log, const std::string& joints) {
-    return robot_line() + "duration_s: 1\nnodes:\n  arm: {plugin: yarp_encoder_replay, params: "
-                          "{log: " + log.string() + ", joints: " + joints + "}}\n";
+    return robot_line() +
+           "duration_s: 1\nnodes:\n  arm: {plugin: yarp_encoder_replay, params: "
+           "{log: " +
+           log.string() + ", joints: " + joints + "}}\n";
   };
   const fs::path short_log = dir.write_log("short", "Bottle", "1 5.0 1 2\n");
   EXPECT_NE(error_of(yaml(short_log, "[l_elbow, '-', l_wrist_pitch]"))
@@ -103,10 +107,11 @@ TEST(YarpEncoderReplay, RefusesBadLogsAndMappings) {
             std::string::npos)
       << error_of(yaml(short_log, "[l_elbow, '-', l_wrist_pitch]"));
   const fs::path text_log = dir.write_log("text", "Bottle", "1 5.0 1 two\n");
-  EXPECT_NE(error_of(yaml(text_log, "[l_elbow, l_wrist_pitch]"))
-                .find(text_log.string() +
-                      ":1:9: value 2 (joint 'l_wrist_pitch') must be a finite number, got a string"),
-            std::string::npos)
+  EXPECT_NE(
+      error_of(yaml(text_log, "[l_elbow, l_wrist_pitch]"))
+          .find(text_log.string() +
+                ":1:9: value 2 (joint 'l_wrist_pitch') must be a finite number, got a string"),
+      std::string::npos)
       << error_of(yaml(text_log, "[l_elbow, l_wrist_pitch]"));
   const fs::path ok = dir.write_log("ok", "Bottle", "1 5.0 1 2\n");
   EXPECT_NE(error_of(yaml(ok, "[l_elbow, l_elbo]")).find("key 'params.joints'"), std::string::npos);
@@ -125,8 +130,7 @@ TEST(YarpSkinReplay, ContactsBecomeEventsOnMappedParts) {
   TempDir dir;
   const std::string contact =
       "((7 3 4 2) (0.01 0.02 0.03) (0 0 -1) (0 0 0) (0.01 0.02 0.03) (0 0 2) (0 1 5) 30)";
-  const std::string palm =
-      "((8 4 6 4) (0.0 0.0 0.0) (0 0 0) (0 0 0) (0 0 0) (0 0 0) (4) 30)";
+  const std::string palm = "((8 4 6 4) (0.0 0.0 0.0) (0 0 0) (0 0 0) (0 0 0) (0 0 0) (4) 30)";
   // 50 Hz; the forearm touched on lines 2-4 (one episode) and again on line 9 (a new one); a
   // one-taxel palm contact (dropped by min_taxels) on line 3.
   std::string data;
@@ -139,11 +143,13 @@ TEST(YarpSkinReplay, ContactsBecomeEventsOnMappedParts) {
   const fs::path log = dir.write_log("skin", "Bottle", data);
   std::ofstream(dir.path() / "layout.txt") << "0 0 0 0 0 0 1 100\n1 0.01 0 0 0 0 1 100\n"
                                               "5 0.02 0 0 0 0 1 200\n";
-  Harness h("duration_s: 1\nbase_rate_hz: 100\nnodes:\n  skin:\n    plugin: yarp_skin_replay\n"
-            "    params:\n      log: " + log.string() +
-            "\n      parts: [left_forearm=forearm, 4=palm]\n      min_taxels: 2\n"
-            "      new_event_after_s: 0.05\n      layout_files: [forearm=" +
-            (dir.path() / "layout.txt").string() + "]\n");
+  Harness h(
+      "duration_s: 1\nbase_rate_hz: 100\nnodes:\n  skin:\n    plugin: yarp_skin_replay\n"
+      "    params:\n      log: " +
+      log.string() +
+      "\n      parts: [left_forearm=forearm, 4=palm]\n      min_taxels: 2\n"
+      "      new_event_after_s: 0.05\n      layout_files: [forearm=" +
+      (dir.path() / "layout.txt").string() + "]\n");
   const auto& events = h.output<somasim::ContactEvents>("skin.events");
   h.step(2);  // t = 0.01: line 1 is due (t = 0.0), nothing touched
   EXPECT_TRUE(events.recent.empty());
@@ -202,8 +208,10 @@ TEST(YarpImageReplay, ImagesArriveInOrder) {
     cv::imwrite((dir.path() / "cam" / ("0000000" + std::to_string(i) + ".ppm")).string(),
                 cv::Mat(6, 8, CV_8UC3, cv::Scalar(10 * i, 20, 200)));  // B G R
   const fs::path log = dir.write_log("cam", "Image:ppm", data);
-  Harness h("duration_s: 1\nbase_rate_hz: 20\nnodes:\n  cam: {plugin: yarp_image_replay, params: "
-            "{log: " + log.string() + ", camera: left_eye}}\n");
+  Harness h(
+      "duration_s: 1\nbase_rate_hz: 20\nnodes:\n  cam: {plugin: yarp_image_replay, params: "
+      "{log: " +
+      log.string() + ", camera: left_eye}}\n");
   const auto& image = h.output<somasim::RgbImage>("cam.image");
   h.step(1);  // t = 0
   ASSERT_EQ(image.frame, 1u);

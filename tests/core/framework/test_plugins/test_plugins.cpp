@@ -1,6 +1,6 @@
 // Small plugins used by the core's tests (scheduler, loader, runner). Not installed.
-#include <map>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <random>
 

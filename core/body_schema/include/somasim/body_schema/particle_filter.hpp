@@ -88,6 +88,12 @@ class OffsetParticleFilter {
   double sigma_ = 0.0;
 };
 
+/// The particle (column of `particles`, dims × M [deg]) with the largest KDE-smoothed weight
+/// ω_i + α (1/M) Σ_m ω_m K(β_i, β_m) (KdeOptions; the lowest index wins ties): O(M²) kernel
+/// evaluations (bench_body_schema's BM_KdeArgmax measures it up to M = 10⁴).
+int kde_argmax(const Eigen::MatrixXd& particles, const Eigen::VectorXd& weights,
+               const KdeOptions& kde);
+
 /// Indices chosen by systematic resampling of normalised `weights` (sum 1) with the offset
 /// u0 in [0, 1/M): particle i is copied floor or ceil of M·w_i times, in index order.
 std::vector<int> systematic_resample(const Eigen::VectorXd& weights, double u0);

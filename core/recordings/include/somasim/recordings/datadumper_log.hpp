@@ -96,11 +96,11 @@ struct DumpTimeline {
 
 /// A whole log, read and checked.
 struct DatadumperLog {
-  std::filesystem::path folder;      ///< the folder of data.log
+  std::filesystem::path folder;  ///< the folder of data.log
   DumpContent content = DumpContent::kBottle;
-  std::string type;                  ///< the `Type:` of info.log, e.g. "Bottle", "Image:ppm"
-  std::vector<std::string> ports;    ///< ports named in info.log's connection lines
-  std::vector<DumpEntry> entries;    ///< in file order, non-decreasing stamps
+  std::string type;                ///< the `Type:` of info.log, e.g. "Bottle", "Image:ppm"
+  std::vector<std::string> ports;  ///< ports named in info.log's connection lines
+  std::vector<DumpEntry> entries;  ///< in file order, non-decreasing stamps
   DumpTimeline timeline;
 
   /// The image file of an entry of an image log (the first word of its content).

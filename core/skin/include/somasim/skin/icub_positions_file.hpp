@@ -30,7 +30,7 @@ bool is_icub_positions_file(const std::filesystem::path& file);
 /// Reads a positions file for `body_part` on link `link`. Throws InputError "FILE:LINE: ..." for
 /// a row that is not 6 finite numbers, a taxel with a position but a zero normal, a taxel2Repr
 /// list that is not a parenthesised list of integers >= -1, and a file without any taxel.
-SkinLayout load_icub_positions_file(const std::filesystem::path& file,
-                                    const std::string& body_part, int link);
+SkinLayout load_icub_positions_file(const std::filesystem::path& file, const std::string& body_part,
+                                    int link);
 
 }  // namespace somasim::skin
