@@ -100,7 +100,8 @@ void BM_WorldAfterObjects(benchmark::State& state) {
       s.id = done + 1;
       s.name = "old" + std::to_string(done);
       s.size.x() = 0.01;
-      s.pose.translation() = Eigen::Vector3d(2.0 + 0.03 * (k % 30), 0.03 * (k / 30), 1.0);
+      const int row = k / 30, column = k % 30;  // a 30-wide grid
+      s.pose.translation() = Eigen::Vector3d(2.0 + 0.03 * column, 0.03 * row, 1.0);
       s.remove_after_s = 1e-3;
       spawns.recent.push_back(s);
     }
