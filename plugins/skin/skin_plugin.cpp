@@ -53,8 +53,9 @@ void SkinPlugin::Config::visit(V& v) {
       .doc("physical taxels per virtual taxel (module); 0 = each patch's own");
   v.field("layout_files", layout_files)
       .doc(
-          "'part=file, ...': layouts read from files (format: somasim/skin/layout_file.hpp) "
-          "instead of generated; relative to the experiment file");
+          "'part=file, ...': layouts read from files instead of generated (somasim's format, "
+          "somasim/skin/layout_file.hpp, or the iCub's skinGui positions files), relative to "
+          "the experiment file");
   v.field("contact_radius", contact_radius)
       .unit("m")
       .range(1e-4, 1.0)
