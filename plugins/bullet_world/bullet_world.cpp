@@ -33,6 +33,11 @@ void BulletWorld::Config::visit(V& v) {
           "joints fixed at their initial value (names, or 'all'): "
           "folded into rigid bodies, no dynamics and no motor; a command on them stops the run. "
           "With 'all' the robot is static collision geometry (fastest; contacts still reported)");
+  v.field("joint_motion", joint_motion)
+      .doc(
+          "how the joints not locked move: dynamic (motors, limits, contacts push back) or "
+          "kinematic (exactly as commanded, at most max_joint_speed; objects are pushed, the "
+          "robot does not yield; contacts still reported with forces)");
   v.field("gravity", gravity).size(3).unit("m/s^2").doc("gravity in the root frame");
   v.field("position_gain", position_gain)
       .unit("1/s")
@@ -180,7 +185,8 @@ void BulletWorld::configure(NodeContext& ctx) {
   shapes_ = std::make_unique<ShapeStore>();
   try {
     robot_ = std::make_unique<RobotMultiBody>(model_, physics_->world(), *shapes_, q0,
-                                              LinkMaterial{friction, 0.0, restitution}, locked);
+                                              LinkMaterial{friction, 0.0, restitution}, locked,
+                                              config_.joint_motion);
   } catch (const InputError& e) {  // e.g. a collision mesh that cannot be used
     robot::robot_error(ctx, e.what());
   }
@@ -270,6 +276,8 @@ void BulletWorld::step(NodeContext& ctx) {
   }
   objects_->remove_expired(t);
   objects_->drive(t, dt_);
+  // Kinematic joints: a hair below the blow-up detector's speed bound.
+  if (robot_->kinematic()) motors_->advance_kinematic(0.999 * config_.max_joint_speed);
   motors_->update_limits();
   physics_->step(dt_);
   ++steps_;

@@ -14,8 +14,12 @@
 /// `locked_joints` fixes joints at their initial value: they are folded into rigid bodies (no
 /// dynamics, no motor; commands on them are a RunError); with `all` the robot is static
 /// collision geometry that still reports link poses, a constant joint state and contacts.
-/// Kinematic objects touch immovable robot geometry (locked links, the fixed base) too: the
-/// solver ignores such pairs (both bodies immovable), so their contacts carry a penetration
+/// `joint_motion: kinematic` moves the joints that are not locked exactly as commanded (at most
+/// max_joint_speed): no multibody, each rigid group a kinematic body posed by forward
+/// kinematics; objects it meets are pushed by the solver (contact forces from its impulses), and
+/// the robot does not yield. Kinematic objects touch immovable robot geometry (locked links, the
+/// fixed base, kinematic links) too, and kinematic links touch static objects and other links:
+/// the solver ignores such pairs (both bodies immovable), so their contacts carry a penetration
 /// force, kinematic_contact_stiffness × depth.
 ///
 /// Guided objects (object_manager.hpp: ObjectGuide) are dynamic bodies pulled along their path
@@ -51,6 +55,7 @@ class BulletWorld : public Plugin {
     std::string initial_posture_deg;
     std::string encoder_offsets_deg;
     std::vector<std::string> locked_joints;
+    JointMotion joint_motion = JointMotion::kDynamic;
     std::vector<double> gravity{0, 0, -9.81};  // [m/s^2]
     double position_gain = 40.0;               // [1/s]
     double velocity_gain = 1.0;

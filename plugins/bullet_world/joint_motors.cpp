@@ -16,11 +16,12 @@ JointMotors::JointMotors(RobotMultiBody& robot, btMultiBodyDynamicsWorld& world,
   const int n = m.num_dofs();
   mode_.assign(n, JointCommandMode::kPosition);
   position_.assign(n, 0.0);
+  velocity_.assign(n, 0.0);
   motors_.resize(n);
   for (int d = 0; d < n; ++d) {
     const int link = robot.dof_link(d);
-    if (link < 0) {  // locked
-      mode_[d] = JointCommandMode::kNone;
+    if (link < 0) {  // locked, or a kinematic robot: no motor
+      mode_[d] = robot.locked(d) ? JointCommandMode::kNone : JointCommandMode::kPosition;
       position_[d] = hold[d];
       continue;
     }
@@ -55,6 +56,25 @@ void JointMotors::update_limits() {
   }
 }
 
+void JointMotors::advance_kinematic(double max_speed) {
+  const robot::RobotModel& m = robot_.model();
+  const int n = m.num_dofs();
+  Eigen::VectorXd q(n), dq = Eigen::VectorXd::Zero(n);
+  const double max_step = max_speed * dt_;
+  for (int d = 0; d < n; ++d) {
+    const double now = robot_.position(d);
+    q[d] = now;
+    if (robot_.locked(d)) continue;
+    const auto k = static_cast<std::size_t>(d);
+    double target =
+        mode_[k] == JointCommandMode::kVelocity ? now + velocity_[k] * dt_ : position_[k];
+    target = std::clamp(target, m.lower_limits()[d], m.upper_limits()[d]);
+    q[d] = now + std::clamp(target - now, -max_step, max_step);
+    dq[d] = (q[d] - now) / dt_;
+  }
+  robot_.move_kinematic(q, dq);
+}
+
 JointMotors::~JointMotors() {
   for (auto& l : limits_)
     if (l.active) world_.removeMultiBodyConstraint(l.constraint.get());
@@ -67,6 +87,7 @@ void JointMotors::set_position(int dof, double q, double v_feed_forward) {
   q = std::clamp(q, m.lower_limits()[dof], m.upper_limits()[dof]);
   mode_[dof] = JointCommandMode::kPosition;
   position_[dof] = q;
+  if (robot_.kinematic()) return;
   // btMultiBodyJointMotor: v_target = kp·erp·(q* − q)/dt + v + kd·(v* − v), erp = 1.
   motors_[dof]->setPositionTarget(q, gains_.position_gain * dt_);
   motors_[dof]->setVelocityTarget(v_feed_forward, gains_.velocity_gain);
@@ -75,6 +96,8 @@ void JointMotors::set_position(int dof, double q, double v_feed_forward) {
 void JointMotors::set_velocity(int dof, double v) {
   mode_[dof] = JointCommandMode::kVelocity;
   position_[dof] = robot_.position(dof);
+  velocity_[dof] = v;
+  if (robot_.kinematic()) return;
   motors_[dof]->setPositionTarget(0.0, 0.0);
   motors_[dof]->setVelocityTarget(v, gains_.velocity_gain);
 }

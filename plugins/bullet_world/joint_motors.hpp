@@ -17,6 +17,11 @@
 /// Locked joints (`locked_joints`, folded into rigid bodies) have no motor: any command on them
 /// other than kNone is a RunError naming the joint, so that a controller believing it moves a
 /// locked joint fails loudly instead of silently doing nothing.
+///
+/// A kinematic robot (JointMotion::kKinematic) has no motors either: advance_kinematic() moves
+/// every joint that is not locked to its target in one step — the position target (clamped into
+/// the limits), or the position reached at the commanded velocity — at most `max_speed` · dt
+/// per step, so that a step command cannot teleport the arm through what it touches.
 #include <memory>
 #include <vector>
 
@@ -55,6 +60,10 @@ class JointMotors {
   /// or vectors of the wrong size, and for commands on locked joints.
   void apply(const JointCommand& command, double t);
 
+  /// Kinematic robot: moves the joints towards their targets for a step of dt (see the file
+  /// comment), at most `max_speed` [rad/s] ([m/s]); call after apply(), before the step.
+  void advance_kinematic(double max_speed);
+
   JointCommandMode mode(int dof) const { return mode_[dof]; }
   double position_target(int dof) const { return position_[dof]; }
 
@@ -62,7 +71,7 @@ class JointMotors {
   void set_position(int dof, double q, double v_feed_forward);
   void set_velocity(int dof, double v);
 
-  const RobotMultiBody& robot_;
+  RobotMultiBody& robot_;
   btMultiBodyDynamicsWorld& world_;
   MotorGains gains_;
   double dt_;
@@ -75,6 +84,7 @@ class JointMotors {
   std::vector<Limit> limits_;
   std::vector<JointCommandMode> mode_;
   std::vector<double> position_;
+  std::vector<double> velocity_;  ///< kinematic robot: velocity targets [rad/s]
 };
 
 }  // namespace somasim::bullet_world

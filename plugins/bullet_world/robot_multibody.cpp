@@ -4,6 +4,7 @@
 
 #include "body_tag.hpp"
 #include "bullet_math.hpp"
+#include "somasim/error.hpp"
 
 namespace somasim::bullet_world {
 namespace {
@@ -62,9 +63,18 @@ robot::Geometry frame_link_placeholder() {
 RobotMultiBody::RobotMultiBody(std::shared_ptr<const robot::RobotModel> model,
                                btMultiBodyDynamicsWorld& world, ShapeStore& shapes,
                                const Eigen::VectorXd& q, const LinkMaterial& material,
-                               const std::vector<bool>& locked)
-    : model_(std::move(model)), world_(world), groups_(*model_, locked, q), q_locked_(q) {
+                               const std::vector<bool>& locked, JointMotion motion)
+    : model_(std::move(model)),
+      world_(world),
+      groups_(*model_, locked, q),
+      kinematic_(motion == JointMotion::kKinematic),
+      q_locked_(q),
+      q_kinematic_(q),
+      dq_kinematic_(Eigen::VectorXd::Zero(q.size())),
+      fk_(*model_) {
   const robot::RobotModel& m = *model_;
+  locked_ =
+      locked.empty() ? std::vector<bool>(static_cast<std::size_t>(m.num_dofs()), false) : locked;
   const std::vector<int>& reps = groups_.representatives;
   const int nb = static_cast<int>(reps.size());
   std::vector<BodyFrame> frames(nb);
@@ -75,7 +85,7 @@ RobotMultiBody::RobotMultiBody(std::shared_ptr<const robot::RobotModel> model,
   }
 
   dof_link_.assign(m.num_dofs(), -1);
-  if (nb > 1) {
+  if (nb > 1 && !kinematic_) {
     multibody_ =
         std::make_unique<btMultiBody>(nb - 1, frames[0].mass, to_bt(frames[0].principal_inertia),
                                       /*fixedBase=*/true, /*canSleep=*/false);
@@ -131,6 +141,8 @@ RobotMultiBody::RobotMultiBody(std::shared_ptr<const robot::RobotModel> model,
 
   child_link_.resize(m.num_links());
   colliders_.resize(nb);
+  motion_states_.resize(nb);
+  if (kinematic_) robot::forward_kinematics(m, fk_, q);
   for (int b = 0; b < nb; ++b) {
     const int r = reps[b];
     // The group's geometry in the representative's frame; child k belongs to child_link_[r][k].
@@ -144,15 +156,26 @@ RobotMultiBody::RobotMultiBody(std::shared_ptr<const robot::RobotModel> model,
       }
     }
     const bool has_geometry = !geometry.empty();
+    const bool moved = kinematic_ && b > 0;  // a kinematic body posed by move_kinematic()
+    if (moved && !has_geometry) continue;    // nothing to collide, no motor to carry
     std::unique_ptr<btCollisionObject> col;
-    if (multibody_)
+    if (multibody_) {
       col = std::make_unique<btMultiBodyLinkCollider>(multibody_.get(), b - 1);
-    else
+    } else if (moved) {
+      const Eigen::Isometry3d pose = fk_.link_poses[static_cast<std::size_t>(r)] * frames[b].in_rep;
+      motion_states_[b] = std::make_unique<btDefaultMotionState>(to_bt(pose));
+      btRigidBody::btRigidBodyConstructionInfo info(0.0, motion_states_[b].get(), nullptr);
+      auto body = std::make_unique<btRigidBody>(info);
+      body->setCollisionFlags(body->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
+      body->setActivationState(DISABLE_DEACTIVATION);
+      col = std::move(body);
+    } else {
       col = std::make_unique<btCollisionObject>();
+    }
     if (has_geometry) {
       col->setCollisionShape(
           shapes.make_compound(geometry, frames[b].in_rep.inverse(), MeshUse::kConvexHull));
-      set_tag(*col, {BodyKind::kLink, r, /*immovable=*/b == 0});
+      set_tag(*col, {BodyKind::kLink, r, /*immovable=*/b == 0 || moved, /*kinematic=*/moved});
     } else {
       // Geometry-less bodies still need a collider that never collides: Bullet assigns a
       // multibody constraint (a motor) to a simulation island through the colliders of its two
@@ -163,12 +186,16 @@ RobotMultiBody::RobotMultiBody(std::shared_ptr<const robot::RobotModel> model,
     col->setFriction(material.friction);
     col->setRollingFriction(material.rolling_friction);
     col->setRestitution(material.restitution);
-    if (!multibody_) {
-      // The whole robot as static geometry at its (constant) pose.
+    if (!multibody_ && !moved) {
+      // Static geometry at its (constant) pose: the whole robot when every dof is locked, the
+      // root's group in kinematic mode.
       col->setCollisionFlags(col->getCollisionFlags() | btCollisionObject::CF_STATIC_OBJECT);
       col->setWorldTransform(to_bt(frames[0].in_rep));
     }
-    if (has_geometry)
+    if (moved)
+      world_.addRigidBody(static_cast<btRigidBody*>(col.get()), btBroadphaseProxy::DefaultFilter,
+                          btBroadphaseProxy::AllFilter);  // the pair filter decides
+    else if (has_geometry)
       world_.addCollisionObject(col.get(), btBroadphaseProxy::DefaultFilter,
                                 btBroadphaseProxy::AllFilter);
     else
@@ -196,6 +223,18 @@ RobotMultiBody::~RobotMultiBody() {
   if (multibody_) world_.removeMultiBody(multibody_.get());
 }
 
+void RobotMultiBody::move_kinematic(const Eigen::VectorXd& q, const Eigen::VectorXd& dq) {
+  SOMASIM_CHECK(kinematic_, "move_kinematic() on a dynamic robot");
+  q_kinematic_ = q;
+  dq_kinematic_ = dq;
+  robot::forward_kinematics(*model_, fk_, q);
+  const std::vector<int>& reps = groups_.representatives;
+  for (std::size_t b = 1; b < reps.size(); ++b)
+    if (motion_states_[b])
+      motion_states_[b]->setWorldTransform(
+          to_bt(fk_.link_poses[static_cast<std::size_t>(reps[b])] * body_in_rep_[b]));
+}
+
 void RobotMultiBody::read_joint_state(JointState& state) const {
   const int n = static_cast<int>(dof_link_.size());
   state.position.resize(n);
@@ -207,6 +246,10 @@ void RobotMultiBody::read_joint_state(JointState& state) const {
 }
 
 void RobotMultiBody::link_poses(std::vector<Eigen::Isometry3d>& poses) const {
+  if (kinematic_) {
+    poses = fk_.link_poses;
+    return;
+  }
   if (multibody_) {
     // Same recursion as btMultiBody::updateCollisionObjectWorldTransforms.
     const int nl = multibody_->getNumLinks();

@@ -21,11 +21,14 @@
 #include <BulletDynamics/Featherstone/btMultiBody.h>
 #include <BulletDynamics/Featherstone/btMultiBodyDynamicsWorld.h>
 #include <BulletDynamics/Featherstone/btMultiBodyLinkCollider.h>
+#include <LinearMath/btDefaultMotionState.h>
 
 #include <Eigen/Geometry>
 
 #include "collision_shapes.hpp"
 #include "rigid_groups.hpp"
+#include "somasim/name_table.hpp"
+#include "somasim/robot/kinematics.hpp"
 #include "somasim/robot/ports.hpp"
 #include "somasim/robot/robot_model.hpp"
 
@@ -38,6 +41,18 @@ struct LinkMaterial {
   double restitution = 0.0;
 };
 
+/// How the joints that are not locked move.
+enum class JointMotion : std::uint8_t {
+  kDynamic,    ///< a btMultiBody: motors, limits, contacts push back (the default)
+  kKinematic,  ///< each rigid group a kinematic body posed by forward kinematics of the commands:
+               ///< exact tracking, contacts reported (forces on dynamic objects from the solver)
+};
+inline constexpr NamedValue<JointMotion> kJointMotionNames[] = {
+    {JointMotion::kDynamic, "dynamic"}, {JointMotion::kKinematic, "kinematic"}};
+constexpr std::span<const NamedValue<JointMotion>> name_table(JointMotion) {
+  return kJointMotionNames;
+}
+
 /// Mass and inertia given to massless bodies (Featherstone needs positive values).
 inline constexpr double kFrameLinkMass = 0.02;        ///< [kg]
 inline constexpr double kMinPrincipalInertia = 1e-5;  ///< [kg·m²]
@@ -45,10 +60,12 @@ inline constexpr double kMinPrincipalInertia = 1e-5;  ///< [kg·m²]
 class RobotMultiBody {
  public:
   /// Builds the robot at joint values `q` (model dof order) and adds it to `world`. `locked`:
-  /// per dof, true = fixed at q (empty: none locked).
+  /// per dof, true = fixed at q (empty: none locked). `motion`: how the other joints move; with
+  /// kKinematic there is no multibody: each rigid group but the root's is a kinematic rigid body
+  /// that move_kinematic() poses.
   RobotMultiBody(std::shared_ptr<const robot::RobotModel> model, btMultiBodyDynamicsWorld& world,
                  ShapeStore& shapes, const Eigen::VectorXd& q, const LinkMaterial& material,
-                 const std::vector<bool>& locked = {});
+                 const std::vector<bool>& locked = {}, JointMotion motion = JointMotion::kDynamic);
   ~RobotMultiBody();
   RobotMultiBody(const RobotMultiBody&) = delete;
   RobotMultiBody& operator=(const RobotMultiBody&) = delete;
@@ -59,17 +76,23 @@ class RobotMultiBody {
   bool has_multibody() const { return multibody_ != nullptr; }
   btMultiBody& multibody() { return *multibody_; }
   const btMultiBody& multibody() const { return *multibody_; }
-  /// Bullet link index of a dof; -1 for locked dofs.
+  /// Bullet link index of a dof; -1 for locked dofs and in kinematic mode.
   int dof_link(int dof) const { return dof_link_[dof]; }
-  bool locked(int dof) const { return dof_link_[dof] < 0; }
+  bool locked(int dof) const { return locked_[static_cast<std::size_t>(dof)]; }
+  bool kinematic() const { return kinematic_; }
 
   /// Joint values/velocities (model dof order) [rad], [rad/s]; locked dofs: their fixed value, 0.
   double position(int dof) const {
-    return dof_link_[dof] < 0 ? q_locked_[dof] : multibody_->getJointPos(dof_link_[dof]);
+    if (dof_link_[dof] >= 0) return multibody_->getJointPos(dof_link_[dof]);
+    return locked(dof) ? q_locked_[dof] : q_kinematic_[dof];
   }
   double velocity(int dof) const {
-    return dof_link_[dof] < 0 ? 0.0 : multibody_->getJointVel(dof_link_[dof]);
+    if (dof_link_[dof] >= 0) return multibody_->getJointVel(dof_link_[dof]);
+    return locked(dof) ? 0.0 : dq_kinematic_[dof];
   }
+  /// Kinematic mode: the joints (not locked) move to `q` with velocities `dq` (model dof order)
+  /// by the next physics step; the bodies' poses follow (Bullet derives their velocities).
+  void move_kinematic(const Eigen::VectorXd& q, const Eigen::VectorXd& dq);
   void read_joint_state(JointState& state) const;
 
   /// Poses of all model links in the root frame (model link frames), in link order.
@@ -88,7 +111,12 @@ class RobotMultiBody {
   std::shared_ptr<const robot::RobotModel> model_;
   btMultiBodyDynamicsWorld& world_;
   RigidGroups groups_;
+  std::vector<bool> locked_;  ///< per dof
+  bool kinematic_ = false;
   Eigen::VectorXd q_locked_;
+  Eigen::VectorXd q_kinematic_, dq_kinematic_;  ///< kinematic mode: the joints' state
+  std::vector<std::unique_ptr<btDefaultMotionState>> motion_states_;  ///< per body (kinematic)
+  mutable robot::RobotData fk_;                                       ///< kinematic mode
   std::vector<Eigen::Isometry3d> body_in_rep_;  ///< per body (groups_.representatives order)
   std::vector<int> dof_link_;
   std::vector<std::vector<int>> child_link_;  ///< per model link (representatives only)

@@ -49,9 +49,12 @@ bool SelfCollisionFilter::needBroadphaseCollision(btBroadphaseProxy* proxy0,
   const auto* a = static_cast<const btCollisionObject*>(proxy0->m_clientObject);
   const auto* b = static_cast<const btCollisionObject*>(proxy1->m_clientObject);
   const BodyTag ta = tag_of(*a), tb = tag_of(*b);
+  if (ta.kind == BodyKind::kLink && tb.kind == BodyKind::kLink) {
+    if (adjacent_[ta.index][tb.index]) return false;
+    // Two immovable links touch only when one moves kinematically (reported, not solved).
+    return !(ta.immovable && tb.immovable) || ta.kinematic || tb.kinematic;
+  }
   if (ta.immovable && tb.immovable) return kinematic_meets_link(ta, tb);
-  if (ta.kind == BodyKind::kLink && tb.kind == BodyKind::kLink)
-    return !adjacent_[ta.index][tb.index];
   return true;
 }
 

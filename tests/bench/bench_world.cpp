@@ -6,6 +6,11 @@
 //   BM_RawBulletStep/L (baseline): the same scene (same robot, motors, filter and ball) stepped
 //                     with btMultiBodyDynamicsWorld::stepSimulation, the ball spawns and the
 //                     limit-constraint switching only.
+//   BM_WorldMoving/K: the free robot (no joint locked) waving its right arm (shoulder pitch and
+//                     elbow on sinusoids, position commands with feed-forward) while balls are
+//                     thrown at its left forearm; K = 0 `joint_motion: dynamic`, K = 1 `kinematic`.
+//                     Counters: tracking_deg (largest |q - q*| of the waving joints after the first
+//                     second), contacts/step.
 //   BM_WorldAfterObjects/N: BM_WorldPlugin/1 after N objects have come and gone (a long run's
 //                     history: N = 0, 2,000, 20,000); the same rate at every N means the step
 //                     costs per object present, not per object ever spawned.
@@ -13,6 +18,8 @@
 // geometry). items_per_second = physics steps per second; real time factor = steps/s / 1000.
 // Define SOMASIM_BENCH_NO_LOCKED to build the L = 0 cases against a version without locking.
 #include <benchmark/benchmark.h>
+
+#include <cmath>
 
 #include "bullet_world.hpp"
 #include "somasim/robot/joint_text.hpp"
@@ -83,6 +90,46 @@ BENCHMARK(BM_WorldPlugin)
     ->Arg(1)
 #endif
     ->Unit(benchmark::kMicrosecond);
+
+void BM_WorldMoving(benchmark::State& state) {
+  const bool kinematic = state.range(0) != 0;
+  const auto model = somasim::robot::load_robot_model_shared(kRobot);
+  somasim::testing::Harness h(
+      "base_rate_hz: 1000\nrobots: {icub: " + kRobot +
+      "}\nnodes:\n  world: {plugin: bullet_world, params: {initial_posture_deg: '" + kPosture +
+      "', joint_motion: " + (kinematic ? "kinematic" : "dynamic") +
+      "}, inputs: {spawns: harness.spawns, commands: harness.cmd}}\n");
+  auto& spawns = h.input<somasim::ObjectSpawns>("spawns");
+  auto& cmd = h.input<somasim::JointCommand>("cmd");
+  const Eigen::VectorXd q0 = somasim::robot::parse_posture_deg(*model, kPosture);
+  const int n = model->num_dofs();
+  cmd.mode.assign(static_cast<std::size_t>(n), somasim::JointCommandMode::kPosition);
+  cmd.position = q0;
+  cmd.velocity = Eigen::VectorXd::Zero(n);
+  const int pitch = model->dof_index("r_shoulder_pitch"), elbow = model->dof_index("r_elbow");
+  const auto& joints = h.output<somasim::JointState>("world.joint_state");
+  std::uint64_t step = 0, contacts = 0;
+  double tracking = 0.0;
+  for (auto _ : state) {
+    const double t = static_cast<double>(step) * 1e-3;
+    cmd.position[pitch] = q0[pitch] + 0.2 * std::sin(2.0 * t);
+    cmd.velocity[pitch] = 0.4 * std::cos(2.0 * t);
+    cmd.position[elbow] = q0[elbow] + 0.25 * std::sin(3.0 * t);
+    cmd.velocity[elbow] = 0.75 * std::cos(3.0 * t);
+    if (step % kThrowPeriod == 0) spawns.recent = {ball(step / kThrowPeriod + 1, *model)};
+    h.step();
+    if (t >= 1.0)
+      for (const int d : {pitch, elbow})
+        tracking = std::max(tracking, std::abs(joints.position[d] - cmd.position[d]));
+    contacts += h.output<somasim::Contacts>("world.contacts").points.size();
+    ++step;
+  }
+  state.SetItemsProcessed(state.iterations());
+  state.counters["tracking_deg"] = tracking * 180.0 / M_PI;
+  state.counters["contacts/step"] = static_cast<double>(contacts) / static_cast<double>(step);
+  h.finish();
+}
+BENCHMARK(BM_WorldMoving)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
 void BM_WorldAfterObjects(benchmark::State& state) {
   const auto history = static_cast<std::uint64_t>(state.range(0));
