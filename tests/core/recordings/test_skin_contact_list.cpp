@@ -7,12 +7,12 @@
 using namespace somasim::recordings;
 
 namespace {
-// A real line of /skinManager/skin_events:o (two contacts).
+// A line in the format of /skinManager/skin_events:o (two contacts; values made up here).
 const char* kLine =
-    "((2907 3 4 2) (0.030125 -0.059034 -0.010374) (-6.830747 0.338296 1.613345) (0.0 0.0 0.0) "
-    "(0.030333 -0.059667 -0.009333) (0.860584 -0.042621 -0.20326) (252 261 263) 52.915582) "
-    "((1849 3 6 1) (0.0 0.0 0.0) (-0.0 -0.0 -0.0) (0.0 0.0 0.0) (0.0 0.0 0.0) (0.0 0.0 0.0) "
-    "(49) 18.336387)";
+    "((1201 3 4 2) (0.0312 -0.0587 -0.0101) (-6.25 0.31 1.5) (0.0 0.0 0.0) "
+    "(0.0315 -0.0590 -0.0098) (0.86 -0.04 -0.21) (250 261 263) 51.5) "
+    "((1202 3 6 1) (0.0 0.0 0.0) (-0.0 -0.0 -0.0) (0.0 0.0 0.0) (0.0 0.0 0.0) (0.0 0.0 0.0) "
+    "(48) 17.25)";
 
 std::string error_of(const std::string& text, int& column) {
   try {
@@ -29,17 +29,17 @@ TEST(SkinContactList, DecodesARecordedLine) {
   const auto contacts = decode_skin_contact_list(parse_bottle(kLine));
   ASSERT_EQ(contacts.size(), 2u);
   const SkinContactRecord& c = contacts[0];
-  EXPECT_EQ(c.contact_id, 2907);
+  EXPECT_EQ(c.contact_id, 1201);
   EXPECT_EQ(c.body_part, 3);
   EXPECT_EQ(c.link, 4);
   EXPECT_EQ(c.skin_part, 2);
   EXPECT_EQ(icub_skin_part_name(c.skin_part).value(), "left_forearm");
-  EXPECT_DOUBLE_EQ(c.centre_of_pressure.y(), -0.059034);
-  EXPECT_DOUBLE_EQ(c.force.x(), -6.830747);
-  EXPECT_DOUBLE_EQ(c.geometric_centre.z(), -0.009333);
-  EXPECT_DOUBLE_EQ(c.normal.x(), 0.860584);
-  EXPECT_EQ(c.taxels, (std::vector<int>{252, 261, 263}));
-  EXPECT_DOUBLE_EQ(c.pressure, 52.915582);
+  EXPECT_DOUBLE_EQ(c.centre_of_pressure.y(), -0.0587);
+  EXPECT_DOUBLE_EQ(c.force.x(), -6.25);
+  EXPECT_DOUBLE_EQ(c.geometric_centre.z(), -0.0098);
+  EXPECT_DOUBLE_EQ(c.normal.x(), 0.86);
+  EXPECT_EQ(c.taxels, (std::vector<int>{250, 261, 263}));
+  EXPECT_DOUBLE_EQ(c.pressure, 51.5);
   EXPECT_EQ(icub_skin_part_name(contacts[1].skin_part).value(), "left_hand");
   EXPECT_TRUE(decode_skin_contact_list(parse_bottle("")).empty());
 }
