@@ -106,6 +106,22 @@ int main(int argc, char** argv) {
                          "Also write a YAML overlay extending the URDF with the robot's frames, "
                          "cameras and skin patches");
 
+  std::string mjcf_robot, mjcf_out, mjcf_posture;
+  double mjcf_bandwidth = 40.0, mjcf_max_torque = 20.0;
+  bool mjcf_no_servos = false;
+  auto* mjcf_cmd = robot_cmd->add_subcommand(
+      "export-mjcf", "Write a robot as a MuJoCo model (MJCF) with position servos");
+  mjcf_cmd->add_option("robot", mjcf_robot, "Robot description (.yaml or .urdf)")->required();
+  mjcf_cmd->add_option("--out", mjcf_out, "MJCF file to write (default: stdout)");
+  mjcf_cmd->add_option("--posture", mjcf_posture,
+                       "Posture the servo gains are tuned at, e.g. 'l_elbow: 60' [deg] "
+                       "(default: all joints 0)");
+  mjcf_cmd->add_option("--servo-bandwidth", mjcf_bandwidth, "Servo bandwidth [1/s]")
+      ->check(CLI::PositiveNumber);
+  mjcf_cmd->add_option("--max-torque", mjcf_max_torque, "Servo torque bound [N m]")
+      ->check(CLI::PositiveNumber);
+  mjcf_cmd->add_flag("--no-servos", mjcf_no_servos, "Write no actuators");
+
   auto* pps_cmd = app.add_subcommand("pps", "PPS learned-map files");
   pps_cmd->require_subcommand(1);
   std::string convert_in, convert_out;
@@ -165,6 +181,9 @@ int main(int argc, char** argv) {
     if (*recover_cmd) return cmd_recover(recover_dir);
     if (*convert_cmd) return cmd_pps_convert(convert_in, convert_out);
     if (*export_cmd) return cmd_robot_export_urdf(export_robot, export_out, export_overlay);
+    if (*mjcf_cmd)
+      return cmd_robot_export_mjcf(
+          mjcf_robot, mjcf_out, {mjcf_posture, mjcf_bandwidth, mjcf_max_torque, !mjcf_no_servos});
     if (sweep.selected()) return sweep.dispatch(common);
   } catch (const somasim::InputError& e) {
     std::fprintf(stderr, "error: %s\n", somasim::escape_control_bytes(e.what()).c_str());

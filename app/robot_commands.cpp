@@ -8,6 +8,8 @@
 
 #include "commands.hpp"
 #include "somasim/error.hpp"
+#include "somasim/robot/joint_text.hpp"
+#include "somasim/robot/mjcf_export.hpp"
 #include "somasim/robot/robot_loader.hpp"
 #include "somasim/robot/urdf_export.hpp"
 #include "somasim/yaml_text.hpp"
@@ -58,6 +60,36 @@ int cmd_robot_export_urdf(const std::string& robot, const std::string& out,
       fmt::print(stderr, "{}: {} links, {} joints ({} movable){}\n", out, model.num_links(),
                  model.num_joints(), model.num_dofs(),
                  overlay.empty() ? "" : fmt::format("; frames, cameras and skin in {}", overlay));
+    return kExitOk;
+  } catch (const InputError& e) {
+    fmt::print(stderr, "error: {}\n", escape_control_bytes(e.what()));
+    return kExitBadInput;
+  }
+}
+
+int cmd_robot_export_mjcf(const std::string& robot, const std::string& out,
+                          const MjcfExportArgs& args) {
+  try {
+    const robot::RobotModel model = robot::load_robot_model(robot);
+    robot::MjcfOptions options;
+    if (!args.posture.empty()) {
+      try {
+        options.posture = robot::parse_posture_deg(model, args.posture);
+      } catch (const InputError& e) {
+        throw InputError(fmt::format("--posture: {}", e.what()));
+      }
+    }
+    options.servo_bandwidth = args.servo_bandwidth;
+    options.max_torque = args.max_torque;
+    options.servos = args.servos;
+    const std::string mjcf = robot::to_mjcf(model, options);
+    if (out.empty()) {
+      std::fputs(mjcf.c_str(), stdout);
+    } else {
+      write_file(out, mjcf);
+      fmt::print(stderr, "{}: {} bodies, {} joints, {} servos\n", out, model.num_links(),
+                 model.num_dofs(), args.servos ? model.num_dofs() : 0);
+    }
     return kExitOk;
   } catch (const InputError& e) {
     fmt::print(stderr, "error: {}\n", escape_control_bytes(e.what()));

@@ -6,8 +6,8 @@
 #            OSMesa/EGL, assimp, OpenMPI); builds only the `somasim` CLI and its plugins.
 #   full     (default) adds what testing and development need: GoogleTest/GoogleMock, Google
 #            Benchmark, clang (sanitizers, libFuzzer), clang-format, clang-tidy, Slurm and munge
-#            (the local Slurm test), graphviz (`somasim graph | dot`); builds everything (tests,
-#            benchmarks, tools).
+#            (the local Slurm test), graphviz (`somasim graph | dot`), MuJoCo (the benchmark
+#            peer and the MJCF exporter's load test); builds everything (tests, benchmarks, tools).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 mode="${1:-full}"
@@ -23,6 +23,7 @@ full_packages=(
   git libgtest-dev libgmock-dev libbenchmark-dev clang-format clang-tidy
   clang libclang-rt-14-dev
   munge slurmctld slurmd slurm-client graphviz
+  libmujoco-dev
 )
 case "$mode" in
   runtime) packages=("${runtime_packages[@]}") ;;

@@ -1,15 +1,10 @@
 #pragma once
 /// @file
 /// Which body pairs Bullet tests for collision. Self-collision is on between all robot links
-/// except adjacent ones; immovable bodies (fixed base, static robot, static and kinematic
-/// objects) never collide with each other, except a kinematic object with a robot link (the
-/// contact is reported with a penetration force, contact_extraction.hpp).
-///
-/// Adjacent links: links joined by fixed (or locked) joints form one rigid group (never tested
-/// against each other); a group is adjacent to its nearest ancestor group that has collision
-/// geometry (joints through geometry-less frame links, e.g. the DH chains' intermediate links, do
-/// not separate them). So the forearm and the upper arm touching at the elbow are filtered, while
-/// the two arms, or a hand and the chest, collide.
+/// except adjacent ones (robot::collision_exempt_links: the same rigid group, or a group and its
+/// nearest ancestor group with geometry); immovable bodies (fixed base, static robot, static and
+/// kinematic objects) never collide with each other, except a kinematic object with a robot link
+/// (the contact is reported with a penetration force, contact_extraction.hpp).
 #include <vector>
 
 #include <BulletCollision/BroadphaseCollision/btOverlappingPairCache.h>

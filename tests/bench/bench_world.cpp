@@ -22,6 +22,7 @@
 #include <cmath>
 
 #include "bullet_world.hpp"
+#include "moving_scene.hpp"
 #include "somasim/robot/joint_text.hpp"
 #include "somasim/robot/kinematics.hpp"
 #include "somasim/robot/robot_loader.hpp"
@@ -29,41 +30,15 @@
 
 namespace {
 using namespace somasim::bullet_world;
-
-const std::string kRobot = SOMASIM_SOURCE_DIR "/assets/robots/icub_v1.yaml";
-// The posture of configs/ball_on_forearm.yaml.
-const std::string kPosture =
-    "l_shoulder_pitch: -40, l_shoulder_roll: 40, l_shoulder_yaw: 10, l_elbow: 60, "
-    "r_shoulder_pitch: -40, r_shoulder_roll: 40, r_shoulder_yaw: 10, r_elbow: 60";
-constexpr int kThrowPeriod = 400;  // [steps]
-constexpr double kFlightTime = 0.3;
+using somasim::bench::ball;
+using somasim::bench::kPosture;
+using somasim::bench::kRobot;
+using somasim::bench::kThrowPeriod;
 #ifdef SOMASIM_BENCH_NO_LOCKED
 constexpr int kSolverIterations = 30;  // the default of the version without locking
 #else
 constexpr int kSolverIterations = 20;  // the plugin's default
 #endif
-
-// Ball number k thrown from 25 cm in front of / above the left forearm, hitting it after
-// kFlightTime; removed after one throw period.
-somasim::ObjectSpawn ball(std::uint64_t k, const somasim::robot::RobotModel& model) {
-  const Eigen::VectorXd q = somasim::robot::parse_posture_deg(model, kPosture);
-  somasim::robot::RobotData data(model);
-  somasim::robot::forward_kinematics(model, data, q);
-  const Eigen::Vector3d target =
-      data.link_poses[model.link_index("l_forearm")] * Eigen::Vector3d(0, -0.07, 0);
-  const double side = 0.05 * static_cast<double>(k % 3) - 0.05;
-  const Eigen::Vector3d start = target + Eigen::Vector3d(-0.2, side, 0.15);
-  somasim::ObjectSpawn s;
-  s.id = k;
-  s.name = "ball" + std::to_string(k);
-  s.size.x() = 0.02;
-  s.mass = 0.05;
-  s.pose.translation() = start;
-  s.linear_velocity =
-      (target - start) / kFlightTime + Eigen::Vector3d(0, 0, 0.5 * 9.81 * kFlightTime);
-  s.remove_after_s = kThrowPeriod * 1e-3;
-  return s;
-}
 
 void BM_WorldPlugin(benchmark::State& state) {
   const bool locked = state.range(0) != 0;
@@ -92,42 +67,7 @@ BENCHMARK(BM_WorldPlugin)
     ->Unit(benchmark::kMicrosecond);
 
 void BM_WorldMoving(benchmark::State& state) {
-  const bool kinematic = state.range(0) != 0;
-  const auto model = somasim::robot::load_robot_model_shared(kRobot);
-  somasim::testing::Harness h(
-      "base_rate_hz: 1000\nrobots: {icub: " + kRobot +
-      "}\nnodes:\n  world: {plugin: bullet_world, params: {initial_posture_deg: '" + kPosture +
-      "', joint_motion: " + (kinematic ? "kinematic" : "dynamic") +
-      "}, inputs: {spawns: harness.spawns, commands: harness.cmd}}\n");
-  auto& spawns = h.input<somasim::ObjectSpawns>("spawns");
-  auto& cmd = h.input<somasim::JointCommand>("cmd");
-  const Eigen::VectorXd q0 = somasim::robot::parse_posture_deg(*model, kPosture);
-  const int n = model->num_dofs();
-  cmd.mode.assign(static_cast<std::size_t>(n), somasim::JointCommandMode::kPosition);
-  cmd.position = q0;
-  cmd.velocity = Eigen::VectorXd::Zero(n);
-  const int pitch = model->dof_index("r_shoulder_pitch"), elbow = model->dof_index("r_elbow");
-  const auto& joints = h.output<somasim::JointState>("world.joint_state");
-  std::uint64_t step = 0, contacts = 0;
-  double tracking = 0.0;
-  for (auto _ : state) {
-    const double t = static_cast<double>(step) * 1e-3;
-    cmd.position[pitch] = q0[pitch] + 0.2 * std::sin(2.0 * t);
-    cmd.velocity[pitch] = 0.4 * std::cos(2.0 * t);
-    cmd.position[elbow] = q0[elbow] + 0.25 * std::sin(3.0 * t);
-    cmd.velocity[elbow] = 0.75 * std::cos(3.0 * t);
-    if (step % kThrowPeriod == 0) spawns.recent = {ball(step / kThrowPeriod + 1, *model)};
-    h.step();
-    if (t >= 1.0)
-      for (const int d : {pitch, elbow})
-        tracking = std::max(tracking, std::abs(joints.position[d] - cmd.position[d]));
-    contacts += h.output<somasim::Contacts>("world.contacts").points.size();
-    ++step;
-  }
-  state.SetItemsProcessed(state.iterations());
-  state.counters["tracking_deg"] = tracking * 180.0 / M_PI;
-  state.counters["contacts/step"] = static_cast<double>(contacts) / static_cast<double>(step);
-  h.finish();
+  somasim::bench::run_bullet_moving(state, state.range(0) != 0);
 }
 BENCHMARK(BM_WorldMoving)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
