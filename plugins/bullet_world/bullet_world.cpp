@@ -38,6 +38,12 @@ void BulletWorld::Config::visit(V& v) {
           "how the joints not locked move: dynamic (motors, limits, contacts push back) or "
           "kinematic (exactly as commanded, at most max_joint_speed; objects are pushed, the "
           "robot does not yield; contacts still reported with forces)");
+  v.field("joint_servo", joint_servo)
+      .doc(
+          "how a dynamic robot's joints are driven: constraint (Bullet motors solved with the "
+          "contacts, firmest) or computed_torque (torques from the robot's inverse dynamics, "
+          "each joint a critically damped servo at position_gain; several times faster, the "
+          "solver left with contacts and limits)");
   v.field("gravity", gravity).size(3).unit("m/s^2").doc("gravity in the root frame");
   v.field("position_gain", position_gain)
       .unit("1/s")
@@ -191,7 +197,13 @@ void BulletWorld::configure(NodeContext& ctx) {
     robot::robot_error(ctx, e.what());
   }
   const MotorGains gains{config_.position_gain, config_.velocity_gain, config_.max_torque};
-  motors_ = std::make_unique<JointMotors>(*robot_, physics_->world(), gains, dt_, q0);
+  if (config_.joint_servo == JointServo::kComputedTorque && config_.position_gain * dt_ > 0.25)
+    config_error(ctx, config_, config_.position_gain,
+                 fmt::format("{} 1/s at a {} s step makes the computed-torque servo unstable: "
+                             "keep position_gain x step <= 0.25 (here <= {:g} 1/s)",
+                             config_.position_gain, dt_, 0.25 / dt_));
+  motors_ = std::make_unique<JointMotors>(*robot_, physics_->world(), gains, dt_, q0,
+                                          config_.joint_servo, Eigen::Vector3d(g[0], g[1], g[2]));
   const ObjectGuide guide{config_.guide_max_force, config_.guide_bandwidth,
                           config_.guide_contact_stiffness};
   if (guide.bandwidth * dt_ > 0.5)
@@ -279,6 +291,7 @@ void BulletWorld::step(NodeContext& ctx) {
   // Kinematic joints: a hair below the blow-up detector's speed bound.
   if (robot_->kinematic()) motors_->advance_kinematic(0.999 * config_.max_joint_speed);
   motors_->update_limits();
+  motors_->apply_torques();
   physics_->step(dt_);
   ++steps_;
   publish(t + dt_);

@@ -22,6 +22,10 @@
 /// the solver ignores such pairs (both bodies immovable), so their contacts carry a penetration
 /// force, kinematic_contact_stiffness × depth.
 ///
+/// `joint_servo: computed_torque` drives a dynamic robot by joint torques from its inverse
+/// dynamics instead of motor constraints (joint_motors.hpp): several times faster, with the
+/// tracking error reported beside the speed in docs/performance.md.
+///
 /// Guided objects (object_manager.hpp: ObjectGuide) are dynamic bodies pulled along their path
 /// by at most guide_max_force: what they meet stops them, so a link they press on feels a
 /// bounded force instead of a prescribed motion. A blow-up that still happens names the bodies
@@ -56,6 +60,7 @@ class BulletWorld : public Plugin {
     std::string encoder_offsets_deg;
     std::vector<std::string> locked_joints;
     JointMotion joint_motion = JointMotion::kDynamic;
+    JointServo joint_servo = JointServo::kConstraint;
     std::vector<double> gravity{0, 0, -9.81};  // [m/s^2]
     double position_gain = 40.0;               // [1/s]
     double velocity_gain = 1.0;

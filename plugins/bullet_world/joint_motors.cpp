@@ -10,10 +10,20 @@
 namespace somasim::bullet_world {
 
 JointMotors::JointMotors(RobotMultiBody& robot, btMultiBodyDynamicsWorld& world,
-                         const MotorGains& gains, double dt, const Eigen::VectorXd& hold)
-    : robot_(robot), world_(world), gains_(gains), dt_(dt) {
+                         const MotorGains& gains, double dt, const Eigen::VectorXd& hold,
+                         JointServo servo, const Eigen::Vector3d& gravity)
+    : robot_(robot), world_(world), gains_(gains), dt_(dt), gravity_(gravity) {
   const robot::RobotModel& m = robot.model();
   const int n = m.num_dofs();
+  const bool computed_torque = servo == JointServo::kComputedTorque && !robot.kinematic();
+  if (computed_torque) {
+    std::vector<bool> locked(static_cast<std::size_t>(n));
+    for (int d = 0; d < n; ++d) locked[static_cast<std::size_t>(d)] = robot.locked(d);
+    dynamics_ = std::make_unique<robot::InverseDynamics>(
+        m, robot::physical_inertials(m, kFrameLinkMass, kMinPrincipalInertia, locked));
+    data_ = std::make_unique<robot::RobotData>(m);
+    q_ = qd_ = qdd_ = Eigen::VectorXd::Zero(n);
+  }
   mode_.assign(n, JointCommandMode::kPosition);
   position_.assign(n, 0.0);
   velocity_.assign(n, 0.0);
@@ -25,11 +35,13 @@ JointMotors::JointMotors(RobotMultiBody& robot, btMultiBodyDynamicsWorld& world,
       position_[d] = hold[d];
       continue;
     }
-    auto motor = std::make_unique<btMultiBodyJointMotor>(&robot.multibody(), link, 0.0,
-                                                         gains_.max_torque * dt_);
-    motor->setErp(1.0);
-    world_.addMultiBodyConstraint(motor.get());
-    motors_[d] = std::move(motor);
+    if (!computed_torque) {
+      auto motor = std::make_unique<btMultiBodyJointMotor>(&robot.multibody(), link, 0.0,
+                                                           gains_.max_torque * dt_);
+      motor->setErp(1.0);
+      world_.addMultiBodyConstraint(motor.get());
+      motors_[d] = std::move(motor);
+    }
     const double lo = m.lower_limits()[d], hi = m.upper_limits()[d];
     if (lo < hi) {
       auto limit =
@@ -75,6 +87,29 @@ void JointMotors::advance_kinematic(double max_speed) {
   robot_.move_kinematic(q, dq);
 }
 
+void JointMotors::apply_torques() {
+  if (!dynamics_) return;
+  const robot::RobotModel& m = robot_.model();
+  const double w = gains_.position_gain;
+  for (int d = 0; d < m.num_dofs(); ++d) {
+    q_[d] = robot_.position(d);
+    qd_[d] = robot_.velocity(d);
+    const auto k = static_cast<std::size_t>(d);
+    if (robot_.dof_link(d) < 0)
+      qdd_[d] = 0.0;
+    else if (mode_[k] == JointCommandMode::kVelocity)
+      qdd_[d] = 2.0 * w * (velocity_[k] - qd_[d]);
+    else
+      qdd_[d] = w * w * (position_[k] - q_[d]) + 2.0 * w * (velocity_[k] - qd_[d]);
+  }
+  robot::forward_kinematics(m, *data_, q_);
+  const Eigen::VectorXd& tau = dynamics_->torques(*data_, qd_, qdd_, gravity_);
+  for (int d = 0; d < m.num_dofs(); ++d)
+    if (const int link = robot_.dof_link(d); link >= 0)
+      robot_.multibody().addJointTorque(link,
+                                        std::clamp(tau[d], -gains_.max_torque, gains_.max_torque));
+}
+
 JointMotors::~JointMotors() {
   for (auto& l : limits_)
     if (l.active) world_.removeMultiBodyConstraint(l.constraint.get());
@@ -87,7 +122,8 @@ void JointMotors::set_position(int dof, double q, double v_feed_forward) {
   q = std::clamp(q, m.lower_limits()[dof], m.upper_limits()[dof]);
   mode_[dof] = JointCommandMode::kPosition;
   position_[dof] = q;
-  if (robot_.kinematic()) return;
+  velocity_[dof] = v_feed_forward;
+  if (!motors_[dof]) return;
   // btMultiBodyJointMotor: v_target = kp·erp·(q* − q)/dt + v + kd·(v* − v), erp = 1.
   motors_[dof]->setPositionTarget(q, gains_.position_gain * dt_);
   motors_[dof]->setVelocityTarget(v_feed_forward, gains_.velocity_gain);
@@ -97,7 +133,7 @@ void JointMotors::set_velocity(int dof, double v) {
   mode_[dof] = JointCommandMode::kVelocity;
   position_[dof] = robot_.position(dof);
   velocity_[dof] = v;
-  if (robot_.kinematic()) return;
+  if (!motors_[dof]) return;
   motors_[dof]->setPositionTarget(0.0, 0.0);
   motors_[dof]->setVelocityTarget(v, gains_.velocity_gain);
 }

@@ -18,6 +18,15 @@
 /// other than kNone is a RunError naming the joint, so that a controller believing it moves a
 /// locked joint fails loudly instead of silently doing nothing.
 ///
+/// `JointServo::kComputedTorque` replaces the motor constraints by joint torques computed before
+/// each step from the robot's own inverse dynamics (robot::InverseDynamics, the same masses as
+/// the multibody): τ = M(q)·a + C(q, q̇)·q̇ + G(q) for the desired acceleration
+///   a = ω²·(q* − q) + 2ω·(v* − q̇)   (position commands; velocity commands: a = 2ω·(v* − q̇)),
+/// ω = position_gain, clamped to ±max_torque. Each joint then tracks like a critically damped
+/// unit mass whatever the rest of the arm does; the solver is left with contacts and limits only,
+/// so a step costs a fraction of the constraint motors' (what Bullet's multibody and the model
+/// differ in, and what objects push, are disturbances the feedback rejects).
+///
 /// A kinematic robot (JointMotion::kKinematic) has no motors either: advance_kinematic() moves
 /// every joint that is not locked to its target in one step — the position target (clamped into
 /// the limits), or the position reached at the commanded velocity — at most `max_speed` · dt
@@ -29,6 +38,8 @@
 #include <BulletDynamics/Featherstone/btMultiBodyJointMotor.h>
 
 #include "robot_multibody.hpp"
+#include "somasim/name_table.hpp"
+#include "somasim/robot/dynamics.hpp"
 #include "somasim/robot/ports.hpp"
 
 namespace somasim::bullet_world {
@@ -42,11 +53,24 @@ struct MotorGains {
   double max_torque = 20.0;     ///< [N·m] (prismatic joints: [N])
 };
 
+/// How the joints of a dynamic robot are driven to their commands.
+enum class JointServo : std::uint8_t {
+  kConstraint,      ///< Bullet motor constraints solved with the contacts (the default)
+  kComputedTorque,  ///< joint torques from inverse dynamics, applied before each step
+};
+inline constexpr NamedValue<JointServo> kJointServoNames[] = {
+    {JointServo::kConstraint, "constraint"}, {JointServo::kComputedTorque, "computed_torque"}};
+constexpr std::span<const NamedValue<JointServo>> name_table(JointServo) {
+  return kJointServoNames;
+}
+
 class JointMotors {
  public:
-  /// Motors start by holding `hold` (model dof order).
+  /// Motors start by holding `hold` (model dof order). `gravity` [m/s², root frame] is what
+  /// computed torques compensate.
   JointMotors(RobotMultiBody& robot, btMultiBodyDynamicsWorld& world, const MotorGains& gains,
-              double dt, const Eigen::VectorXd& hold);
+              double dt, const Eigen::VectorXd& hold, JointServo servo = JointServo::kConstraint,
+              const Eigen::Vector3d& gravity = Eigen::Vector3d::Zero());
   ~JointMotors();
   JointMotors(const JointMotors&) = delete;
   JointMotors& operator=(const JointMotors&) = delete;
@@ -64,6 +88,9 @@ class JointMotors {
   /// comment), at most `max_speed` [rad/s] ([m/s]); call after apply(), before the step.
   void advance_kinematic(double max_speed);
 
+  /// Computed-torque servo: applies this step's joint torques to the multibody (see the file
+  /// comment); call after apply() and update_limits(), before the step. No-op otherwise.
+  void apply_torques();
   JointCommandMode mode(int dof) const { return mode_[dof]; }
   double position_target(int dof) const { return position_[dof]; }
 
@@ -84,7 +111,12 @@ class JointMotors {
   std::vector<Limit> limits_;
   std::vector<JointCommandMode> mode_;
   std::vector<double> position_;
-  std::vector<double> velocity_;  ///< kinematic robot: velocity targets [rad/s]
+  std::vector<double> velocity_;  ///< velocity targets or feed-forward [rad/s]
+  // Computed-torque servo (null otherwise).
+  std::unique_ptr<robot::InverseDynamics> dynamics_;
+  std::unique_ptr<robot::RobotData> data_;
+  Eigen::Vector3d gravity_ = Eigen::Vector3d::Zero();
+  Eigen::VectorXd q_, qd_, qdd_;
 };
 
 }  // namespace somasim::bullet_world

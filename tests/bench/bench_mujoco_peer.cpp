@@ -6,7 +6,12 @@
 // fed forward), and a free ball of the same radius and mass reset at each throw.
 //   BM_BulletMoving/0: bullet_world `joint_motion: dynamic` (through the plugin harness)
 //   BM_BulletMoving/1: bullet_world `joint_motion: kinematic`
-//   BM_MujocoMoving:   mj_step of the exported model (MuJoCo's default solver and integrator)
+//   BM_BulletMoving/2: bullet_world `joint_motion: dynamic`, `joint_servo: computed_torque`
+//   BM_BulletMoving/3: the same with `rolling_friction: 0` (sliding friction only)
+//   BM_MujocoMoving/0: mj_step of the exported model (MuJoCo's default solver and integrator),
+//                      sliding friction only (condim 3): the contact model of BM_BulletMoving/3
+//   BM_MujocoMoving/1: with bullet_world's default rolling and spinning friction, 0.5 mm
+//                      (condim 6): the contact model of BM_BulletMoving/0-2
 // items_per_second = physics steps per second. Counters: tracking_deg (largest |q − q*| of the
 // waving joints after the first second), contacts/step (bullet_world: the contact points it
 // reports; MuJoCo: ncon, every contact its collision stage keeps).
@@ -34,9 +39,11 @@ struct MujocoScene {
   somasim::robot::ServoGains gains;
   int ball_qpos = 0, ball_qvel = 0;
 
-  MujocoScene(const somasim::robot::RobotModel& model, const Eigen::VectorXd& q0) {
+  MujocoScene(const somasim::robot::RobotModel& model, const Eigen::VectorXd& q0,
+              double rolling_friction) {
     somasim::robot::MjcfOptions options;
     options.posture = q0;
+    options.rolling_friction = rolling_friction;
     gains = somasim::robot::mjcf_servo_gains(model, options);
     std::string mjcf = somasim::robot::to_mjcf(model, options);
     const double inertia = 0.4 * kBallMass * kBallRadius * kBallRadius;
@@ -79,14 +86,14 @@ struct MujocoScene {
 };
 
 void BM_BulletMoving(benchmark::State& state) {
-  run_bullet_moving(state, state.range(0) != 0);
+  run_bullet_moving(state, kDrives[state.range(0)]);
 }
-BENCHMARK(BM_BulletMoving)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_BulletMoving)->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Unit(benchmark::kMicrosecond);
 
 void BM_MujocoMoving(benchmark::State& state) {
   const auto model = somasim::robot::load_robot_model_shared(kRobot);
   const Eigen::VectorXd q0 = somasim::robot::parse_posture_deg(*model, kPosture);
-  MujocoScene scene(*model, q0);
+  MujocoScene scene(*model, q0, state.range(0) != 0 ? 0.0005 : 0.0);
   const int n = model->num_dofs();
   const Wave wave(*model);
   Eigen::VectorXd target = q0, velocity = Eigen::VectorXd::Zero(n);
@@ -111,6 +118,6 @@ void BM_MujocoMoving(benchmark::State& state) {
   state.counters["tracking_deg"] = tracking * 180.0 / M_PI;
   state.counters["contacts/step"] = static_cast<double>(contacts) / static_cast<double>(step);
 }
-BENCHMARK(BM_MujocoMoving)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_MujocoMoving)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
 }  // namespace

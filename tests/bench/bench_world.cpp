@@ -10,7 +10,7 @@
 //                     elbow on sinusoids, position commands with feed-forward) while balls are
 //                     thrown at its left forearm; K = 0 `joint_motion: dynamic`, K = 1 `kinematic`.
 //                     Counters: tracking_deg (largest |q - q*| of the waving joints after the first
-//                     second), contacts/step.
+//                     second), contacts/step. K = 2: `dynamic` with `joint_servo: computed_torque`.
 //   BM_WorldAfterObjects/N: BM_WorldPlugin/1 after N objects have come and gone (a long run's
 //                     history: N = 0, 2,000, 20,000); the same rate at every N means the step
 //                     costs per object present, not per object ever spawned.
@@ -67,9 +67,9 @@ BENCHMARK(BM_WorldPlugin)
     ->Unit(benchmark::kMicrosecond);
 
 void BM_WorldMoving(benchmark::State& state) {
-  somasim::bench::run_bullet_moving(state, state.range(0) != 0);
+  somasim::bench::run_bullet_moving(state, somasim::bench::kDrives[state.range(0)]);
 }
-BENCHMARK(BM_WorldMoving)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_WorldMoving)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond);
 
 void BM_WorldAfterObjects(benchmark::State& state) {
   const auto history = static_cast<std::uint64_t>(state.range(0));

@@ -63,14 +63,22 @@ struct Wave {
   }
 };
 
-/// The scene stepped by the bullet_world plugin (through the harness), `joint_motion` dynamic or
-/// kinematic. Counters: tracking_deg (largest |q − q*| of the waving joints after the first
-/// second), contacts/step.
-inline void run_bullet_moving(benchmark::State& state, bool kinematic) {
+/// bullet_world's parameters for each way of driving the joints (index = benchmark argument).
+inline const char* const kDrives[] = {
+    "joint_motion: dynamic",                                // motor constraints (default)
+    "joint_motion: kinematic",                              // exact, kinematic bodies
+    "joint_motion: dynamic, joint_servo: computed_torque",  // inverse-dynamics torques
+    "joint_motion: dynamic, joint_servo: computed_torque, rolling_friction: 0",  // sliding only
+};
+
+/// The scene stepped by the bullet_world plugin (through the harness) with `params` added to its
+/// parameters (e.g. one of kDrives). Counters: tracking_deg (largest |q − q*| of the waving joints
+/// after the first second), contacts/step.
+inline void run_bullet_moving(benchmark::State& state, const std::string& params) {
   const auto model = robot::load_robot_model_shared(kRobot);
   testing::Harness h("base_rate_hz: 1000\nrobots: {icub: " + kRobot +
                      "}\nnodes:\n  world: {plugin: bullet_world, params: {initial_posture_deg: '" +
-                     kPosture + "', joint_motion: " + (kinematic ? "kinematic" : "dynamic") +
+                     kPosture + "', " + params +
                      "}, inputs: {spawns: harness.spawns, commands: harness.cmd}}\n");
   auto& spawns = h.input<ObjectSpawns>("spawns");
   auto& cmd = h.input<JointCommand>("cmd");

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 #include <Eigen/Eigenvalues>
 
+#include "somasim/robot/dynamics.hpp"
 #include "somasim/robot/kinematics.hpp"
 #include "somasim/robot/self_collision.hpp"
 
@@ -59,29 +60,10 @@ Eigen::Isometry3d rest_transform(const Joint& j) {
   return t * j.post;
 }
 
-/// The mass properties written for each link: the model's, with a moving group of links that has
-/// no mass given frame_link_mass (on the link that moves), principal inertias floored.
+/// The mass properties written for each link (bullet_world's: frame links of moving groups
+/// without mass get some).
 std::vector<Inertial> physical_inertials(const RobotModel& model, const MjcfOptions& options) {
-  const int n = model.num_links();
-  std::vector<Inertial> out(n);
-  std::vector<double> group_mass(n, 0.0);  // mass welded to each moving link (or the root)
-  std::vector<int> mover(n, 0);
-  for (int i = 0; i < n; ++i) {
-    const Link& link = model.link(i);
-    const bool welded = link.parent_joint >= 0 && model.joint(link.parent_joint).dof < 0;
-    mover[i] = welded ? mover[link.parent_link] : i;
-    group_mass[mover[i]] += link.inertial.mass;
-  }
-  for (int i = 0; i < n; ++i) {
-    out[i] = model.link(i).inertial;
-    const bool moves = model.link(i).parent_joint >= 0 && mover[i] == i;
-    if (moves && group_mass[i] <= 0.0) {
-      out[i].mass = options.frame_link_mass;
-      out[i].com.setZero();
-      out[i].inertia = Eigen::Matrix3d::Identity() * options.min_principal_inertia;
-    }
-  }
-  return out;
+  return robot::physical_inertials(model, options.frame_link_mass, options.min_principal_inertia);
 }
 
 /// <inertial> of a link (principal axes), or nothing for a massless one.
@@ -155,9 +137,10 @@ class Writer {
         "  <!-- Written by somasim from robot '{}'. -->\n"
         "  <compiler angle=\"radian\" inertiafromgeom=\"false\"/>\n"
         "  <option timestep=\"{}\" gravity=\"{}\"/>\n"
-        "  <default><geom friction=\"{} 0.005 0.0001\"/></default>\n",
+        "  <default><geom friction=\"{} {} {}\" condim=\"{}\"/></default>\n",
         xml_escaped(model_.name()), xml_escaped(model_.name()), num(options_.timestep),
-        vec(options_.gravity), num(options_.friction));
+        vec(options_.gravity), num(options_.friction), num(options_.rolling_friction),
+        num(options_.rolling_friction), options_.rolling_friction > 0.0 ? 6 : 3);
     if (!assets.empty()) out += "  <asset>\n" + assets + "  </asset>\n";
     out += "  <worldbody>\n";
     write_body(out, 0, options_.base_pose, 2);

@@ -32,73 +32,11 @@ std::size_t count(const std::string& text, const std::string& pattern) {
       std::distance(std::sregex_iterator(text.begin(), text.end(), re), std::sregex_iterator()));
 }
 
-Eigen::Isometry3d random_pose(std::mt19937& rng) {
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
-  t.translation() = Eigen::Vector3d(0.1 * u(rng), 0.1 * u(rng), 0.1 * u(rng));
-  t.linear() = Eigen::Quaterniond(u(rng), u(rng), u(rng), u(rng)).normalized().toRotationMatrix();
-  return t;
-}
-
-/// A random tree of `n` links: revolute, prismatic and fixed joints with random pre, post,
-/// offset and axis; some links massless, some with shapes; every child after its parent.
-RobotModel random_tree(std::mt19937& rng, int n) {
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  std::vector<Link> links(static_cast<std::size_t>(n));
-  std::vector<Joint> joints;
-  int dofs = 0;
-  for (int i = 0; i < n; ++i) {
-    Link& link = links[static_cast<std::size_t>(i)];
-    link.name = fmt::format("link{}", i);
-    if (u(rng) > -0.5) {
-      link.inertial.mass = 0.1 + u(rng) * 0.05;
-      link.inertial.com = Eigen::Vector3d(0.05 * u(rng), 0.05 * u(rng), 0.05 * u(rng));
-      const Eigen::Matrix3d r = random_pose(rng).linear();
-      link.inertial.inertia = r * Eigen::Vector3d(2e-4, 3e-4, 4e-4).asDiagonal() * r.transpose();
-      Geometry g;
-      g.type = i % 3 == 0 ? GeometryType::Capsule : GeometryType::Box;
-      g.radius = 0.02;
-      g.length = 0.05;
-      g.size = Eigen::Vector3d(0.03, 0.04, 0.05);
-      g.origin = random_pose(rng);
-      link.collision.push_back(g);
-    }
-    if (i == 0) continue;
-    Joint j;
-    j.name = fmt::format("joint{}", i);
-    j.parent_link = std::uniform_int_distribution<int>(0, i - 1)(rng);
-    j.child_link = i;
-    const int kind = std::uniform_int_distribution<int>(0, 5)(rng);
-    j.type = kind == 0 ? JointType::Fixed : kind == 1 ? JointType::Prismatic : JointType::Revolute;
-    j.pre = random_pose(rng);
-    j.post = u(rng) > 0 ? random_pose(rng) : Eigen::Isometry3d::Identity();
-    j.axis = Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
-    if (j.type != JointType::Fixed) {
-      j.offset = u(rng);
-      j.lower = -1.0 + 0.5 * u(rng);
-      j.upper = 1.0 + 0.5 * u(rng);
-      j.dof = dofs++;
-    }
-    link.parent_joint = static_cast<int>(joints.size());
-    link.parent_link = j.parent_link;
-    joints.push_back(j);
-  }
-  return RobotModel("random_tree", std::move(links), std::move(joints), {}, {}, {}, {});
-}
-
-Eigen::VectorXd random_posture(const RobotModel& model, std::mt19937& rng) {
-  Eigen::VectorXd q(model.num_dofs());
-  for (int d = 0; d < model.num_dofs(); ++d)
-    q[d] = std::uniform_real_distribution<double>(std::max(model.lower_limits()[d], -3.0),
-                                                  std::min(model.upper_limits()[d], 3.0))(rng);
-  return q;
-}
-
 std::vector<RobotModel> robots_under_test(std::mt19937& rng) {
   std::vector<RobotModel> robots;
   for (const char* variant : {"icub_v1", "icub_v2", "icub_v1_from_urdf"})
     robots.push_back(test::load_icub(variant));
-  for (int trial = 0; trial < 20; ++trial) robots.push_back(random_tree(rng, 2 + trial % 9));
+  for (int trial = 0; trial < 20; ++trial) robots.push_back(test::random_tree(rng, 2 + trial % 9));
   return robots;
 }
 
@@ -189,7 +127,7 @@ TEST(MjcfExportMujoco, BodiesFollowTheLinksAtEveryPosture) {
     }
     RobotData data(model);
     for (int trial = 0; trial < 10; ++trial) {
-      const Eigen::VectorXd q = random_posture(model, rng);
+      const Eigen::VectorXd q = test::random_posture(model, rng);
       forward_kinematics(model, data, q);
       for (int k = 0; k < model.num_dofs(); ++k)
         mj.d()->qpos[k] = q[dofs[static_cast<std::size_t>(k)]];

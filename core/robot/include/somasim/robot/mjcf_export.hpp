@@ -37,7 +37,10 @@ struct MjcfOptions {
   double timestep = 1e-3;                                       ///< [s]
   Eigen::Vector3d gravity = Eigen::Vector3d(0, 0, -9.81);       ///< world frame [m/s²]
   Eigen::Isometry3d base_pose = Eigen::Isometry3d::Identity();  ///< root link in the world
-  double friction = 0.8;                   ///< sliding friction of every geom [-]
+  double friction = 0.8;  ///< sliding friction of every geom [-]
+  /// Torsional and rolling friction of every geom [m]; > 0 writes condim 6 (bullet_world's
+  /// rolling_friction), 0 condim 3 (sliding friction only).
+  double rolling_friction = 0.0;
   double frame_link_mass = 0.02;           ///< [kg], a moving group that has none
   double min_principal_inertia = 1e-5;     ///< [kg·m²]
   bool servos = true;                      ///< one position servo per movable joint
