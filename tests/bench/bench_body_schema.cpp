@@ -1,8 +1,10 @@
 // The body-schema filter step (issue targets: M = 200 in both eyes <= 100 ms and <= 1.3x the
 // bare render + read-back of the same hypotheses; M = 2000 <= 1 s): observation (colour
 // segmentation of both eye images), prediction, hypothesis rendering and scoring, update.
-// The bare floor is the same hypotheses drawn and read back by a HypothesisRenderer with no
-// extraction, measured in the same loop so that both see the same machine load.
+// The bare floor is the same hypotheses drawn and read back by a GL HypothesisRenderer with no
+// extraction, measured in the same loop so that both see the same machine load. software = 1:
+// the filter's tiles drawn by the CPU rasterizer (scorer option `rasterizer: software`) against
+// the same GL floor.
 #include <benchmark/benchmark.h>
 
 #include <chrono>
@@ -25,7 +27,10 @@ void BM_FilterStepOverBareRender(benchmark::State& state) {
   const Eigen::VectorXd q = support::hand_before_eyes();
   const support::RealEyes eyes = support::look(q);
   const ArmHypothesisModel arm = arm_hypothesis_model(*support::icub(), {"r_hand"}, 8);
-  HypothesisScorer scorer(support::icub(), arm, support::arm_dofs(), workers, ScorerOptions{});
+  ScorerOptions options;
+  options.rasterizer =
+      state.range(2) != 0 ? render::Rasterizer::kSoftware : render::Rasterizer::kGl;
+  HypothesisScorer scorer(support::icub(), arm, support::arm_dofs(), workers, options);
   render::HypothesisRenderer bare(arm.meshes, workers);
   NoiseSchedule schedule = noise_schedule_preset("paper");
   schedule.jump_fraction = 0.1;  // as configs/body_schema_reaching.yaml
@@ -66,10 +71,12 @@ void BM_FilterStepOverBareRender(benchmark::State& state) {
   state.counters["compare_ms"] = scorer.timing().compare_ms;
 }
 BENCHMARK(BM_FilterStepOverBareRender)
-    ->ArgNames({"M", "workers"})
-    ->Args({200, 1})
-    ->Args({200, 2})
-    ->Args({2000, 2})
+    ->ArgNames({"M", "workers", "software"})
+    ->Args({200, 1, 0})
+    ->Args({200, 2, 0})
+    ->Args({2000, 2, 0})
+    ->Args({200, 2, 1})
+    ->Args({2000, 2, 1})
     ->Unit(benchmark::kMillisecond)
     ->UseManualTime();
 

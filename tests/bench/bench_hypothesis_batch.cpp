@@ -1,5 +1,6 @@
 // One batch of 200 forearm + hand hypotheses in both eyes (320 x 240, iCub intrinsics) through
-// HypothesisRenderer with W = 1 and 2 workers, beside two baselines in the same run:
+// HypothesisRenderer with W = 1 and 2 workers, beside baselines in the same run (and the
+// software rasterizer beside GL, BM_SoftwareOverGl):
 //   - the bare floor: the same geometry, tiles and single read-back per worker with no
 //     silhouette or contour extraction (HypothesisBatchOptions::extract = false); the issue's
 //     target is a batch <= 1.3 x this floor and <= 50 ms;
@@ -138,6 +139,42 @@ BENCHMARK(BM_HypothesisBatchOverFloor)
     ->ArgNames({"workers", "contour"})
     ->Args({1, 0})
     ->Args({1, 1})
+    ->Args({2, 0})
+    ->Args({2, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->UseManualTime();
+
+// The software rasterizer against GL (the baseline) in alternation, same batch and worker count:
+// each iteration times one GL batch and one software batch (the benchmark's time); counters
+// gl_ms, software_ms and ratio = software / GL (sums over all iterations).
+void BM_SoftwareOverGl(benchmark::State& state) {
+  const int workers = static_cast<int>(state.range(0));
+  HypothesisRenderer gl(arm_meshes(), workers);
+  HypothesisRenderer software(arm_meshes(), workers, RenderBackend::kOsmesa, Rasterizer::kSoftware);
+  const HypothesisBatch batch = arm_batch();
+  HypothesisBatchOptions options;
+  options.contour = state.range(1) != 0;
+  using Clock = std::chrono::steady_clock;
+  double gl_s = 0.0, software_s = 0.0;
+  for (auto _ : state) {
+    const Clock::time_point t0 = Clock::now();
+    benchmark::DoNotOptimize(gl.render(batch, options));
+    const Clock::time_point t1 = Clock::now();
+    benchmark::DoNotOptimize(software.render(batch, options));
+    const Clock::time_point t2 = Clock::now();
+    gl_s += std::chrono::duration<double>(t1 - t0).count();
+    const double s = std::chrono::duration<double>(t2 - t1).count();
+    software_s += s;
+    state.SetIterationTime(s);
+  }
+  const double n = static_cast<double>(state.iterations());
+  state.counters["gl_ms"] = 1e3 * gl_s / n;
+  state.counters["software_ms"] = 1e3 * software_s / n;
+  state.counters["ratio"] = gl_s > 0.0 ? software_s / gl_s : 0.0;
+}
+BENCHMARK(BM_SoftwareOverGl)
+    ->ArgNames({"workers", "contour"})
+    ->Args({1, 0})
     ->Args({2, 0})
     ->Args({2, 1})
     ->Unit(benchmark::kMillisecond)

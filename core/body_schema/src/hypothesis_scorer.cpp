@@ -64,7 +64,7 @@ HypothesisScorer::HypothesisScorer(std::shared_ptr<const robot::RobotModel> mode
       links_(arm.links),
       offset_dofs_(std::move(offset_dofs)),
       options_(options),
-      renderer_(arm.meshes, workers, backend),
+      renderer_(arm.meshes, workers, backend, options.rasterizer),
       data_(*model_),
       offsets_rad_(Eigen::VectorXd::Zero(model_->num_dofs())) {
   for (std::size_t m = 0; m < links_.size(); ++m) batch_.meshes.push_back(m);

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "hypothesis_tiler.hpp"
+#include "software_tiler.hpp"
 #include "somasim/error.hpp"
 #include "somasim/render/context.hpp"
 #include "somasim/render/hypothesis_batch.hpp"
@@ -34,12 +35,33 @@ struct HypothesisRenderer::Pool {
   std::vector<std::exception_ptr> errors;  // per worker, of start-up or of the current job
   std::vector<std::thread> threads;
   RenderBackend backend = RenderBackend::kOsmesa;
+  Rasterizer rasterizer = Rasterizer::kGl;
 
   void run(std::size_t index, const std::vector<TriangleMesh>& meshes) {
-    const std::size_t workers = threads.size();
     try {
-      const std::unique_ptr<RenderContext> context = make_render_context(backend);
-      HypothesisTiler tiler(context->gl(), meshes);
+      if (rasterizer == Rasterizer::kSoftware) {
+        SoftwareTiler tiler(meshes);
+        serve(index, tiler);
+      } else {
+        const std::unique_ptr<RenderContext> context = make_render_context(backend);
+        HypothesisTiler tiler(context->gl(), meshes);
+        serve(index, tiler);
+      }
+    } catch (...) {
+      {
+        std::lock_guard lock(mutex);
+        errors[index] = std::current_exception();
+        ++started;
+      }
+      done.notify_all();
+    }
+  }
+
+  /// Reports the start-up, then renders each job's slice with `tiler` until stopped.
+  template <class Tiler>
+  void serve(std::size_t index, Tiler& tiler) {
+    const std::size_t workers = threads.size();
+    {
       std::uint64_t seen = 0;
       {
         std::lock_guard lock(mutex);
@@ -71,13 +93,6 @@ struct HypothesisRenderer::Pool {
         }
         done.notify_all();
       }
-    } catch (...) {
-      {
-        std::lock_guard lock(mutex);
-        errors[index] = std::current_exception();
-        ++started;
-      }
-      done.notify_all();
     }
   }
 
@@ -98,7 +113,7 @@ struct HypothesisRenderer::Pool {
 };
 
 HypothesisRenderer::HypothesisRenderer(const std::vector<TriangleMesh>& meshes, int workers,
-                                       RenderBackend backend)
+                                       RenderBackend backend, Rasterizer rasterizer)
     : pool_(std::make_unique<Pool>()) {
   if (workers < 1)
     throw InputError(fmt::format("hypothesis renderer: needs at least 1 worker, got {}", workers));
@@ -106,6 +121,7 @@ HypothesisRenderer::HypothesisRenderer(const std::vector<TriangleMesh>& meshes, 
   for (const TriangleMesh& mesh : meshes) bounds_.push_back(bounds(mesh));
   Pool& pool = *pool_;
   pool.backend = backend;
+  pool.rasterizer = rasterizer;
   pool.errors.resize(static_cast<std::size_t>(workers));
   pool.threads.resize(static_cast<std::size_t>(workers));
   for (std::size_t i = 0; i < pool.threads.size(); ++i)
@@ -131,6 +147,10 @@ int HypothesisRenderer::worker_count() const {
 
 RenderBackend HypothesisRenderer::backend() const {
   return pool_->backend;
+}
+
+Rasterizer HypothesisRenderer::rasterizer() const {
+  return pool_->rasterizer;
 }
 
 HypothesisBatchResult HypothesisRenderer::render(const HypothesisBatch& batch,

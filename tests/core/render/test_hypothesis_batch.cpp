@@ -256,6 +256,87 @@ TEST(HypothesisBatch, NearPlaneCrossingTilesDifferAtMostInRareEdgePixels) {
   EXPECT_LE(c.mismatched * 10000, c.boundary_pixels);
 }
 
+// The software rasterizer (no GL) against the same full renders: its tiles differ from GL's only
+// on edge pixels, and rarely — for rotated and offset cameras, and with the thumb of every
+// hypothesis crossing the near plane in front of an eye.
+TEST(HypothesisBatch, SoftwareTilesDifferFromGlOnlyInRareEdgePixels) {
+  const std::vector<TriangleMesh> meshes = arm_meshes();
+  HypothesisRenderer software(meshes, 2, RenderBackend::kOsmesa, Rasterizer::kSoftware);
+  EXPECT_EQ(software.rasterizer(), Rasterizer::kSoftware);
+  CropComparison all;
+  for (int b = 0; b < 6; ++b) {
+    const HypothesisBatch batch =
+        arm_batch(5, varied_cameras(), Eigen::Vector3d(0.45, 0.01 * b - 0.02, 0.008 * b - 0.02));
+    const CropComparison c =
+        compare_with_full_renders(meshes, batch, software.render(batch), false);
+    all.tiles += c.tiles;
+    all.boundary_pixels += c.boundary_pixels;
+    all.mismatched += c.mismatched;
+  }
+  for (int b = 0; b < 4; ++b) {  // larger tiles, principal points and heights varied
+    std::vector<Camera> cameras = varied_cameras();
+    for (Camera& camera : cameras) {
+      camera.intrinsics.cx += 0.37 * b;
+      camera.intrinsics.cy -= 0.23 * b;
+      camera.pose_root.translation().z() += 0.002 * b;
+    }
+    const HypothesisBatch batch = arm_batch(
+        30, cameras, Eigen::Vector3d(0.45 + 0.003 * b, 0.002 * b - 0.03, 0.001 * b - 0.015));
+    const CropComparison c = compare_with_full_renders(
+        meshes, batch, software.render(batch, {54 + 2 * b, false, 1}), false);
+    all.tiles += c.tiles;
+    all.boundary_pixels += c.boundary_pixels;
+    all.mismatched += c.mismatched;
+  }
+  EXPECT_EQ(all.tiles, 120 + 4 * 120);
+  EXPECT_GT(all.boundary_pixels, 600 * 100);
+  EXPECT_LE(all.mismatched * 1000, all.boundary_pixels);
+  HypothesisBatch near = arm_batch(40, eyes());
+  for (int h = 0; h < 40; ++h) {
+    Eigen::Isometry3d& thumb = near.hypotheses[h][2];
+    thumb.linear() = Eigen::AngleAxisd(1.3 + 0.05 * h, Eigen::Vector3d::UnitY()).toRotationMatrix();
+    thumb.translation() = Eigen::Vector3d(0.01 + 0.001 * (h % 11),
+                                          (h % 2 ? 0.034 : -0.034) + 0.002 * (h % 13) - 0.012,
+                                          0.002 * (h % 7) - 0.007);
+  }
+  const CropComparison c = compare_with_full_renders(meshes, near, software.render(near), false);
+  EXPECT_EQ(c.tiles, 80);
+  EXPECT_LE(c.mismatched * 1000, c.boundary_pixels);
+  // Contours and the bare mode behave as on GL.
+  const HypothesisBatch batch = arm_batch(4, eyes());
+  const HypothesisBatchResult contours = software.render(batch, {4, true, 1});
+  const HypothesisBatchResult silhouettes = software.render(batch);
+  for (std::size_t h = 0; h < 4; ++h)
+    EXPECT_EQ(cv::countNonZero(contours.cameras[0].tiles[h] !=
+                               silhouette_contour(silhouettes.cameras[0].tiles[h], 1)),
+              0);
+  const HypothesisBatchResult bare = software.render(batch, {4, false, 1, false});
+  EXPECT_TRUE(bare.cameras[1].tiles[3].empty());
+}
+
+// A mesh that is not closed (one triangle) is drawn whichever way it faces; a closed one is drawn
+// from the triangles of one winding, which cover the same pixels (above).
+TEST(HypothesisBatch, SoftwareDrawsAnOpenMeshFromBothSides) {
+  TriangleMesh triangle;
+  triangle.positions = {{0.0f, -0.03f, -0.03f}, {0.0f, 0.03f, -0.03f}, {0.0f, 0.0f, 0.04f}};
+  triangle.normals.assign(3, Eigen::Vector3f::UnitX());
+  triangle.indices = {0, 1, 2};
+  HypothesisRenderer software({triangle}, 1, RenderBackend::kOsmesa, Rasterizer::kSoftware);
+  HypothesisRenderer gl({triangle}, 1);
+  HypothesisBatch batch;
+  batch.meshes = {0};
+  batch.cameras = {eyes()[0]};
+  Eigen::Isometry3d front = Eigen::Isometry3d::Identity(), back = front;
+  front.translation() = back.translation() = Eigen::Vector3d(0.4, 0.03, 0.0);
+  back.rotate(Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitZ()));
+  batch.hypotheses = {{front}, {back}};
+  const HypothesisBatchResult s = software.render(batch), g = gl.render(batch);
+  for (std::size_t h = 0; h < 2; ++h) {
+    EXPECT_GT(cv::countNonZero(s.cameras[0].tiles[h]), 500) << h;
+    EXPECT_EQ(cv::countNonZero(s.cameras[0].tiles[h] != g.cameras[0].tiles[h]), 0) << h;
+  }
+}
+
 TEST(HypothesisBatch, RegionOfInterestContainsAllProjectionsPlusMargin) {
   const std::vector<TriangleMesh> meshes = arm_meshes();
   std::vector<Bounds> mesh_bounds;

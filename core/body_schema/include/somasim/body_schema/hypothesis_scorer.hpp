@@ -60,10 +60,13 @@ struct ScorerOptions {
   /// edges: cost of a perpendicular nearest edge [px] (oriented chamfer, oriented_edges.hpp,
   /// on CV_8UC2 observations from oriented_edge_map); 0: the plain chamfer distance.
   double edge_orientation_weight = 0.0;
+  /// How the hypotheses' tiles are drawn: GL (exact) or the CPU rasterizer (no GL, equal but for
+  /// rare edge pixels, several times faster; render/hypothesis_batch.hpp).
+  render::Rasterizer rasterizer = render::Rasterizer::kGl;
 
   /// The options as configuration fields (somasim/config.hpp), for plugins that embed them:
   /// likelihood, silhouette_form, silhouette_power, edge_lambda, edge_orientation_weight,
-  /// margin_px, contour_width.
+  /// margin_px, contour_width, rasterizer.
   template <class V>
   void visit(V& v) {
     v.field("likelihood", kind)
@@ -87,6 +90,11 @@ struct ScorerOptions {
             "chamfer distance");
     v.field("margin_px", margin_px).range(0, 1000).doc("ROI margin [px]");
     v.field("contour_width", contour_width).range(1, 2).doc("edges: [px]");
+    v.field("rasterizer", rasterizer)
+        .doc(
+            "how the hypotheses are drawn: gl (OpenGL, the back end's) or software (on the CPU, "
+            "no GL: the same tiles but for rare pixels whose centre lies on an edge, several "
+            "times faster)");
   }
 };
 

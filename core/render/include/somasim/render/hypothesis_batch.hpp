@@ -30,12 +30,15 @@
 /// in a grid fixed by N, the cameras and the ROIs) does not depend on W and each worker draws its
 /// tiles in their own slots, so results are byte-identical for any W.
 #include <cstddef>
+#include <cstdint>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include <Eigen/Geometry>
 #include <opencv2/core.hpp>
 
+#include "somasim/name_table.hpp"
 #include "somasim/render/camera.hpp"
 #include "somasim/render/context.hpp"
 #include "somasim/render/tessellate.hpp"
@@ -90,15 +93,30 @@ cv::Rect region_of_interest(const std::vector<Bounds>& mesh_bounds, const Hypoth
 /// (an object cut by the ROI's edge is not outlined along it).
 cv::Mat silhouette_contour(const cv::Mat& silhouette, int width);
 
+/// How tiles are drawn.
+enum class Rasterizer : std::uint8_t {
+  kGl,        ///< OpenGL (the back end's context per worker; exact, see the file comment)
+  kSoftware,  ///< on the CPU, no GL context: the same projection and 1/256 px vertex grid,
+              ///< pixel centres filled with the top-left rule (software_tiler.hpp); equal to
+              ///< the GL tiles except on pixels whose centre lies on an edge
+};
+inline constexpr NamedValue<Rasterizer> kRasterizerNames[] = {{Rasterizer::kGl, "gl"},
+                                                              {Rasterizer::kSoftware, "software"}};
+constexpr std::span<const NamedValue<Rasterizer>> name_table(Rasterizer) {
+  return kRasterizerNames;
+}
+
 /// Pool of W worker threads rendering hypothesis batches (see the file comment).
 class HypothesisRenderer {
  public:
   /// Starts `workers` (>= 1) threads, each creating a context of `backend` and uploading
-  /// `meshes`. Throws somasim::InputError for workers < 1, somasim::RunError when a context
-  /// cannot be made (the back end's message) or a mesh does not upload. Both back ends on
-  /// llvmpipe give byte-identical results.
+  /// `meshes` (the software rasterizer: no context, `backend` unused). Throws
+  /// somasim::InputError for workers < 1, somasim::RunError when a context cannot be made (the
+  /// back end's message) or a mesh does not upload. Both back ends on llvmpipe give
+  /// byte-identical results.
   HypothesisRenderer(const std::vector<TriangleMesh>& meshes, int workers,
-                     RenderBackend backend = RenderBackend::kOsmesa);
+                     RenderBackend backend = RenderBackend::kOsmesa,
+                     Rasterizer rasterizer = Rasterizer::kGl);
   ~HypothesisRenderer();
   HypothesisRenderer(const HypothesisRenderer&) = delete;
   HypothesisRenderer& operator=(const HypothesisRenderer&) = delete;
@@ -115,6 +133,7 @@ class HypothesisRenderer {
 
   int worker_count() const;
   RenderBackend backend() const;
+  Rasterizer rasterizer() const;
   std::size_t mesh_count() const { return bounds_.size(); }
 
  private:

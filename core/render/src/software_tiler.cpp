@@ -1,0 +1,165 @@
+#include "software_tiler.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <utility>
+
+namespace somasim::render {
+namespace {
+
+constexpr double kGrid = 256.0;  // sub-pixel steps per pixel (llvmpipe's FIXED_ORDER = 8)
+
+/// floor(a / b) and ceil(a / b) for b > 0.
+long long floor_div(long long a, long long b) {
+  return a >= 0 ? a / b : -((-a + b - 1) / b);
+}
+long long ceil_div(long long a, long long b) {
+  return -floor_div(-a, b);
+}
+
+/// A camera-frame point's window coordinate on the sub-pixel grid [1/256 px]; window = pixel
+/// coordinate + 0.5 (pixel c covers [c - 0.5, c + 0.5), camera.hpp).
+long long snapped(double pixel) {
+  return static_cast<long long>(std::floor((pixel + 0.5) * kGrid + 0.5));
+}
+
+/// True when every edge of `mesh` is shared by exactly two triangles that run along it in
+/// opposite directions: then the triangles of either winding cover its whole projection.
+
+bool closed_and_oriented(const TriangleMesh& mesh) {
+  // Vertices by position (meshes repeat positions with other normals), then every directed edge
+  // must be met once in each direction.
+  std::map<std::array<float, 3>, std::uint32_t> ids;
+  std::vector<std::uint32_t> id(mesh.positions.size());
+  for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+    const Eigen::Vector3f& p = mesh.positions[v];
+    id[v] = ids.emplace(std::array<float, 3>{p.x(), p.y(), p.z()},
+                        static_cast<std::uint32_t>(ids.size()))
+                .first->second;
+  }
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
+  for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3)
+    for (std::size_t i = 0; i < 3; ++i)
+      ++edges[{id[mesh.indices[t + i]], id[mesh.indices[t + (i + 1) % 3]]}];
+  if (edges.empty()) return false;
+  for (const auto& [edge, count] : edges) {
+    const auto back = edges.find({edge.second, edge.first});
+    if (count != 1 || back == edges.end() || back->second != 1) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+SoftwareTiler::SoftwareTiler(const std::vector<TriangleMesh>& meshes) : meshes_(meshes) {
+  for (const TriangleMesh& mesh : meshes_) closed_.push_back(closed_and_oriented(mesh));
+}
+
+void SoftwareTiler::fill_triangle(const std::array<long long, 3>& x,
+                                  const std::array<long long, 3>& y, bool cull_negative,
+                                  const cv::Rect& roi, cv::Mat& tile) {
+  // Orient counter-clockwise in (x right, y down) so that the inside is E >= 0 for every edge.
+  const long long area = (x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]);
+  if (area == 0 || (area < 0 && cull_negative)) return;
+  std::array<int, 3> order = {0, 1, 2};
+  if (area < 0) std::swap(order[1], order[2]);
+  // Edge i from vertex order[i] to order[i+1]: E(px, py) = a px + b py + c.
+  std::array<long long, 3> a{}, b{}, c{}, bias{};
+  for (int i = 0; i < 3; ++i) {
+    const int p = order[static_cast<std::size_t>(i)];
+    const int q = order[static_cast<std::size_t>((i + 1) % 3)];
+    const long long dx = x[q] - x[p], dy = y[q] - y[p];
+    a[i] = -dy;
+    b[i] = dx;
+    c[i] = dy * x[p] - dx * y[p];
+    // Top-left rule (y down): a pixel centre on a top edge (horizontal, the inside below it:
+    // dx > 0 in this orientation) or a left edge (the inside to its right: dy < 0) is covered;
+    // on any other edge it is not (E must be > 0).
+    const bool top = dy == 0 && dx > 0;
+    const bool left = dy < 0;
+    bias[i] = top || left ? 0 : 1;
+  }
+  const long long y_lo = std::min({y[0], y[1], y[2]}), y_hi = std::max({y[0], y[1], y[2]});
+  // Rows whose centre (256 r + 128) lies in [y_lo, y_hi], within the ROI.
+  const int row0 = std::max(roi.y, static_cast<int>(ceil_div(y_lo - 128, 256)));
+  const int row1 = std::min(roi.y + roi.height - 1, static_cast<int>(floor_div(y_hi - 128, 256)));
+  for (int r = row0; r <= row1; ++r) {
+    const long long py = 256LL * r + 128;
+    long long lo = roi.x, hi = roi.x + roi.width - 1;
+    for (int i = 0; i < 3 && lo <= hi; ++i) {
+      // E at column col: A col + K >= bias, A = 256 a, K = 128 a + b py + c.
+      const long long big_a = 256 * a[i], k = 128 * a[i] + b[i] * py + c[i];
+      if (big_a > 0)
+        lo = std::max(lo, ceil_div(bias[i] - k, big_a));
+      else if (big_a < 0)
+        hi = std::min(hi, floor_div(k - bias[i], -big_a));
+      else if (k < bias[i])
+        hi = lo - 1;
+    }
+    if (lo > hi) continue;
+    std::uint8_t* row = tile.ptr<std::uint8_t>(r - roi.y);
+    std::fill(row + (lo - roi.x), row + (hi - roi.x) + 1, std::uint8_t{255});
+  }
+}
+
+void SoftwareTiler::render(const HypothesisBatch& batch, const std::vector<cv::Rect>& rois,
+                           std::size_t begin, std::size_t end,
+                           const HypothesisBatchOptions& options, std::vector<CameraTiles>& out) {
+  for (std::size_t h = begin; h < end; ++h)
+    for (std::size_t cam = 0; cam < batch.cameras.size(); ++cam) {
+      const Camera& camera = batch.cameras[cam];
+      const PinholeIntrinsics& k = camera.intrinsics;
+      const cv::Rect& roi = rois[cam];
+      tile_.create(roi.height, roi.width, CV_8U);
+      tile_.setTo(0);
+      const Eigen::Isometry3d root_to_camera = camera.pose_root.inverse();
+      for (std::size_t m = 0; m < batch.meshes.size(); ++m) {
+        const TriangleMesh& mesh = meshes_[batch.meshes[m]];
+        const bool cull = closed_[batch.meshes[m]];  // half the triangles cover a closed mesh
+        const Eigen::Isometry3d to_camera = root_to_camera * batch.hypotheses[h][m];
+        camera_points_.resize(mesh.positions.size());
+        for (std::size_t v = 0; v < mesh.positions.size(); ++v)
+          camera_points_[v] = to_camera * mesh.positions[v].cast<double>();
+        auto window = [&](const Eigen::Vector3d& p, long long& wx, long long& wy) {
+          wx = snapped(k.fx * p.x() / p.z() + k.cx);
+          wy = snapped(k.fy * p.y() / p.z() + k.cy);
+        };
+        for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+          std::array<Eigen::Vector3d, 3> tri = {camera_points_[mesh.indices[t]],
+                                                camera_points_[mesh.indices[t + 1]],
+                                                camera_points_[mesh.indices[t + 2]]};
+          int in_front = 0;
+          for (const auto& p : tri) in_front += p.z() >= k.near;
+          if (in_front == 0) continue;
+          if (in_front == 3) {
+            std::array<long long, 3> x{}, y{};
+            for (int i = 0; i < 3; ++i) window(tri[static_cast<std::size_t>(i)], x[i], y[i]);
+            fill_triangle(x, y, cull, roi, tile_);
+            continue;
+          }
+          // Crossing the near plane: clip the polygon at z = near, then fan it.
+          std::vector<Eigen::Vector3d> polygon;
+          for (int i = 0; i < 3; ++i) {
+            const Eigen::Vector3d& p = tri[static_cast<std::size_t>(i)];
+            const Eigen::Vector3d& q = tri[static_cast<std::size_t>((i + 1) % 3)];
+            const bool p_in = p.z() >= k.near, q_in = q.z() >= k.near;
+            if (p_in) polygon.push_back(p);
+            if (p_in != q_in) polygon.push_back(p + (q - p) * ((k.near - p.z()) / (q.z() - p.z())));
+          }
+          for (std::size_t i = 1; i + 1 < polygon.size(); ++i) {
+            std::array<long long, 3> x{}, y{};
+            window(polygon[0], x[0], y[0]);
+            window(polygon[i], x[1], y[1]);
+            window(polygon[i + 1], x[2], y[2]);
+            fill_triangle(x, y, cull, roi, tile_);
+          }
+        }
+      }
+      if (!options.extract) continue;
+      out[cam].tiles[h] =
+          options.contour ? silhouette_contour(tile_, options.contour_width) : tile_.clone();
+    }
+}
+
+}  // namespace somasim::render
