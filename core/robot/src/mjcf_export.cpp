@@ -9,6 +9,7 @@
 #include "somasim/robot/dynamics.hpp"
 #include "somasim/robot/kinematics.hpp"
 #include "somasim/robot/self_collision.hpp"
+#include "xml_text.hpp"
 
 namespace somasim::robot {
 namespace {
@@ -16,30 +17,8 @@ namespace {
 /// Joint limits at or beyond this [rad] are written as an unlimited joint.
 constexpr double kUnlimitedRad = 1e3;
 
-std::string xml_escaped(const std::string& text) {
-  std::string out;
-  for (char c : text) switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  return out;
-}
-
-std::string num(double v) {
-  return fmt::format("{:.17g}", v);
-}
+using detail::num;
+using detail::xml_escaped;
 
 std::string vec(const Eigen::Vector3d& v) {
   return fmt::format("{} {} {}", num(v.x()), num(v.y()), num(v.z()));

@@ -9,39 +9,16 @@
 #include <yaml-cpp/yaml.h>
 #include <Eigen/Geometry>
 
+#include "xml_text.hpp"
+
 namespace somasim::robot {
 namespace {
 
 /// Joint limits at or beyond this [rad] are written as a continuous joint.
 constexpr double kContinuousRad = 1e3;
 
-std::string xml_escaped(const std::string& text) {
-  std::string out;
-  for (char c : text) switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      case '\'':
-        out += "&apos;";
-        break;
-      default:
-        out += c;
-    }
-  return out;
-}
-
-std::string num(double v) {
-  return fmt::format("{:.17g}", v);
-}
+using detail::num;
+using detail::xml_escaped;
 
 /// URDF's rpy: R = Rz(yaw) Ry(pitch) Rx(roll).
 std::string origin(const Eigen::Isometry3d& t) {

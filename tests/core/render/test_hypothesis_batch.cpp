@@ -204,21 +204,29 @@ TEST(HypothesisBatch, TileEqualsCropOfFullRenderForRotatedAndOffsetCameras) {
   EXPECT_EQ(all.mismatched, 0);
 }
 
+namespace {
+
+// Batch b of `n` hypotheses: principal points, camera heights and arm positions vary with b.
+HypothesisBatch varied_batch(int b, int n) {
+  std::vector<Camera> cameras = varied_cameras();
+  for (Camera& camera : cameras) {
+    camera.intrinsics.cx += 0.37 * b;
+    camera.intrinsics.cy -= 0.23 * b;
+    camera.pose_root.translation().z() += 0.002 * b;
+  }
+  return arm_batch(n, cameras,
+                   Eigen::Vector3d(0.45 + 0.003 * b, 0.002 * b - 0.03, 0.001 * b - 0.015));
+}
+
+}  // namespace
+
 TEST(HypothesisBatch, TileEqualsCropOfFullRenderIn4096PxFramebuffers) {
   const std::vector<TriangleMesh> meshes = arm_meshes();
   HypothesisRenderer hypotheses(meshes, 2);
   CropComparison all;
   for (int b = 0; b < 4; ++b) {
-    // Principal points, camera heights, arm positions and margins vary per batch; a wide
-    // margin makes large tiles: 520 of them need two passes of 4096-px framebuffers.
-    std::vector<Camera> cameras = varied_cameras();
-    for (Camera& camera : cameras) {
-      camera.intrinsics.cx += 0.37 * b;
-      camera.intrinsics.cy -= 0.23 * b;
-      camera.pose_root.translation().z() += 0.002 * b;
-    }
-    const HypothesisBatch batch = arm_batch(
-        130, cameras, Eigen::Vector3d(0.45 + 0.003 * b, 0.002 * b - 0.03, 0.001 * b - 0.015));
+    // A wide margin makes large tiles: 520 of them need two passes of 4096-px framebuffers.
+    const HypothesisBatch batch = varied_batch(b, 130);
     const HypothesisBatchResult result = hypotheses.render(batch, {54 + 2 * b, false, 1});
     const CropComparison c = compare_with_full_renders(meshes, batch, result, true);
     EXPECT_GT(c.framebuffer_width, 3800);
@@ -274,14 +282,7 @@ TEST(HypothesisBatch, SoftwareTilesDifferFromGlOnlyInRareEdgePixels) {
     all.mismatched += c.mismatched;
   }
   for (int b = 0; b < 4; ++b) {  // larger tiles, principal points and heights varied
-    std::vector<Camera> cameras = varied_cameras();
-    for (Camera& camera : cameras) {
-      camera.intrinsics.cx += 0.37 * b;
-      camera.intrinsics.cy -= 0.23 * b;
-      camera.pose_root.translation().z() += 0.002 * b;
-    }
-    const HypothesisBatch batch = arm_batch(
-        30, cameras, Eigen::Vector3d(0.45 + 0.003 * b, 0.002 * b - 0.03, 0.001 * b - 0.015));
+    const HypothesisBatch batch = varied_batch(b, 30);
     const CropComparison c = compare_with_full_renders(
         meshes, batch, software.render(batch, {54 + 2 * b, false, 1}), false);
     all.tiles += c.tiles;
