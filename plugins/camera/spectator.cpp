@@ -30,6 +30,11 @@ void Spectator::Config::visit(V& v) {
       .range(0.0005, 0.05)
       .doc("radius of the sphere drawn at each taxel");
   v.field("backend", backend).doc("OpenGL back end (as the camera's)");
+  v.field("asynchronous", asynchronous)
+      .doc(
+          "render on a thread of its own, overlapping the simulation: the image published at a "
+          "step is the frame of the spectator's previous step (its time_s is that frame's), so "
+          "a recorded video holds the same frames except the run's last");
 }
 
 template <class V>
@@ -93,6 +98,15 @@ void Spectator::configure(NodeContext& ctx) {
   options_.read_ids = false;
   options_.check_drawn = false;  // taxels far away may cover no pixel
   options_.light_direction_root = (eye - target).normalized() + Eigen::Vector3d(0, 0, 1.0);
+  robot::RobotData rest(*model_);
+  robot::forward_kinematics(*model_, rest, Eigen::VectorXd::Zero(model_->num_dofs()));
+  rest_poses_ = rest.link_poses;
+  if (config_.asynchronous) {
+    worker_ = std::make_unique<RenderWorker>(config_.backend);
+    worker_->submit([this](render::RenderContext& context) { make_gl_objects(context); });
+    worker_->wait();
+    return;
+  }
   bool created = false;
   context_ = thread_render_context(config_.backend, created);
   if (context_->backend() != config_.backend)
@@ -101,19 +115,36 @@ void Spectator::configure(NodeContext& ctx) {
                              "'{}' (one OpenGL context per thread)",
                              render::render_backend_name(config_.backend),
                              render::render_backend_name(context_->backend())));
-  renderer_ = std::make_unique<render::SceneRenderer>(context_->gl());
-  scene_ = std::make_unique<render::RobotScene>(*renderer_, model_);
-  taxel_mesh_ = renderer_->upload(render::tessellate_sphere(config_.taxel_radius, 8));
-  robot::RobotData rest(*model_);
-  robot::forward_kinematics(*model_, rest, Eigen::VectorXd::Zero(model_->num_dofs()));
-  rest_poses_ = rest.link_poses;
+  make_gl_objects(*context_);
 }
 
-void Spectator::add_taxels(std::vector<render::DrawItem>& items) const {
-  const SkinTaxels* taxels = ports_.taxels.get();
+void Spectator::make_gl_objects(render::RenderContext& context) {
+  renderer_ = std::make_unique<render::SceneRenderer>(context.gl());
+  scene_ = std::make_unique<render::RobotScene>(*renderer_, model_);
+  taxel_mesh_ = renderer_->upload(render::tessellate_sphere(config_.taxel_radius, 8));
+}
+
+Spectator::~Spectator() {
+  if (!worker_) return;
+  try {  // the GL objects end on the thread of their context
+    worker_->wait();
+  } catch (...) {  // NOLINT(bugprone-empty-catch): a failed frame was reported by step()
+  }
+  worker_->submit([this](render::RenderContext&) {
+    scene_.reset();
+    renderer_.reset();
+  });
+  try {
+    worker_->wait();
+  } catch (...) {  // NOLINT(bugprone-empty-catch): a destructor cannot report
+  }
+}
+
+void Spectator::add_taxels(const SkinTaxels* taxels, const TaxelValues* taxel_values,
+                           std::vector<render::DrawItem>& items) const {
   if (!taxels) return;
   std::unordered_map<std::string, double> values;
-  if (const TaxelValues* v = ports_.taxel_values.get())
+  if (const TaxelValues* v = taxel_values)
     for (std::size_t i = 0; i < v->labels.size() && i < v->values.size(); ++i)
       values.emplace(v->labels[i], v->values[i]);
   std::int32_t id = render::kFirstSceneExtraId;
@@ -136,22 +167,61 @@ void Spectator::add_taxels(std::vector<render::DrawItem>& items) const {
     }
 }
 
-void Spectator::step(NodeContext& ctx) {
-  const auto& poses = ports_.link_poses->poses.empty() ? rest_poses_ : ports_.link_poses->poses;
-  items_.clear();
-  scene_->add_robot(poses, items_);
-  if (const ObjectStates* objects = ports_.objects.get()) scene_->add_objects(*objects, items_);
-  add_taxels(items_);
-  render::RenderedImages images = renderer_->render(items_, camera_, options_);
+Spectator::Inputs Spectator::copy_inputs() const {
+  Inputs in;
+  in.link_poses = ports_.link_poses->poses.empty() ? rest_poses_ : ports_.link_poses->poses;
+  if (const ObjectStates* objects = ports_.objects.get()) in.objects = *objects;
+  if (const SkinTaxels* taxels = ports_.taxels.get()) in.taxels = *taxels;
+  if (const TaxelValues* values = ports_.taxel_values.get()) in.taxel_values = *values;
+  return in;
+}
+
+std::vector<render::DrawItem> Spectator::draw_items(const Inputs& in) {
+  std::vector<render::DrawItem> items;
+  scene_->add_robot(in.link_poses, items);
+  if (in.objects) scene_->add_objects(*in.objects, items);
+  add_taxels(in.taxels ? &*in.taxels : nullptr, in.taxel_values ? &*in.taxel_values : nullptr,
+             items);
+  return items;
+}
+
+void Spectator::publish(cv::Mat rgb, double time_s, NodeContext& ctx) {
   Image& out = *ports_.rgb;
-  out.data = std::move(images.rgb);
+  out.data = std::move(rgb);
   out.encoding = ImageEncoding::kRgb8;
   out.camera = ctx.node_name();
-  out.time_s = ctx.time_s();
+  out.time_s = time_s;
   out.frame = ++frame_;
 }
 
+void Spectator::step(NodeContext& ctx) {
+  if (!worker_) {
+    publish(renderer_->render(draw_items(copy_inputs()), camera_, options_).rgb, ctx.time_s(), ctx);
+    return;
+  }
+  if (pending_) {
+    worker_->wait();  // rethrows the frame's rendering error
+    publish(std::move(pending_rgb_), pending_time_s_, ctx);
+    pending_ = false;
+  }
+  // Items are made on the render thread: new object shapes upload meshes to its context.
+  worker_->submit([this, in = copy_inputs()](render::RenderContext&) {
+    pending_rgb_ = renderer_->render(draw_items(in), camera_, options_).rgb;
+  });
+  pending_time_s_ = ctx.time_s();
+  pending_ = true;
+}
+
 void Spectator::finish(NodeContext& ctx) {
+  if (worker_) {
+    worker_->wait();
+    worker_->submit([this](render::RenderContext&) {
+      scene_.reset();
+      renderer_.reset();
+    });
+    worker_->wait();
+    worker_.reset();
+  }
   ctx.report_metric("frames", frame_);
   scene_.reset();
   renderer_.reset();

@@ -2,11 +2,15 @@
 // spectator: a third-person view of a run. Renders the robot, the world's objects and the skin's
 // taxels (coloured by a per-taxel value such as the PPS activation) from a fixed viewpoint, for
 // watching or recording a run (`record: [{port: NODE.rgb, as: video}]`). Positions are in the
-// robot's root frame (iCub: x backward, y to the robot's right, z up) [m].
+// robot's root frame (iCub: x backward, y to the robot's right, z up) [m]. With `asynchronous`,
+// it renders on a thread of its own while the simulation goes on and publishes each frame one
+// spectator step later.
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "render_worker.hpp"
 #include "somasim/config.hpp"
 #include "somasim/plugin.hpp"
 #include "somasim/plugin_ports.hpp"
@@ -31,6 +35,7 @@ class Spectator : public Plugin {
     int height = 480;                                 // [px]
     double taxel_radius = 0.004;                      // [m]
     render::RenderBackend backend = render::RenderBackend::kOsmesa;
+    bool asynchronous = false;
     template <class V>
     void visit(V& v);
   };
@@ -43,6 +48,13 @@ class Spectator : public Plugin {
     template <class V>
     void visit(V& v);
   };
+  Spectator() = default;
+  ~Spectator() override;
+  Spectator(const Spectator&) = delete;
+  Spectator& operator=(const Spectator&) = delete;
+  Spectator(Spectator&&) = delete;
+  Spectator& operator=(Spectator&&) = delete;
+
   static PluginSpec spec();
   void configure(NodeContext& ctx) override;
   void step(NodeContext& ctx) override;
@@ -53,7 +65,22 @@ class Spectator : public Plugin {
   static Eigen::Vector3f taxel_colour(double value);
 
  private:
-  void add_taxels(std::vector<render::DrawItem>& items) const;
+  // What a frame shows, copied from the input ports.
+  struct Inputs {
+    std::vector<Eigen::Isometry3d> link_poses;
+    std::optional<ObjectStates> objects;
+    std::optional<SkinTaxels> taxels;
+    std::optional<TaxelValues> taxel_values;
+  };
+  Inputs copy_inputs() const;
+  void add_taxels(const SkinTaxels* taxels, const TaxelValues* values,
+                  std::vector<render::DrawItem>& items) const;
+  // The renderer, the robot's meshes and the taxel sphere, on `context`'s thread.
+  void make_gl_objects(render::RenderContext& context);
+  // The robot, objects and taxels as draw items (on the renderer's thread: new object shapes
+  // upload meshes).
+  std::vector<render::DrawItem> draw_items(const Inputs& in);
+  void publish(cv::Mat rgb, double time_s, NodeContext& ctx);
 
   Config config_;
   Ports ports_;
@@ -64,9 +91,13 @@ class Spectator : public Plugin {
   render::MeshHandle taxel_mesh_;
   render::Camera camera_;
   render::RenderOptions options_;
-  std::vector<render::DrawItem> items_;
   std::vector<Eigen::Isometry3d> rest_poses_;
   std::uint64_t frame_ = 0;
+  // asynchronous: the render thread and the frame it is rendering (or has rendered).
+  std::unique_ptr<RenderWorker> worker_;
+  cv::Mat pending_rgb_;
+  double pending_time_s_ = 0.0;
+  bool pending_ = false;
 };
 
 }  // namespace somasim::plugins

@@ -4,7 +4,8 @@
 // The bare floor is the same hypotheses drawn and read back by a GL HypothesisRenderer with no
 // extraction, measured in the same loop so that both see the same machine load. software = 1:
 // the filter's tiles drawn by the CPU rasterizer (scorer option `rasterizer: software`) against
-// the same GL floor.
+// the same GL floor. egl = 1: GL through EGL (a hardware EGL device where the machine has one,
+// SOMASIM_EGL_PLATFORM) for both the filter and the floor, instead of OSMesa.
 #include <benchmark/benchmark.h>
 
 #include <chrono>
@@ -24,14 +25,16 @@ namespace support = somasim::body_schema::testing;
 void BM_FilterStepOverBareRender(benchmark::State& state) {
   const int particles = static_cast<int>(state.range(0));
   const int workers = static_cast<int>(state.range(1));
+  const render::RenderBackend backend =
+      state.range(3) != 0 ? render::RenderBackend::kEgl : render::RenderBackend::kOsmesa;
   const Eigen::VectorXd q = support::hand_before_eyes();
-  const support::RealEyes eyes = support::look(q);
+  const support::RealEyes eyes = support::look(q, backend);
   const ArmHypothesisModel arm = arm_hypothesis_model(*support::icub(), {"r_hand"}, 8);
   ScorerOptions options;
   options.rasterizer =
       state.range(2) != 0 ? render::Rasterizer::kSoftware : render::Rasterizer::kGl;
-  HypothesisScorer scorer(support::icub(), arm, support::arm_dofs(), workers, options);
-  render::HypothesisRenderer bare(arm.meshes, workers);
+  HypothesisScorer scorer(support::icub(), arm, support::arm_dofs(), workers, options, backend);
+  render::HypothesisRenderer bare(arm.meshes, workers, backend);
   NoiseSchedule schedule = noise_schedule_preset("paper");
   schedule.jump_fraction = 0.1;  // as configs/body_schema_reaching.yaml
   schedule.jump_sigma_deg = 1.5;
@@ -71,12 +74,18 @@ void BM_FilterStepOverBareRender(benchmark::State& state) {
   state.counters["compare_ms"] = scorer.timing().compare_ms;
 }
 BENCHMARK(BM_FilterStepOverBareRender)
-    ->ArgNames({"M", "workers", "software"})
-    ->Args({200, 1, 0})
-    ->Args({200, 2, 0})
-    ->Args({2000, 2, 0})
-    ->Args({200, 2, 1})
-    ->Args({2000, 2, 1})
+    ->ArgNames({"M", "workers", "software", "egl"})
+    ->Args({200, 1, 0, 0})
+    ->Args({200, 2, 0, 0})
+    ->Args({2000, 2, 0, 0})
+    ->Args({200, 2, 1, 0})
+    ->Args({2000, 2, 1, 0})
+    ->Args({200, 2, 0, 1})
+    ->Args({2000, 2, 0, 1})
+    ->Args({200, 2, 1, 1})
+    ->Args({2000, 2, 1, 1})
+    ->Args({2000, 8, 0, 1})
+    ->Args({2000, 8, 1, 1})
     ->Unit(benchmark::kMillisecond)
     ->UseManualTime();
 

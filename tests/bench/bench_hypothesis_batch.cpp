@@ -5,11 +5,14 @@
 //     silhouette or contour extraction (HypothesisBatchOptions::extract = false); the issue's
 //     target is a batch <= 1.3 x this floor and <= 50 ms;
 //   - one full SceneRenderer render + id read-back per hypothesis and eye.
+// egl = 1: the same through EGL (a hardware EGL device where the machine has one,
+// SOMASIM_EGL_PLATFORM) instead of OSMesa.
 // llvmpipe's own threads per context: set LP_NUM_THREADS in the environment of the run.
 #include <benchmark/benchmark.h>
 
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 
 #include "somasim/render/context.hpp"
 #include "somasim/render/hypothesis_batch.hpp"
@@ -66,8 +69,13 @@ HypothesisBatch arm_batch() {
   return batch;
 }
 
+RenderBackend backend_arg(std::int64_t egl) {
+  return egl != 0 ? RenderBackend::kEgl : RenderBackend::kOsmesa;
+}
+
 void BM_HypothesisBatch(benchmark::State& state) {
-  HypothesisRenderer renderer(arm_meshes(), static_cast<int>(state.range(0)));
+  HypothesisRenderer renderer(arm_meshes(), static_cast<int>(state.range(0)),
+                              backend_arg(state.range(2)));
   const HypothesisBatch batch = arm_batch();
   HypothesisBatchOptions options;
   options.contour = state.range(1) != 0;
@@ -81,17 +89,20 @@ void BM_HypothesisBatch(benchmark::State& state) {
   state.counters["roi_h"] = result.cameras[0].roi.height;
 }
 BENCHMARK(BM_HypothesisBatch)
-    ->ArgNames({"workers", "contour"})
-    ->Args({1, 0})
-    ->Args({1, 1})
-    ->Args({2, 0})
-    ->Args({2, 1})
+    ->ArgNames({"workers", "contour", "egl"})
+    ->Args({1, 0, 0})
+    ->Args({1, 1, 0})
+    ->Args({2, 0, 0})
+    ->Args({2, 1, 0})
+    ->Args({2, 0, 1})
+    ->Args({2, 1, 1})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
 // Bare floor: the same batch drawn and read back, nothing extracted (every tile left empty).
 void BM_HypothesisBatchBareFloor(benchmark::State& state) {
-  HypothesisRenderer renderer(arm_meshes(), static_cast<int>(state.range(0)));
+  HypothesisRenderer renderer(arm_meshes(), static_cast<int>(state.range(0)),
+                              backend_arg(state.range(1)));
   const HypothesisBatch batch = arm_batch();
   HypothesisBatchOptions options;
   options.extract = false;
@@ -102,9 +113,10 @@ void BM_HypothesisBatchBareFloor(benchmark::State& state) {
       static_cast<double>(state.iterations()) * kHypotheses * 2, benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_HypothesisBatchBareFloor)
-    ->ArgNames({"workers"})
-    ->Arg(1)
-    ->Arg(2)
+    ->ArgNames({"workers", "egl"})
+    ->Args({1, 0})
+    ->Args({2, 0})
+    ->Args({2, 1})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

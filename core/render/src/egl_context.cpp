@@ -5,7 +5,9 @@
 #include <fmt/format.h>
 
 #include <array>
+#include <cstdlib>
 #include <mutex>
+#include <string>
 #include <string_view>
 
 #include "somasim/error.hpp"
@@ -31,35 +33,132 @@ bool has_extension(const char* list, std::string_view extension) {
   return false;
 }
 
-// The process's one surfaceless display, initialised by the first EglContext and never
-// terminated: eglTerminate would end it for every thread at once (EGL does not count
-// initialisations) and unload Mesa's driver, whose remaining allocations then show as leaks.
-EGLDisplay surfaceless_display() {
+// An initialised display that can make contexts current without a surface, or EGL_NO_DISPLAY
+// (after eglTerminate) when `display` does not initialise or lacks surfaceless contexts.
+EGLDisplay initialised_surfaceless_capable(EGLDisplay display) {
+  if (display == EGL_NO_DISPLAY) return EGL_NO_DISPLAY;
+  EGLint major = 0, minor = 0;
+  if (eglInitialize(display, &major, &minor) != EGL_TRUE) return EGL_NO_DISPLAY;
+  if (!has_extension(eglQueryString(display, EGL_EXTENSIONS), "EGL_KHR_surfaceless_context")) {
+    eglTerminate(display);
+    return EGL_NO_DISPLAY;
+  }
+  return display;
+}
+
+// Mesa's surfaceless platform: the GPU through its render node where Mesa drives it, llvmpipe
+// otherwise. EGL_NO_DISPLAY when the EGL library has no such platform.
+EGLDisplay mesa_surfaceless_display(const char* client, std::string* tried) {
+  *tried += "surfaceless platform: ";
+  if (!has_extension(client, "EGL_MESA_platform_surfaceless")) {
+    *tried += "absent (EGL_MESA_platform_surfaceless; Debian package libegl-mesa0)";
+    return EGL_NO_DISPLAY;
+  }
+  const auto get_platform_display = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
+      eglGetProcAddress("eglGetPlatformDisplayEXT"));
+  const EGLDisplay display = initialised_surfaceless_capable(
+      get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr));
+  *tried +=
+      display == EGL_NO_DISPLAY ? fmt::format("failed ({})", egl_error_name(eglGetError())) : "ok";
+  return display;
+}
+
+// The first hardware EGL device (not Mesa's software device) that gives a display able to render
+// without a surface: how NVIDIA's driver renders off-screen. EGL_NO_DISPLAY when there is none.
+EGLDisplay hardware_device_display(const char* client, std::string* tried) {
+  *tried += "device platform: ";
+  // Device enumeration comes alone or within EGL_EXT_device_base (NVIDIA lists only the latter).
+  if (!has_extension(client, "EGL_EXT_platform_device") ||
+      !(has_extension(client, "EGL_EXT_device_enumeration") ||
+        has_extension(client, "EGL_EXT_device_base"))) {
+    *tried += "absent (EGL_EXT_platform_device, EGL_EXT_device_enumeration or _base)";
+    return EGL_NO_DISPLAY;
+  }
+  const auto query_devices =
+      reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
+  const auto query_device_string = reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(
+      eglGetProcAddress("eglQueryDeviceStringEXT"));
+  const auto get_platform_display = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
+      eglGetProcAddress("eglGetPlatformDisplayEXT"));
+  if (query_devices == nullptr || query_device_string == nullptr) {
+    *tried += "eglQueryDevicesEXT or eglQueryDeviceStringEXT missing";
+    return EGL_NO_DISPLAY;
+  }
+  constexpr EGLint kMaxDevices = 16;
+  std::array<EGLDeviceEXT, kMaxDevices> devices{};
+  EGLint count = 0;
+  if (query_devices(kMaxDevices, devices.data(), &count) != EGL_TRUE) count = 0;
+  int hardware = 0;
+  for (EGLint i = 0; i < count; ++i) {
+    if (has_extension(query_device_string(devices[i], EGL_EXTENSIONS), "EGL_MESA_device_software"))
+      continue;
+    ++hardware;
+    const EGLDisplay display = initialised_surfaceless_capable(
+        get_platform_display(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr));
+    if (display != EGL_NO_DISPLAY) {
+      *tried += fmt::format("device {} of {}", i, count);
+      return display;
+    }
+  }
+  *tried += fmt::format("{} devices, {} of them hardware, none usable", count, hardware);
+  return EGL_NO_DISPLAY;
+}
+
+// Which displays SOMASIM_EGL_PLATFORM allows: "auto" (unset or empty: a hardware EGL device
+// first, then Mesa's surfaceless platform; only the latter when LIBGL_ALWAYS_SOFTWARE asks for
+// software rendering), "device" or "surfaceless".
+struct PlatformChoice {
+  bool device = true;
+  bool surfaceless = true;
+};
+
+bool software_rendering_asked() {
+  const char* value = std::getenv("LIBGL_ALWAYS_SOFTWARE");  // NOLINT(concurrency-mt-unsafe)
+  if (value == nullptr) return false;
+  const std::string_view text(value);
+  return !text.empty() && text != "0" && text != "false";
+}
+
+PlatformChoice platform_choice() {
+  const char* value = std::getenv("SOMASIM_EGL_PLATFORM");  // NOLINT(concurrency-mt-unsafe)
+  const std::string_view choice = value == nullptr ? "auto" : value;
+  if (choice == "auto" || choice.empty())
+    return {.device = !software_rendering_asked(), .surfaceless = true};
+  if (choice == "device") return {.device = true, .surfaceless = false};
+  if (choice == "surfaceless") return {.device = false, .surfaceless = true};
+  throw RunError(fmt::format(
+      "render: SOMASIM_EGL_PLATFORM is '{}'; expected auto, device or surfaceless", choice));
+}
+
+// The process's one EGL display, initialised by the first EglContext and never terminated:
+// eglTerminate would end it for every thread at once (EGL does not count initialisations) and
+// unload the driver, whose remaining allocations then show as leaks.
+EGLDisplay process_display() {
   static std::mutex mutex;
   static EGLDisplay display = EGL_NO_DISPLAY;
   std::lock_guard lock(mutex);
   if (display != EGL_NO_DISPLAY) return display;
+  const PlatformChoice choice = platform_choice();
   // Client extensions (EGL_EXT_client_extensions): NULL when the EGL library has none.
   const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
   if (!has_extension(client, "EGL_EXT_platform_base") ||
-      !has_extension(client, "EGL_MESA_platform_surfaceless"))
+      eglGetProcAddress("eglGetPlatformDisplayEXT") == nullptr)
     throw RunError(
-        "render: EGL has no surfaceless platform (client extension "
-        "EGL_MESA_platform_surfaceless missing): the egl backend needs Mesa's EGL driver, Debian "
-        "package libegl-mesa0 (or use backend: osmesa)");
-  const auto get_platform_display = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
-      eglGetProcAddress("eglGetPlatformDisplayEXT"));
-  if (get_platform_display == nullptr)
-    throw RunError(
-        "render: EGL lists EGL_EXT_platform_base but eglGetProcAddress does not give "
-        "eglGetPlatformDisplayEXT");
-  EGLDisplay candidate =
-      get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+        "render: EGL has no platform displays (client extension EGL_EXT_platform_base or "
+        "eglGetPlatformDisplayEXT missing): the egl backend needs Mesa's EGL driver, Debian "
+        "package libegl-mesa0, or a GPU driver's EGL (or use backend: osmesa)");
+  std::string tried;
+  EGLDisplay candidate = EGL_NO_DISPLAY;
+  if (choice.device) candidate = hardware_device_display(client, &tried);
+  if (candidate == EGL_NO_DISPLAY && choice.surfaceless) {
+    if (!tried.empty()) tried += "; ";
+    candidate = mesa_surfaceless_display(client, &tried);
+  }
   if (candidate == EGL_NO_DISPLAY)
-    throw_egl("eglGetPlatformDisplayEXT", " for the surfaceless platform");
-  EGLint major = 0, minor = 0;
-  if (eglInitialize(candidate, &major, &minor) != EGL_TRUE)
-    throw_egl("eglInitialize", " on the surfaceless platform");
+    throw RunError(fmt::format(
+        "render: no EGL display renders without a window ({}): the egl backend needs Mesa's EGL "
+        "driver, Debian package libegl-mesa0, or a GPU driver's EGL (or use backend: osmesa)",
+        tried));
   display = candidate;
   return display;
 }
@@ -86,11 +185,7 @@ EglContext::EglContext(int major, int minor)
     : RenderContext(RenderBackend::kEgl), impl_(std::make_unique<Impl>()) {
   Impl& egl = *impl_;
   try {
-    egl.display = surfaceless_display();
-    if (!has_extension(eglQueryString(egl.display, EGL_EXTENSIONS), "EGL_KHR_surfaceless_context"))
-      throw RunError(
-          "render: the EGL display lacks EGL_KHR_surfaceless_context (needed to render without "
-          "a window or pbuffer surface)");
+    egl.display = process_display();
     if (eglBindAPI(EGL_OPENGL_API) != EGL_TRUE)
       throw_egl("eglBindAPI(EGL_OPENGL_API)", " (EGL without desktop OpenGL)");
     // Any configuration that renders OpenGL: the context draws only into framebuffer objects,

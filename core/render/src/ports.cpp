@@ -11,9 +11,9 @@
 #include <fmt/format.h>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
-#include <opencv2/videoio.hpp>
 
 #include "somasim/error.hpp"
+#include "video_encoder.hpp"
 
 namespace somasim {
 
@@ -89,34 +89,27 @@ class ImageRecorder : public PortRecorder {
 };
 
 // One video file per port: every new frame, at the camera's rate (MPEG-4 part 2 in MP4 through
-// OpenCV's FFmpeg back end; the same frames give the same bytes). RGB as it is; depth as grey
-// (0 at the camera to white at 2 m and beyond); masks as grey ids (id x 37 mod 256).
+// OpenCV's FFmpeg back end, encoded on its own thread; the same frames give the same bytes). RGB
+// as it is; depth as grey (0 at the camera to white at 2 m and beyond); masks as grey ids
+// (id x 37 mod 256).
 class VideoRecorder : public PortRecorder {
  public:
   VideoRecorder(const Image* image, const RecordTarget& target)
       : image_(image),
-        file_(target.dir / (target.stem + ".mp4")),
-        fps_(target.rate_hz > 0 ? target.rate_hz : 30.0) {}
+        encoder_(target.dir / (target.stem + ".mp4"), target.rate_hz > 0 ? target.rate_hz : 30.0),
+        file_(target.dir / (target.stem + ".mp4")) {}
   void write(double) override {
     if (image_->frame == 0 || image_->frame == last_frame_ || image_->data.empty()) return;
     last_frame_ = image_->frame;
     const cv::Mat frame = video_pixels(*image_);
-    if (!writer_.isOpened()) {
-      size_ = frame.size();
-      writer_.open(file_.string(), cv::VideoWriter::fourcc('m', 'p', '4', 'v'), fps_, size_, true);
-      if (!writer_.isOpened())
-        throw RunError(fmt::format("video '{}': cannot be written (no MP4 encoder in OpenCV?)",
-                                   file_.string()));
-    }
+    if (size_.empty()) size_ = frame.size();
     if (frame.size() != size_)
       throw RunError(fmt::format("video '{}': frame {} is {} x {} px, the video {} x {}",
                                  file_.string(), image_->frame, frame.cols, frame.rows, size_.width,
                                  size_.height));
-    writer_.write(frame);
+    encoder_.add(frame);
   }
-  void flush() override {
-    if (writer_.isOpened()) writer_.release();
-  }
+  void flush() override { encoder_.close(); }
 
  private:
   static cv::Mat video_pixels(const Image& image) {
@@ -149,9 +142,8 @@ class VideoRecorder : public PortRecorder {
   }
 
   const Image* image_;
+  VideoEncoder encoder_;
   std::filesystem::path file_;
-  double fps_;
-  cv::VideoWriter writer_;
   cv::Size size_;
   std::uint64_t last_frame_ = 0;
 };

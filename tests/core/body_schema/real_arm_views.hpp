@@ -58,10 +58,11 @@ struct RealEyes {
   std::vector<cv::Mat> rgb;  ///< CV_8UC3, R G B
 };
 
-/// The real arm (q + true offsets) seen by both eyes, rendered on this thread.
-inline RealEyes look(const Eigen::VectorXd& q) {
-  render::OsmesaContext context;
-  render::SceneRenderer renderer(context.gl());
+/// The real arm (q + true offsets) seen by both eyes, rendered on this thread with `backend`.
+inline RealEyes look(const Eigen::VectorXd& q,
+                     render::RenderBackend backend = render::RenderBackend::kOsmesa) {
+  const std::unique_ptr<render::RenderContext> context = render::make_render_context(backend);
+  render::SceneRenderer renderer(context->gl());
   render::RobotScene scene(renderer, icub());
   robot::RobotData data(*icub());
   Eigen::VectorXd beta = Eigen::VectorXd::Zero(icub()->num_dofs());

@@ -230,6 +230,44 @@ TEST(EglContext, ErrorCodesHaveTheirNames) {
   EXPECT_EQ(egl_error_name(0x1234), "unknown EGL error 0x1234");
 }
 
+// The EGL display is chosen once per process: each SOMASIM_EGL_PLATFORM is tried in a fresh one
+// (threadsafe death tests re-run this binary), which prints what it got and exits 0.
+[[noreturn]] void report_platform_outcome(const char* platform) {
+  setenv("SOMASIM_EGL_PLATFORM", platform, 1);
+  try {
+    EglContext context;
+    const bool software =
+        contains(context.renderer(), "llvmpipe") || contains(context.renderer(), "softpipe");
+    std::cerr << (software ? "software renderer: " : "hardware renderer: ") << context.renderer()
+              << "\n";
+  } catch (const RunError& e) {
+    std::cerr << "error: " << e.what() << "\n";
+  }
+  std::exit(0);
+}
+
+TEST(EglPlatform, AnUnknownChoiceIsAClearError) {
+  GTEST_FLAG_SET(death_test_style, "threadsafe");
+  EXPECT_EXIT(report_platform_outcome("gpu"), testing::ExitedWithCode(0),
+              "error: render: SOMASIM_EGL_PLATFORM is 'gpu'; expected auto, device or "
+              "surfaceless");
+}
+
+TEST(EglPlatform, SurfacelessIsMesaSoftwareWhenSoftwareIsAsked) {
+  GTEST_FLAG_SET(death_test_style, "threadsafe");
+  ASSERT_TRUE(kSoftwareEgl);
+  EXPECT_EXIT(report_platform_outcome("surfaceless"), testing::ExitedWithCode(0),
+              "software renderer: llvmpipe");
+}
+
+TEST(EglPlatform, DeviceGivesAHardwareRendererOrSaysWhatItTried) {
+  GTEST_FLAG_SET(death_test_style, "threadsafe");
+  // A machine with a GPU driver's EGL renders on it; one without says which devices it found.
+  EXPECT_EXIT(report_platform_outcome("device"), testing::ExitedWithCode(0),
+              "hardware renderer: |error: render: no EGL display renders without a window .device "
+              "platform: ");
+}
+
 TEST(RenderBackend, NamesParseAndUnknownNamesAreClearErrors) {
   EXPECT_EQ(parse_render_backend("osmesa"), RenderBackend::kOsmesa);
   EXPECT_EQ(parse_render_backend("egl"), RenderBackend::kEgl);

@@ -2,10 +2,14 @@
 // their values, deterministic, and its bad-input errors.
 #include <gtest/gtest.h>
 
+#include <stdexcept>
 #include <string>
+#include <tuple>
+#include <vector>
 
 #include <opencv2/core.hpp>
 
+#include "render_worker.hpp"
 #include "somasim/error.hpp"
 #include "somasim/render/camera.hpp"
 #include "somasim/render/ports.hpp"
@@ -93,6 +97,57 @@ TEST(Spectator, DrawsTaxelsInTheColourOfTheirValuesAndIsDeterministic) {
   EXPECT_LT(hot[2], 80) << hot;
   EXPECT_LT(cold[0], 110) << cold;
   EXPECT_LT(cold[1], 110) << cold;
+}
+
+TEST(Spectator, AsynchronousPublishesEachFrameOneStepLaterPixelForPixel) {
+  const std::string params =
+      "position: [-0.9, 0, 0.3], look_at: [-0.45, 0, 0.25], fov_deg: 60, width: 160, height: "
+      "120, taxel_radius: 0.02";
+  using Frame = std::tuple<std::uint64_t, double, cv::Mat>;
+  auto frames = [&](bool asynchronous) {
+    Harness h(graph(params + (asynchronous ? ", asynchronous: true" : "")));
+    feed(h);
+    std::vector<Frame> out;
+    for (int k = 0; k < 5; ++k) {
+      // The two taxels swap colours at every step, so that each frame differs from the last.
+      h.input<TaxelValues>("values").values = {k % 2 == 0 ? 0.0 : 1.0, k % 2 == 0 ? 1.0 : 0.0};
+      h.step(1);
+      const auto& image = h.output<RgbImage>("view.rgb");
+      out.emplace_back(image.frame, image.time_s, image.data.clone());
+    }
+    EXPECT_EQ(h.finish(), "");
+    return out;
+  };
+  const std::vector<Frame> now = frames(false), later = frames(true);
+  EXPECT_EQ(std::get<0>(later[0]), 0u);  // nothing published yet
+  EXPECT_TRUE(std::get<2>(later[0]).empty());
+  EXPECT_GT(cv::norm(std::get<2>(now[0]), std::get<2>(now[1]), cv::NORM_INF), 50.0);
+  for (std::size_t k = 1; k < now.size(); ++k) {
+    EXPECT_EQ(std::get<0>(later[k]), k);
+    EXPECT_EQ(std::get<1>(later[k]), std::get<1>(now[k - 1])) << k;
+    ASSERT_EQ(std::get<2>(later[k]).size(), std::get<2>(now[k - 1]).size());
+    EXPECT_EQ(cv::norm(std::get<2>(later[k]), std::get<2>(now[k - 1]), cv::NORM_INF), 0.0) << k;
+  }
+}
+
+TEST(RenderWorker, AJobsErrorReachesWaitOnceAndTheWorkerGoesOn) {
+  somasim::plugins::RenderWorker worker(somasim::render::RenderBackend::kOsmesa);
+  int ran = 0;
+  worker.submit([&](somasim::render::RenderContext&) { ++ran; });
+  worker.submit([](somasim::render::RenderContext&) { throw std::runtime_error("frame 2"); });
+  worker.submit([&](somasim::render::RenderContext&) { ++ran; });  // dropped: after the failure
+  try {
+    worker.wait();
+    ADD_FAILURE() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_STREQ(e.what(), "frame 2");
+  }
+  EXPECT_NO_THROW(worker.wait());
+  std::string renderer;
+  worker.submit([&](somasim::render::RenderContext& context) { renderer = context.renderer(); });
+  worker.wait();
+  EXPECT_EQ(ran, 1);
+  EXPECT_FALSE(renderer.empty());
 }
 
 TEST(Spectator, TaxelColoursRunFromGreyThroughRedToYellow) {
