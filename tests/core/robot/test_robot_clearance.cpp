@@ -140,3 +140,64 @@ TEST(RobotClearance, APathBesideTheForearmIsBlockedUnlessItsLinkIsIgnored) {
   EXPECT_FALSE(segment_clear_of_robot(model, poses, from, above, 0.005));
   EXPECT_TRUE(segment_clear_of_robot(model, {}, from, to, 0.1)) << "no poses: nothing tested";
 }
+
+namespace {
+// Every sample of the path evaluated, 2 mm apart as segment_clear_of_robot samples it.
+bool every_sample_clear(const RobotModel& model, const std::vector<Eigen::Isometry3d>& poses,
+                        const Eigen::Vector3d& from, const Eigen::Vector3d& to, double margin) {
+  const int samples = 1 + static_cast<int>(std::ceil((to - from).norm() / 0.002));
+  for (int l = 0; l < model.num_links(); ++l)
+    for (const auto& g : model.link(l).collision)
+      for (int i = 0; i <= samples; ++i) {
+        const Eigen::Vector3d p = from + (to - from) * (static_cast<double>(i) / samples);
+        if (distance_to_shape(g, poses[static_cast<std::size_t>(l)].inverse() * p) <= margin)
+          return false;
+      }
+  return true;
+}
+}  // namespace
+
+TEST(RobotClearance, SkippingSamplesByTheirDistanceDecidesAsEverySampleWould) {
+  const RobotModel model = load_icub();
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0), margin(0.0, 0.05);
+  int blocked = 0, cases = 0, grazing = 0;
+  for (int posture = 0; posture < 10; ++posture) {
+    RobotData data(model);
+    Eigen::VectorXd q(model.num_dofs());
+    for (int j = 0; j < model.num_dofs(); ++j) {
+      const double lower = model.lower_limits()[j], upper = model.upper_limits()[j];
+      q[j] = lower + 0.5 * (1.0 + unit(rng)) * (upper - lower);
+    }
+    forward_kinematics(model, data, q);
+    const auto forearm = static_cast<std::size_t>(model.link_index("l_forearm"));
+    for (int k = 0; k < 100; ++k) {
+      // Paths around the left forearm, some through it, some beside it, some far.
+      const Eigen::Vector3d centre = data.link_poses[forearm].translation();
+      const Eigen::Vector3d from = centre + 0.4 * Eigen::Vector3d(unit(rng), unit(rng), unit(rng));
+      const Eigen::Vector3d to = centre + 0.15 * Eigen::Vector3d(unit(rng), unit(rng), unit(rng));
+      const double m = margin(rng);
+      const bool expected = every_sample_clear(model, data.link_poses, from, to, m);
+      ASSERT_EQ(segment_clear_of_robot(model, data.link_poses, from, to, m), expected)
+          << "posture " << posture << " path " << k;
+      ++cases;
+      blocked += expected ? 0 : 1;
+      // Paths that just miss: the margin at which this path becomes blocked, less 0.1 mm.
+      if (expected) {
+        double lo = m, hi = m + 0.5;
+        if (every_sample_clear(model, data.link_poses, from, to, hi)) continue;
+        for (int it = 0; it < 20; ++it) {
+          const double mid = 0.5 * (lo + hi);
+          (every_sample_clear(model, data.link_poses, from, to, mid) ? lo : hi) = mid;
+        }
+        EXPECT_TRUE(segment_clear_of_robot(model, data.link_poses, from, to, lo - 1e-4));
+        EXPECT_FALSE(segment_clear_of_robot(model, data.link_poses, from, to, hi + 1e-4));
+        ++grazing;
+      }
+    }
+  }
+  // Both outcomes were exercised, and paths that graze the robot by a tenth of a millimetre.
+  EXPECT_GT(blocked, cases / 5);
+  EXPECT_LT(blocked, cases * 4 / 5);
+  EXPECT_GT(grazing, 30);
+}
