@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <unordered_map>
 
 #include <fmt/format.h>
@@ -126,18 +127,27 @@ void Spectator::make_gl_objects(render::RenderContext& context) {
 
 Spectator::~Spectator() {
   if (!worker_) return;
-  try {  // the GL objects end on the thread of their context
-    worker_->wait();
-  } catch (...) {  // NOLINT(bugprone-empty-catch): a failed frame was reported by step()
+  try {
+    end_worker();
+  } catch (...) {  // NOLINT(bugprone-empty-catch): a destructor cannot report; finish() does
   }
+}
+
+void Spectator::end_worker() {
+  std::exception_ptr frame_error;
+  try {
+    worker_->wait();
+  } catch (...) {
+    frame_error = std::current_exception();
+  }
+  // The GL objects end on the thread of their context.
   worker_->submit([this](render::RenderContext&) {
     scene_.reset();
     renderer_.reset();
   });
-  try {
-    worker_->wait();
-  } catch (...) {  // NOLINT(bugprone-empty-catch): a destructor cannot report
-  }
+  worker_->wait();
+  worker_.reset();
+  if (frame_error) std::rethrow_exception(frame_error);
 }
 
 void Spectator::add_taxels(const SkinTaxels* taxels, const TaxelValues* taxel_values,
@@ -213,15 +223,7 @@ void Spectator::step(NodeContext& ctx) {
 }
 
 void Spectator::finish(NodeContext& ctx) {
-  if (worker_) {
-    worker_->wait();
-    worker_->submit([this](render::RenderContext&) {
-      scene_.reset();
-      renderer_.reset();
-    });
-    worker_->wait();
-    worker_.reset();
-  }
+  if (worker_) end_worker();
   ctx.report_metric("frames", frame_);
   scene_.reset();
   renderer_.reset();

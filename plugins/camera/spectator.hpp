@@ -81,6 +81,9 @@ class Spectator : public Plugin {
   // upload meshes).
   std::vector<render::DrawItem> draw_items(const Inputs& in);
   void publish(cv::Mat rgb, double time_s, NodeContext& ctx);
+  // Waits for the render thread, ends its GL objects there and the thread; throws a frame's
+  // rendering error after that.
+  void end_worker();
 
   Config config_;
   Ports ports_;
