@@ -8,7 +8,8 @@
 # The builds are apart so that the suite runs without libFuzzer's coverage instrumentation
 # (slower, and one loader test once failed only in the combined build; it passes under
 # ASan+UBSan alone, at -O0 and under valgrind).
-# Usage: scripts/sanitize.sh [--all]      (after scripts/setup.sh; scripts/test.sh calls it)
+# Usage: scripts/sanitize.sh [--all | --fuzz-only]   (after scripts/setup.sh)
+#   --fuzz-only: stage 2 only (what scripts/test.sh runs in CI; scripts/test.sh --full runs both).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds="${SOMASIM_FUZZ_SECONDS:-20}"
@@ -16,22 +17,27 @@ san="${SOMASIM_SAN_BUILD_DIR:-build-san}"
 fuzz="${SOMASIM_FUZZ_BUILD_DIR:-build-fuzz}"
 label=(-L core)
 target=(--target somasim_core_tests)
-if [ "${1:-}" = "--all" ]; then
-  label=()
-  target=()
-fi
-
-echo "== ASan+UBSan build ($san/)"
-CC=clang CXX=clang++ cmake -S . -B "$san" -G Ninja -DCMAKE_BUILD_TYPE=Sanitize \
-  -DSOMASIM_SANITIZE=ON -DSOMASIM_BUILD_BENCHMARKS=OFF >/dev/null
-cmake --build "$san" --parallel "$(nproc)" "${target[@]}"
-echo "== tests under ASan+UBSan (${label[*]:-all})"
+suite=1
+case "${1:-}" in
+  "") ;;
+  --all) label=() target=() ;;
+  --fuzz-only) suite=0 ;;
+  *) echo "usage: scripts/sanitize.sh [--all | --fuzz-only]" >&2; exit 2 ;;
+esac
 # System libraries' own never-freed caches (fonts, Mesa) are not ours to report; tests that set
 # LSAN_OPTIONS themselves name the same file.
 export LSAN_OPTIONS="suppressions=$PWD/tests/lsan_suppressions.txt"
-# Style checks are the same in every build: they run once, in build/.
-ctest --test-dir "$san" --output-on-failure --parallel "$(nproc)" --timeout 1800 \
-  -E '^(tidy_check|format_check)$' "${label[@]}"
+
+if [ "$suite" = 1 ]; then
+  echo "== ASan+UBSan build ($san/)"
+  CC=clang CXX=clang++ cmake -S . -B "$san" -G Ninja -DCMAKE_BUILD_TYPE=Sanitize \
+    -DSOMASIM_SANITIZE=ON -DSOMASIM_BUILD_BENCHMARKS=OFF >/dev/null
+  cmake --build "$san" --parallel "$(nproc)" "${target[@]}"
+  echo "== tests under ASan+UBSan (${label[*]:-all})"
+  # Style checks are the same in every build: they run once, in build/.
+  ctest --test-dir "$san" --output-on-failure --parallel "$(nproc)" --timeout 1800 \
+    -E '^(tidy_check|format_check)$' "${label[@]}"
+fi
 
 echo "== fuzz targets ($fuzz/), ${seconds} s each"
 CC=clang CXX=clang++ cmake -S . -B "$fuzz" -G Ninja -DCMAKE_BUILD_TYPE=Sanitize \

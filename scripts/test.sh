@@ -1,10 +1,31 @@
 #!/usr/bin/env bash
-# Sets everything up and runs the whole test suite (what CI runs).
+# Sets everything up and runs the test suite.
+# Usage: scripts/test.sh [--full]
+#   (default: what CI runs) every ctest test, clang-tidy on its CI slice (SOMASIM_TIDY_SCOPE=slice:
+#     recently changed sources and a quarter in turn, tests/tidy/tidy_slice.cmake), then every
+#     fuzz target for SOMASIM_FUZZ_SECONDS (20) s under ASan+UBSan.
+#   --full  clang-tidy over every source, and the 'core' tests rebuilt and run under ASan+UBSan
+#     before the fuzzers (scripts/sanitize.sh): about 40 min more on 2 cores.
+# SOMASIM_SKIP_SANITIZE=1 skips the sanitizer and fuzz stages.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+full=0
+case "${1:-}" in
+  "") ;;
+  --full) full=1 ;;
+  *) echo "usage: scripts/test.sh [--full]" >&2; exit 2 ;;
+esac
 scripts/setup.sh full
+if [ "$full" = 1 ]; then
+  export SOMASIM_TIDY_SCOPE=all
+else
+  export SOMASIM_TIDY_SCOPE="${SOMASIM_TIDY_SCOPE:-slice}"
+fi
 ctest --test-dir build --output-on-failure --parallel "$(nproc)" --timeout 600
-# The same suite under ASan+UBSan, and a short run of every fuzz target (scripts/sanitize.sh).
 if [ "${SOMASIM_SKIP_SANITIZE:-0}" != 1 ]; then
-  scripts/sanitize.sh
+  if [ "$full" = 1 ]; then
+    scripts/sanitize.sh
+  else
+    scripts/sanitize.sh --fuzz-only
+  fi
 fi

@@ -1,6 +1,13 @@
 # Runs clang-tidy (checks: SOURCE_DIR/.clang-tidy) over the project's non-test sources, JOBS files
 # at a time (run-clang-tidy), with the compile commands of BUILD_DIR. Fails listing every finding.
 # Reproduce one file: clang-tidy -p build core/pps/src/taxel_map.cpp
+#
+# Which sources (environment variable SOMASIM_TIDY_SCOPE):
+#   all (default)  every one of them (~25 CPU-min on the CI machine);
+#   slice          a bounded slice for CI: the sources changed in the last SOMASIM_TIDY_RECENT
+#                  commits (default 15) or not yet committed, those that include a changed header
+#                  by name, and one source in four in turn (which quarter: the commit count modulo
+#                  4), so that consecutive CI runs cover every source.
 set(db ${BUILD_DIR}/compile_commands.json)
 if(NOT EXISTS ${db})
   message(FATAL_ERROR "${db} missing: configure with -DCMAKE_EXPORT_COMPILE_COMMANDS=ON "
@@ -12,10 +19,27 @@ endif()
 
 # The sources checked: every library, plugin and app source (tests, tools and benchmarks are not).
 file(GLOB files ${SOURCE_DIR}/core/*/src/*.cpp ${SOURCE_DIR}/plugins/*/*.cpp ${SOURCE_DIR}/app/*.cpp)
+list(SORT files)
+set(scope "$ENV{SOMASIM_TIDY_SCOPE}")
+if(scope STREQUAL "")
+  set(scope all)
+endif()
+if(scope STREQUAL "slice")
+  include(${CMAKE_CURRENT_LIST_DIR}/tidy_slice.cmake)
+  tidy_slice(files "${SOURCE_DIR}" "${files}")
+elseif(NOT scope STREQUAL "all")
+  message(FATAL_ERROR "SOMASIM_TIDY_SCOPE='${scope}': expected 'all' or 'slice'")
+endif()
 list(LENGTH files n_files)
-# run-clang-tidy takes the files as regular expressions on the database's paths: the same set.
-string(REGEX REPLACE "([][.+*?()^$|\\\\{}])" "\\\\\\1" root "${SOURCE_DIR}")
-set(pattern "^${root}/(core/[^/]+/src|plugins/[^/]+|app)/[^/]+\\.cpp$")
+# run-clang-tidy takes the files as regular expressions on the database's paths: one alternative
+# per file, each escaped.
+set(pattern "")
+foreach(f ${files})
+  string(REGEX REPLACE "([][.+*?()^$|\\\\{}])" "\\\\\\1" escaped "${f}")
+  list(APPEND pattern "${escaped}")
+endforeach()
+string(REPLACE ";" "|" pattern "${pattern}")
+set(pattern "^(${pattern})$")
 # Each of them must be compiled by the build (else it would silently go unchecked).
 file(READ ${db} db_text)
 set(missing "")
@@ -33,7 +57,7 @@ endif()
 if(NOT JOBS OR JOBS LESS 1)
   set(JOBS 2)
 endif()
-message(STATUS "clang-tidy on ${n_files} files, ${JOBS} at a time")
+message(STATUS "clang-tidy on ${n_files} files (scope: ${scope}), ${JOBS} at a time")
 # -Wno-error: the build's -Werror (CI) must not turn the compiler warnings clang sees with GCC's
 # flags into clang-tidy errors; the checks of .clang-tidy decide what is a finding.
 execute_process(

@@ -1,0 +1,82 @@
+# tidy_slice(<out-var> <source-dir> <sorted-files>): the CI's bounded slice of the sources that
+# clang-tidy checks (run_clang_tidy.cmake, SOMASIM_TIDY_SCOPE=slice):
+#  - every source changed in the last SOMASIM_TIDY_RECENT commits (default 15) or not committed;
+#  - every source that includes a changed header by its file name;
+#  - one source in four of the sorted list, the quarter chosen by the commit count modulo 4.
+# Without git (an exported tree) only the quarter is checked. Prints what it chose and why.
+function(tidy_slice out_var source_dir files)
+  set(recent "$ENV{SOMASIM_TIDY_RECENT}")
+  if(NOT recent MATCHES "^[0-9]+$")
+    set(recent 15)
+  endif()
+  set(changed "")
+  set(commits 0)
+  find_program(GIT git)
+  if(GIT)
+    execute_process(COMMAND ${GIT} -C ${source_dir} rev-list --count HEAD
+                    RESULT_VARIABLE rc OUTPUT_VARIABLE count ERROR_QUIET OUTPUT_STRIP_TRAILING_WHITESPACE)
+    if(rc EQUAL 0 AND count MATCHES "^[0-9]+$")
+      set(commits ${count})
+      # Committed in the last commits (a shallow clone gives what it has), and not yet committed.
+      execute_process(COMMAND ${GIT} -C ${source_dir} log --name-only --format= -n ${recent}
+                      OUTPUT_VARIABLE log_names ERROR_QUIET)
+      execute_process(COMMAND ${GIT} -C ${source_dir} diff --name-only HEAD
+                      OUTPUT_VARIABLE work_names ERROR_QUIET)
+      string(REGEX MATCHALL "[^\n]+" changed "${log_names}\n${work_names}")
+      list(REMOVE_DUPLICATES changed)
+    endif()
+  endif()
+
+  set(changed_headers "")
+  foreach(c ${changed})
+    if(c MATCHES "\\.hpp$")
+      get_filename_component(name ${c} NAME)
+      list(APPEND changed_headers ${name})
+    endif()
+  endforeach()
+  list(REMOVE_DUPLICATES changed_headers)
+
+  math(EXPR quarter "${commits} % 4")
+  set(chosen "")
+  set(n_changed 0)
+  set(n_includers 0)
+  set(index 0)
+  foreach(f ${files})
+    file(RELATIVE_PATH rel ${source_dir} ${f})
+    math(EXPR turn "${index} % 4")
+    math(EXPR index "${index} + 1")
+    list(FIND changed ${rel} at)
+    if(NOT at EQUAL -1)
+      list(APPEND chosen ${f})
+      math(EXPR n_changed "${n_changed} + 1")
+      continue()
+    endif()
+    if(changed_headers)
+      file(STRINGS ${f} includes REGEX "^[ \t]*#[ \t]*include")
+      set(includes_changed FALSE)
+      foreach(h ${changed_headers})
+        string(REPLACE "." "\\." h_regex "${h}")
+        if(includes MATCHES "[\"</]${h_regex}[\">]")
+          set(includes_changed TRUE)
+          break()
+        endif()
+      endforeach()
+      if(includes_changed)
+        list(APPEND chosen ${f})
+        math(EXPR n_includers "${n_includers} + 1")
+        continue()
+      endif()
+    endif()
+    if(turn EQUAL quarter)
+      list(APPEND chosen ${f})
+    endif()
+  endforeach()
+  list(LENGTH files n_all)
+  list(LENGTH chosen n_chosen)
+  list(LENGTH changed_headers n_headers)
+  message(STATUS "clang-tidy slice: ${n_chosen} of ${n_all} sources: ${n_changed} changed in the "
+                 "last ${recent} commits or uncommitted, ${n_includers} including one of "
+                 "${n_headers} changed headers, the rest quarter ${quarter} of 4 "
+                 "(SOMASIM_TIDY_SCOPE=all checks every source)")
+  set(${out_var} ${chosen} PARENT_SCOPE)
+endfunction()
