@@ -30,6 +30,11 @@ void Spectator::Config::visit(V& v) {
       .unit("m")
       .range(0.0005, 0.05)
       .doc("radius of the sphere drawn at each taxel");
+  v.field("taxel_segments", taxel_segments)
+      .range(4, 64)
+      .doc(
+          "segments around each taxel's sphere (segments² / 2 triangles; 4, an octahedron, is "
+          "enough for taxels a few pixels across and draws a quarter of the triangles of 8)");
   v.field("backend", backend).doc("OpenGL back end (as the camera's)");
   v.field("asynchronous", asynchronous)
       .doc(
@@ -122,7 +127,8 @@ void Spectator::configure(NodeContext& ctx) {
 void Spectator::make_gl_objects(render::RenderContext& context) {
   renderer_ = std::make_unique<render::SceneRenderer>(context.gl());
   scene_ = std::make_unique<render::RobotScene>(*renderer_, model_);
-  taxel_mesh_ = renderer_->upload(render::tessellate_sphere(config_.taxel_radius, 8));
+  taxel_mesh_ =
+      renderer_->upload(render::tessellate_sphere(config_.taxel_radius, config_.taxel_segments));
 }
 
 Spectator::~Spectator() {

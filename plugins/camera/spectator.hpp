@@ -34,6 +34,7 @@ class Spectator : public Plugin {
     int width = 640;                                  // [px]
     int height = 480;                                 // [px]
     double taxel_radius = 0.004;                      // [m]
+    int taxel_segments = 8;  // around each taxel's sphere (its triangles: segments² / 2)
     render::RenderBackend backend = render::RenderBackend::kOsmesa;
     bool asynchronous = false;
     template <class V>

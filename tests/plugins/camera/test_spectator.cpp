@@ -60,10 +60,14 @@ cv::Vec3b colour_at(const cv::Mat& rgb, const somasim::render::Camera& camera,
 
 }  // namespace
 
-TEST(Spectator, DrawsTaxelsInTheColourOfTheirValuesAndIsDeterministic) {
+class SpectatorTaxels : public ::testing::TestWithParam<std::string> {};
+
+// Default spheres and the coarsest ones (taxel_segments 4: octahedra).
+TEST_P(SpectatorTaxels, DrawsTaxelsInTheColourOfTheirValuesAndIsDeterministic) {
   const std::string params =
       "position: [-0.9, 0, 0.3], look_at: [-0.45, 0, 0.25], fov_deg: 60, width: 320, height: "
-      "240, taxel_radius: 0.02";
+      "240, taxel_radius: 0.02" +
+      GetParam();
   auto render = [&] {
     Harness h(graph(params));
     feed(h);
@@ -98,6 +102,9 @@ TEST(Spectator, DrawsTaxelsInTheColourOfTheirValuesAndIsDeterministic) {
   EXPECT_LT(cold[0], 110) << cold;
   EXPECT_LT(cold[1], 110) << cold;
 }
+
+INSTANTIATE_TEST_SUITE_P(Segments, SpectatorTaxels,
+                         ::testing::Values(std::string(""), std::string(", taxel_segments: 4")));
 
 TEST(Spectator, AsynchronousPublishesEachFrameOneStepLaterPixelForPixel) {
   const std::string params =
