@@ -74,7 +74,9 @@ void BodySchemaFilter::Config::visit(V& v) {
           "particles (of every compared filter too) and the likelihoods are gathered, outputs "
           "byte-identical to one process (README 'MPI'); without an MPI launch one process scores "
           "them all. none: every rank scores all particles");
-  v.field("render_threads", render_threads).range(1, 64).doc("render workers");
+  v.field("render_threads", render_threads)
+      .range(1, 64)
+      .doc("render workers; the estimate's KDE uses as many threads (same estimate for any count)");
   v.field("backend", backend).doc("OpenGL back end of the hypothesis renderer");
   v.field("image_noise", image_noise)
       .at_least(0.0)
@@ -209,6 +211,7 @@ void BodySchemaFilter::configure(NodeContext& ctx) {
   schedule.jump_sigma_deg = config_.jump_sigma_deg;
   filter_ = std::make_unique<body_schema::OffsetParticleFilter>(
       static_cast<int>(offset_dofs_.size()), config_.particles, schedule, ctx.rng()(), kde);
+  filter_->set_estimate_threads(config_.render_threads);
 
   const auto low = config_.hand_hsv_low;
   const auto high = config_.hand_hsv_high;

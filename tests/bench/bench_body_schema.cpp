@@ -105,13 +105,17 @@ Eigen::MatrixXd kde_cloud(int m, Eigen::VectorXd& weights) {
 void BM_KdeArgmax(benchmark::State& state) {
   Eigen::VectorXd w;
   const Eigen::MatrixXd p = kde_cloud(static_cast<int>(state.range(0)), w);
-  for (auto _ : state) benchmark::DoNotOptimize(kde_argmax(p, w, KdeOptions{}));
+  const auto threads = static_cast<int>(state.range(1));
+  for (auto _ : state) benchmark::DoNotOptimize(kde_argmax(p, w, KdeOptions{}, threads));
 }
 BENCHMARK(BM_KdeArgmax)
-    ->ArgName("M")
-    ->Arg(200)
-    ->Arg(2000)
-    ->Arg(10000)
-    ->Unit(benchmark::kMillisecond);
+    ->ArgNames({"M", "threads"})
+    ->Args({200, 1})
+    ->Args({2000, 1})
+    ->Args({2000, 2})
+    ->Args({10000, 1})
+    ->Args({10000, 2})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 }  // namespace

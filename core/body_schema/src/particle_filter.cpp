@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <thread>
+#include <vector>
 
 #include "somasim/error.hpp"
 
@@ -97,7 +99,14 @@ FilterUpdate OffsetParticleFilter::update(const std::vector<double>& likelihoods
 }
 
 int OffsetParticleFilter::kde_best(const Eigen::VectorXd& weights) const {
-  return kde_argmax(particles_, weights, kde_);
+  return kde_argmax(particles_, weights, kde_, estimate_threads_);
+}
+
+void OffsetParticleFilter::set_estimate_threads(int threads) {
+  if (threads < 1)
+    throw InputError(
+        fmt::format("body schema filter: estimate threads must be >= 1, got {}", threads));
+  estimate_threads_ = threads;
 }
 
 void OffsetParticleFilter::resample_systematic(const Eigen::VectorXd& weights) {
@@ -124,16 +133,23 @@ std::vector<int> systematic_resample(const Eigen::VectorXd& weights, double u0) 
   return chosen;
 }
 
-int kde_argmax(const Eigen::MatrixXd& particles, const Eigen::VectorXd& weights,
-               const KdeOptions& kde) {
+namespace {
+
+struct Candidate {
+  double score = -1.0;
+  int index = 0;
+};
+
+// The best of the candidates [first, last): strict comparison, so the lowest index wins ties.
+Candidate kde_best_in(const Eigen::MatrixXd& particles, const Eigen::VectorXd& weights,
+                      const KdeOptions& kde, Eigen::Index first, Eigen::Index last) {
   const Eigen::Index m_count = particles.cols();
   const double inv_two_var = 0.5 / (kde.sigma_deg * kde.sigma_deg);
   // |Σ| = σ^(2 dims) for Σ = σ² I.
   const double norm = std::pow(kde.sigma_deg, -2.0 * static_cast<double>(particles.rows()));
   const double scale = kde.alpha * norm / static_cast<double>(m_count);
-  int best = 0;
-  double best_score = -1.0;
-  for (Eigen::Index i = 0; i < m_count; ++i) {
+  Candidate best;
+  for (Eigen::Index i = first; i < last; ++i) {
     double neighbours = 0.0;
     for (Eigen::Index m = 0; m < m_count; ++m) {
       if (weights[m] == 0.0) continue;
@@ -141,12 +157,36 @@ int kde_argmax(const Eigen::MatrixXd& particles, const Eigen::VectorXd& weights,
       neighbours += weights[m] * std::exp(-d2 * inv_two_var);
     }
     const double score = weights[i] + scale * neighbours;
-    if (score > best_score) {  // strict: the lowest index wins ties
-      best_score = score;
-      best = static_cast<int>(i);
-    }
+    if (score > best.score) best = {score, static_cast<int>(i)};
   }
   return best;
+}
+
+}  // namespace
+
+int kde_argmax(const Eigen::MatrixXd& particles, const Eigen::VectorXd& weights,
+               const KdeOptions& kde, int threads) {
+  constexpr Eigen::Index kLeastPerThread = 256;
+  const Eigen::Index m_count = particles.cols();
+  const auto parts = static_cast<Eigen::Index>(
+      std::clamp<Eigen::Index>(m_count / kLeastPerThread, 1, std::max(threads, 1)));
+  if (parts == 1) return kde_best_in(particles, weights, kde, 0, m_count).index;
+  std::vector<Candidate> best(static_cast<std::size_t>(parts));
+  auto range = [&](Eigen::Index part) { return part * m_count / parts; };
+  {
+    std::vector<std::jthread> workers;
+    for (Eigen::Index part = 1; part < parts; ++part)
+      workers.emplace_back([&, part] {
+        best[static_cast<std::size_t>(part)] =
+            kde_best_in(particles, weights, kde, range(part), range(part + 1));
+      });
+    best[0] = kde_best_in(particles, weights, kde, 0, range(1));
+  }
+  // Ranges in index order, strict comparison: the lowest index wins ties, as with one thread.
+  Candidate winner = best[0];
+  for (const Candidate& c : best)
+    if (c.score > winner.score) winner = c;
+  return winner.index;
 }
 
 }  // namespace somasim::body_schema

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 #include "somasim/body_schema/particle_filter.hpp"
 #include "somasim/error.hpp"
@@ -198,6 +199,44 @@ std::string error_of(F&& f) {
     return e.what();
   }
   return "no error";
+}
+
+// Generated clouds (resampled copies: exact ties; zero weights; flat and peaked weights, wide and
+// narrow kernels): any thread count picks the index one thread picks.
+TEST(KdeArgmax, AnyThreadCountPicksTheSameParticle) {
+  std::mt19937 rng(17);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int cases = 0;
+  for (const int m : {200, 513, 1024, 1777}) {
+    for (int cloud = 0; cloud < 4; ++cloud) {
+      const double spread = cloud % 2 == 0 ? 0.5 : 3.0;
+      Eigen::MatrixXd p(7, m);
+      for (int i = 0; i < m; ++i) {
+        // One particle in three repeats an earlier one (as after resampling).
+        if (i > 0 && i % 3 == 0) {
+          p.col(i) = p.col(static_cast<Eigen::Index>(unit(rng) * i));
+          continue;
+        }
+        for (int d = 0; d < 7; ++d) p(d, i) = spread * normal(rng);
+      }
+      Eigen::VectorXd w(m);
+      for (int i = 0; i < m; ++i)
+        w[i] = cloud < 2 ? 1.0 : std::pow(unit(rng), 6.0) * (unit(rng) < 0.2 ? 0.0 : 1.0);
+      w /= w.sum();
+      KdeOptions kde;
+      kde.sigma_deg = cloud == 3 ? 0.3 : 1.0;
+      const int serial = kde_argmax(p, w, kde, 1);
+      for (const int threads : {2, 3, 4, 7})
+        EXPECT_EQ(kde_argmax(p, w, kde, threads), serial)
+            << "M " << m << ", cloud " << cloud << ", " << threads << " threads";
+      ++cases;
+    }
+  }
+  EXPECT_EQ(cases, 16);
+  OffsetParticleFilter f(7, 3, noise_schedule_preset("paper"), 1);
+  EXPECT_EQ(error_of([&] { f.set_estimate_threads(0); }),
+            "body schema filter: estimate threads must be >= 1, got 0");
 }
 
 TEST(OffsetParticleFilter, Errors) {

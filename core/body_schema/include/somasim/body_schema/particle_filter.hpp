@@ -75,6 +75,10 @@ class OffsetParticleFilter {
   /// explained the images.
   void inflate_sigma(double factor);
 
+  /// Threads for the estimate's KDE (kde_argmax; >= 1, default 1): the same estimate for any
+  /// count. Throws somasim::InputError below 1.
+  void set_estimate_threads(int threads);
+
  private:
   int kde_best(const Eigen::VectorXd& weights) const;
   void resample_systematic(const Eigen::VectorXd& weights);
@@ -86,13 +90,17 @@ class OffsetParticleFilter {
   Eigen::MatrixXd particles_;
   Eigen::VectorXd estimate_;
   double sigma_ = 0.0;
+  int estimate_threads_ = 1;
 };
 
 /// The particle (column of `particles`, dims × M [deg]) with the largest KDE-smoothed weight
 /// ω_i + α (1/M) Σ_m ω_m K(β_i, β_m) (KdeOptions; the lowest index wins ties): O(M²) kernel
-/// evaluations (bench_body_schema's BM_KdeArgmax measures it up to M = 10⁴).
+/// evaluations (bench_body_schema's BM_KdeArgmax measures it up to M = 10⁴). `threads` (>= 1)
+/// share the candidates i in contiguous ranges, each score computed exactly as with one thread,
+/// so the index is the same for any count; fewer threads run where M is small (at least 256
+/// candidates each).
 int kde_argmax(const Eigen::MatrixXd& particles, const Eigen::VectorXd& weights,
-               const KdeOptions& kde);
+               const KdeOptions& kde, int threads = 1);
 
 /// Indices chosen by systematic resampling of normalised `weights` (sum 1) with the offset
 /// u0 in [0, 1/M): particle i is copied floor or ceil of M·w_i times, in index order.
