@@ -15,17 +15,29 @@ case "${1:-}" in
   --full) full=1 ;;
   *) echo "usage: scripts/test.sh [--full]" >&2; exit 2 ;;
 esac
-scripts/setup.sh full
+# Each stage's wall time, printed again at the end (CI keeps only the log's tail).
+timings=()
+stage() {
+  local name=$1 start=$SECONDS
+  shift
+  "$@"
+  timings+=("$name: $((SECONDS - start)) s")
+  echo "== $name took $((SECONDS - start)) s"
+}
+stage "setup and build" scripts/setup.sh full
 if [ "$full" = 1 ]; then
   export SOMASIM_TIDY_SCOPE=all
 else
   export SOMASIM_TIDY_SCOPE="${SOMASIM_TIDY_SCOPE:-slice}"
 fi
-ctest --test-dir build --output-on-failure --parallel "$(nproc)" --timeout 600
+stage "test suite" ctest --test-dir build --output-on-failure --parallel "$(nproc)" --timeout 600
 if [ "${SOMASIM_SKIP_SANITIZE:-0}" != 1 ]; then
   if [ "$full" = 1 ]; then
-    scripts/sanitize.sh
+    stage "sanitizers and fuzzers" scripts/sanitize.sh
   else
-    scripts/sanitize.sh --fuzz-only
+    stage "fuzzers" scripts/sanitize.sh --fuzz-only
   fi
 fi
+echo "== slowest tests (s):"
+sort -k3 -g -r build/Testing/Temporary/CTestCostData.txt 2>/dev/null | awk 'NF == 3' | head -8 || true
+printf '== %s\n' "${timings[@]}" "all: ${SECONDS} s"
