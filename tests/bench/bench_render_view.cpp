@@ -15,6 +15,7 @@
 #include <array>
 #include <chrono>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -55,13 +56,14 @@ std::vector<Eigen::Isometry3d> link_poses() {
 
 // The scene of the left eye: renderer, robot scene, camera and draw items.
 struct View {
-  render::OsmesaContext context;
-  render::SceneRenderer renderer{context.gl()};
+  std::unique_ptr<render::RenderContext> context;
+  render::SceneRenderer renderer;
   render::RobotScene scene{renderer, icub(), {kSegments}};
   render::Camera camera;
   std::vector<render::DrawItem> items;
 
-  View() {
+  explicit View(render::RenderBackend backend = render::RenderBackend::kOsmesa)
+      : context(render::make_render_context(backend)), renderer(context->gl()) {
     const std::vector<Eigen::Isometry3d> poses = link_poses();
     camera = render::camera_for(*icub(), "left_eye", poses);
     const Eigen::Vector3d viewpoint = camera.pose_root.translation();
@@ -77,7 +79,8 @@ void report(benchmark::State& state, const View& view) {
 }
 
 void BM_RenderView(benchmark::State& state) {
-  View view;
+  // egl = 1: through EGL (a hardware EGL device where the machine has one, else llvmpipe).
+  View view(state.range(3) != 0 ? render::RenderBackend::kEgl : render::RenderBackend::kOsmesa);
   render::RenderOptions options;
   options.read_rgb = true;
   options.check_drawn = state.range(0) != 0;
@@ -93,12 +96,14 @@ void BM_RenderView(benchmark::State& state) {
   report(state, view);
 }
 BENCHMARK(BM_RenderView)
-    ->ArgNames({"check", "depth", "ids"})
-    ->Args({0, 0, 0})
-    ->Args({1, 0, 0})
-    ->Args({0, 1, 0})
-    ->Args({0, 0, 1})
-    ->Args({1, 1, 1})
+    ->ArgNames({"check", "depth", "ids", "egl"})
+    ->Args({0, 0, 0, 0})
+    ->Args({1, 0, 0, 0})
+    ->Args({0, 1, 0, 0})
+    ->Args({0, 0, 1, 0})
+    ->Args({1, 1, 1, 0})
+    ->Args({0, 0, 0, 1})
+    ->Args({1, 1, 1, 1})
     ->UseRealTime();
 
 constexpr const char* kTrivialVertex = R"(#version 330 core
@@ -132,7 +137,7 @@ std::vector<render::TriangleMesh> scene_meshes(const robot::RobotModel& model) {
 class TrivialFrame {
  public:
   explicit TrivialFrame(const View& view)
-      : gl_(view.context.gl()),
+      : gl_(view.context->gl()),
         program_(gl_, "bench: trivial shader", kTrivialVertex, kTrivialFragment),
         framebuffer_(gl_, view.camera.intrinsics.width, view.camera.intrinsics.height,
                      "bench: baseline"),
