@@ -111,6 +111,10 @@ void BodySchemaFilter::Config::validate(ConfigChecks& checks) const {
                  "the two cameras are the same ('" + (cameras.empty() ? "" : cameras[0]) + "')");
   checks.require(!cameras.empty() && cameras.size() <= 2, cameras,
                  fmt::format("expected 1 or 2 camera names, got {}", cameras.size()));
+  checks.require(!scorer.inner_contours || scorer.kind == body_schema::LikelihoodKind::kEdges,
+                 scorer.inner_contours, "needs likelihood: edges");
+  checks.require(!scorer.inner_contours || scorer.rasterizer == render::Rasterizer::kSoftware,
+                 scorer.inner_contours, "needs rasterizer: software");
   for (double m : compare_particles)
     checks.require(
         m >= 1.0 && m == std::floor(m) && m <= kMaxParticles, compare_particles,
@@ -178,10 +182,12 @@ void BodySchemaFilter::configure_joints(NodeContext& ctx) {
 void BodySchemaFilter::configure_scorer(NodeContext& ctx) {
   body_schema::ArmHypothesisModel arm;
   try {
-    arm = body_schema::arm_hypothesis_model(*model_, config_.links, config_.proxy_resolution);
+    arm = body_schema::arm_hypothesis_model(*model_, config_.links, config_.proxy_resolution,
+                                            config_.scorer.inner_contours);
   } catch (const InputError& e) {
     config_error(ctx, config_, config_.links, e.what());
   }
+
   scorer_ = std::make_unique<body_schema::HypothesisScorer>(
       model_, arm, offset_dofs_, config_.render_threads, config_.scorer, config_.backend);
 }

@@ -1,6 +1,7 @@
 #include "somasim/body_schema/hypothesis_scorer.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <numbers>
 
@@ -32,7 +33,8 @@ void append(render::TriangleMesh& mesh, const render::TriangleMesh& part,
 }  // namespace
 
 ArmHypothesisModel arm_hypothesis_model(const robot::RobotModel& model,
-                                        const std::vector<std::string>& link_names, int segments) {
+                                        const std::vector<std::string>& link_names, int segments,
+                                        bool per_primitive) {
   if (link_names.empty() || link_names.size() > render::kMaxMeshesPerHypothesis)
     throw InputError(fmt::format("expected 1 to {} hypothesis links, got {}",
                                  render::kMaxMeshesPerHypothesis, link_names.size()));
@@ -43,11 +45,24 @@ ArmHypothesisModel arm_hypothesis_model(const robot::RobotModel& model,
     if (l.collision.empty())
       throw InputError(fmt::format("link '{}' has no collision geometry to draw", name));
     render::TriangleMesh mesh;
-    for (const robot::Geometry& g : l.collision)
+    for (const robot::Geometry& g : l.collision) {
       append(mesh, render::geometry_mesh(g, segments), g.origin);
+      if (!per_primitive) continue;
+      arm.meshes.push_back(std::move(mesh));
+      arm.mesh_link.push_back(arm.links.size());
+      mesh = {};
+    }
+    if (!per_primitive) {
+      arm.meshes.push_back(std::move(mesh));
+      arm.mesh_link.push_back(arm.links.size());
+    }
     arm.links.push_back(link);
-    arm.meshes.push_back(std::move(mesh));
   }
+  if (arm.meshes.size() > render::kMaxMeshesPerHypothesis)
+    throw InputError(fmt::format(
+        "the hypothesis links ({}) have {} collision primitives, at most "
+        "{} can be drawn one by one",
+        fmt::join(link_names, " "), arm.meshes.size(), render::kMaxMeshesPerHypothesis));
   return arm;
 }
 
@@ -62,12 +77,20 @@ HypothesisScorer::HypothesisScorer(std::shared_ptr<const robot::RobotModel> mode
                                    render::RenderBackend backend)
     : model_(std::move(model)),
       links_(arm.links),
+      mesh_link_(arm.mesh_link),
       offset_dofs_(std::move(offset_dofs)),
       options_(options),
       renderer_(arm.meshes, workers, backend, options.rasterizer),
       data_(*model_),
       offsets_rad_(Eigen::VectorXd::Zero(model_->num_dofs())) {
-  for (std::size_t m = 0; m < links_.size(); ++m) batch_.meshes.push_back(m);
+  if (options.inner_contours && options.kind != LikelihoodKind::kEdges)
+    throw InputError("edge_inner_contours needs likelihood: edges");
+  if (options.inner_contours && options.rasterizer != render::Rasterizer::kSoftware)
+    throw InputError("edge_inner_contours needs rasterizer: software");
+  if (mesh_link_.size() != arm.meshes.size())
+    throw InputError(fmt::format("hypothesis scorer: {} meshes but {} mesh links",
+                                 arm.meshes.size(), mesh_link_.size()));
+  for (std::size_t m = 0; m < arm.meshes.size(); ++m) batch_.meshes.push_back(m);
 }
 
 std::vector<Eigen::Isometry3d> HypothesisScorer::link_poses(const Eigen::VectorXd& q,
@@ -92,8 +115,13 @@ std::vector<double> HypothesisScorer::score(const Eigen::VectorXd& q,
   auto t0 = Clock::now();
   const auto m_count = static_cast<std::size_t>(particles_deg.cols());
   batch_.hypotheses.resize(m_count);
-  for (std::size_t m = 0; m < m_count; ++m)
-    batch_.hypotheses[m] = link_poses(q, particles_deg.col(static_cast<Eigen::Index>(m)));
+  for (std::size_t m = 0; m < m_count; ++m) {
+    const std::vector<Eigen::Isometry3d> links =
+        link_poses(q, particles_deg.col(static_cast<Eigen::Index>(m)));
+    render::Hypothesis& poses = batch_.hypotheses[m];
+    poses.resize(mesh_link_.size());
+    for (std::size_t k = 0; k < mesh_link_.size(); ++k) poses[k] = links[mesh_link_[k]];
+  }
   batch_.cameras = cameras;
   timing_.kinematics_ms = ms_since(t0);
 
@@ -102,6 +130,7 @@ std::vector<double> HypothesisScorer::score(const Eigen::VectorXd& q,
   render_options.margin_px = options_.margin_px;
   render_options.contour = options_.kind == LikelihoodKind::kEdges;
   render_options.contour_width = options_.contour_width;
+  render_options.inner_contours = options_.inner_contours;
   last_ = renderer_.render(batch_, render_options);
   timing_.render_ms = ms_since(t0);
 

@@ -67,4 +67,27 @@ cv::Mat silhouette_contour(const cv::Mat& silhouette, int width) {
   return contour;
 }
 
+cv::Mat inner_contour(const cv::Mat& labels, const cv::Mat& inverse_depth) {
+  CV_Assert(labels.type() == CV_8U && inverse_depth.type() == CV_32F &&
+            labels.size() == inverse_depth.size());
+  cv::Mat contour(labels.size(), CV_8U, cv::Scalar(0));
+  const int rows = labels.rows, cols = labels.cols;
+  for (int r = 0; r < rows; ++r) {
+    const std::uint8_t* label = labels.ptr<std::uint8_t>(r);
+    const float* depth = inverse_depth.ptr<float>(r);
+    std::uint8_t* out = contour.ptr<std::uint8_t>(r);
+    for (int c = 0; c < cols; ++c) {
+      if (label[c] == 0) continue;
+      const auto occludes = [&](int nr, int nc) {
+        if (nr < 0 || nr >= rows || nc < 0 || nc >= cols) return false;
+        const std::uint8_t other = labels.at<std::uint8_t>(nr, nc);
+        return other != 0 && other != label[c] && depth[c] > inverse_depth.at<float>(nr, nc);
+      };
+      if (occludes(r - 1, c) || occludes(r + 1, c) || occludes(r, c - 1) || occludes(r, c + 1))
+        out[c] = 255;
+    }
+  }
+  return contour;
+}
+
 }  // namespace somasim::render

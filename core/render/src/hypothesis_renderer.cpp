@@ -167,6 +167,10 @@ HypothesisBatchResult HypothesisRenderer::render(const HypothesisBatch& batch,
   if (options.contour && (options.contour_width < 1 || options.contour_width > 2))
     throw InputError(fmt::format("hypothesis batch: contour_width must be 1 or 2, got {}",
                                  options.contour_width));
+  if (options.inner_contours && !options.contour)
+    throw InputError("hypothesis batch: inner_contours needs contour");
+  if (options.inner_contours && pool_->rasterizer != Rasterizer::kSoftware)
+    throw InputError("hypothesis batch: inner_contours needs the software rasterizer");
   for (std::size_t m = 0; m < batch.meshes.size(); ++m)
     if (batch.meshes[m] >= bounds_.size())
       throw InputError(

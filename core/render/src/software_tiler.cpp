@@ -56,9 +56,10 @@ SoftwareTiler::SoftwareTiler(const std::vector<TriangleMesh>& meshes) : meshes_(
   for (const TriangleMesh& mesh : meshes_) closed_.push_back(closed_and_oriented(mesh));
 }
 
-void SoftwareTiler::fill_triangle(const std::array<long long, 3>& x,
+template <class Span>
+void SoftwareTiler::for_each_span(const std::array<long long, 3>& x,
                                   const std::array<long long, 3>& y, bool cull_negative,
-                                  const cv::Rect& roi, cv::Mat& tile) {
+                                  const cv::Rect& roi, Span&& span) {
   // Orient counter-clockwise in (x right, y down) so that the inside is E >= 0 for every edge.
   const long long area = (x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]);
   if (area == 0 || (area < 0 && cull_negative)) return;
@@ -98,9 +99,42 @@ void SoftwareTiler::fill_triangle(const std::array<long long, 3>& x,
         hi = lo - 1;
     }
     if (lo > hi) continue;
-    std::uint8_t* row = tile.ptr<std::uint8_t>(r - roi.y);
-    std::fill(row + (lo - roi.x), row + (hi - roi.x) + 1, std::uint8_t{255});
+    span(r, static_cast<int>(lo), static_cast<int>(hi));
   }
+}
+
+void SoftwareTiler::draw_labelled(const std::array<Eigen::Vector3d, 3>& triangle,
+                                  const PinholeIntrinsics& k, const cv::Rect& roi,
+                                  std::uint8_t label) {
+  // 1 / z is affine in pixel coordinates (u, v): fit the plane through the three vertices.
+  std::array<long long, 3> x{}, y{};
+  std::array<double, 3> u{}, v{}, w{};
+  for (std::size_t i = 0; i < 3; ++i) {
+    const Eigen::Vector3d& p = triangle[i];
+    u[i] = k.fx * p.x() / p.z() + k.cx;
+    v[i] = k.fy * p.y() / p.z() + k.cy;
+    w[i] = 1.0 / p.z();
+    x[i] = snapped(u[i]);
+    y[i] = snapped(v[i]);
+  }
+  const double det = (u[1] - u[0]) * (v[2] - v[0]) - (u[2] - u[0]) * (v[1] - v[0]);
+  if (det == 0.0) return;
+  const double dw_du = ((w[1] - w[0]) * (v[2] - v[0]) - (w[2] - w[0]) * (v[1] - v[0])) / det;
+  const double dw_dv = ((u[1] - u[0]) * (w[2] - w[0]) - (u[2] - u[0]) * (w[1] - w[0])) / det;
+  // Coincident faces of two meshes (a finger's end on the palm's face) keep the first drawn:
+  // a later surface must be nearer by more than this fraction of the depth.
+  constexpr double kNearerBy = 1e-5;
+  for_each_span(x, y, /*cull_negative=*/false, roi, [&](int r, int lo, int hi) {
+    auto* labels = labels_.ptr<std::uint8_t>(r - roi.y);
+    auto* depth = inverse_depth_.ptr<float>(r - roi.y);
+    for (int c = lo; c <= hi; ++c) {
+      const double inverse = w[0] + dw_du * (c - u[0]) + dw_dv * (r - v[0]);
+      float& here = depth[c - roi.x];
+      if (inverse <= static_cast<double>(here) * (1.0 + kNearerBy)) continue;
+      here = static_cast<float>(inverse);
+      labels[c - roi.x] = label;
+    }
+  });
 }
 
 void SoftwareTiler::render(const HypothesisBatch& batch, const std::vector<cv::Rect>& rois,
@@ -111,12 +145,26 @@ void SoftwareTiler::render(const HypothesisBatch& batch, const std::vector<cv::R
       const Camera& camera = batch.cameras[cam];
       const PinholeIntrinsics& k = camera.intrinsics;
       const cv::Rect& roi = rois[cam];
+      const bool labelled = options.inner_contours;
       tile_.create(roi.height, roi.width, CV_8U);
       tile_.setTo(0);
+      if (labelled) {
+        labels_.create(roi.height, roi.width, CV_8U);
+        labels_.setTo(0);
+        inverse_depth_.create(roi.height, roi.width, CV_32F);
+        inverse_depth_.setTo(0.0F);
+      }
       const Eigen::Isometry3d root_to_camera = camera.pose_root.inverse();
       for (std::size_t m = 0; m < batch.meshes.size(); ++m) {
         const TriangleMesh& mesh = meshes_[batch.meshes[m]];
         const bool cull = closed_[batch.meshes[m]];  // half the triangles cover a closed mesh
+        const auto label = static_cast<std::uint8_t>(m + 1);
+        auto fill = [&](const std::array<long long, 3>& x, const std::array<long long, 3>& y) {
+          for_each_span(x, y, cull, roi, [&](int r, int lo, int hi) {
+            std::uint8_t* row = tile_.ptr<std::uint8_t>(r - roi.y);
+            std::fill(row + (lo - roi.x), row + (hi - roi.x) + 1, std::uint8_t{255});
+          });
+        };
         const Eigen::Isometry3d to_camera = root_to_camera * batch.hypotheses[h][m];
         camera_points_.resize(mesh.positions.size());
         for (std::size_t v = 0; v < mesh.positions.size(); ++v)
@@ -133,9 +181,13 @@ void SoftwareTiler::render(const HypothesisBatch& batch, const std::vector<cv::R
           for (const auto& p : tri) in_front += p.z() >= k.near;
           if (in_front == 0) continue;
           if (in_front == 3) {
+            if (labelled) {
+              draw_labelled(tri, k, roi, label);
+              continue;
+            }
             std::array<long long, 3> x{}, y{};
             for (int i = 0; i < 3; ++i) window(tri[static_cast<std::size_t>(i)], x[i], y[i]);
-            fill_triangle(x, y, cull, roi, tile_);
+            fill(x, y);
             continue;
           }
           // Crossing the near plane: clip the polygon at z = near, then fan it.
@@ -148,17 +200,24 @@ void SoftwareTiler::render(const HypothesisBatch& batch, const std::vector<cv::R
             if (p_in != q_in) polygon.push_back(p + (q - p) * ((k.near - p.z()) / (q.z() - p.z())));
           }
           for (std::size_t i = 1; i + 1 < polygon.size(); ++i) {
+            if (labelled) {
+              draw_labelled({polygon[0], polygon[i], polygon[i + 1]}, k, roi, label);
+              continue;
+            }
             std::array<long long, 3> x{}, y{};
             window(polygon[0], x[0], y[0]);
             window(polygon[i], x[1], y[1]);
             window(polygon[i + 1], x[2], y[2]);
-            fill_triangle(x, y, cull, roi, tile_);
+            fill(x, y);
           }
         }
       }
+      if (labelled) cv::compare(labels_, 0, tile_, cv::CMP_GT);
       if (!options.extract) continue;
-      out[cam].tiles[h] =
+      cv::Mat tile =
           options.contour ? silhouette_contour(tile_, options.contour_width) : tile_.clone();
+      if (labelled && options.contour) tile |= inner_contour(labels_, inverse_depth_);
+      out[cam].tiles[h] = tile;
     }
 }
 

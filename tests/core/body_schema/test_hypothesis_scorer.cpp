@@ -77,6 +77,53 @@ TEST(HypothesisScorer, TheTrueOffsetsExplainTheEdgesBest) {
   EXPECT_LE(better, 2);  // edges of a shaded hand are noisier than silhouettes
 }
 
+// Drawn per primitive with a depth test, the hand's contours also run where the thumb and the
+// fingers cross the palm; the truth still explains the edges best.
+TEST(HypothesisScorer, InnerContoursOutlineThePrimitivesInsideTheHand) {
+  const ArmHypothesisModel per_link = arm_hypothesis_model(*icub(), {"r_hand"}, 8);
+  const ArmHypothesisModel per_primitive = arm_hypothesis_model(*icub(), {"r_hand"}, 8, true);
+  ASSERT_EQ(per_link.meshes.size(), 1U);
+  ASSERT_EQ(per_primitive.meshes.size(), 6U);  // palm, four fingers, thumb
+  EXPECT_EQ(per_primitive.mesh_link, std::vector<std::size_t>(6, 0));
+  std::size_t triangles = 0;
+  for (const render::TriangleMesh& m : per_primitive.meshes) triangles += m.triangle_count();
+  EXPECT_EQ(triangles, per_link.meshes[0].triangle_count());
+
+  const Eigen::VectorXd q = encoders();
+  const RealEyes eyes = look(q);
+  std::vector<cv::Mat> distances;
+  for (const cv::Mat& rgb : eyes.rgb) distances.push_back(edge_distance_map(rgb));
+  ScorerOptions options;
+  options.kind = LikelihoodKind::kEdges;
+  options.edge_lambda = 25.0 / 255.0;
+  options.rasterizer = render::Rasterizer::kSoftware;
+  HypothesisScorer outer(icub(), per_link, arm_dofs(), 1, options);
+  options.inner_contours = true;
+  HypothesisScorer inner(icub(), per_primitive, arm_dofs(), 1, options);
+  const Eigen::MatrixXd particles = candidate_particles();
+  const std::vector<double> lo = outer.score(q, particles, eyes.cameras, distances);
+  const std::vector<double> li = inner.score(q, particles, eyes.cameras, distances);
+  for (std::size_t c = 0; c < eyes.cameras.size(); ++c)
+    EXPECT_GT(cv::countNonZero(inner.last_batch().cameras[c].tiles[0]),
+              cv::countNonZero(outer.last_batch().cameras[c].tiles[0]) + 20)
+        << "camera " << c;
+  std::printf("edge L with inner contours: truth %.4f, nominal %.4f, 2 deg off:", li[0], li[1]);
+  for (std::size_t m = 2; m < li.size(); ++m) std::printf(" %.4f", li[m]);
+  std::printf("\n");
+  EXPECT_LT(li[1], 0.6 * li[0]);
+  int better = 0;
+  for (std::size_t m = 2; m < li.size(); ++m) better += li[m] > li[0] ? 1 : 0;
+  EXPECT_LE(better, 2);
+  EXPECT_EQ(lo.size(), li.size());
+
+  ScorerOptions gl = options;
+  gl.rasterizer = render::Rasterizer::kGl;
+  EXPECT_THROW(HypothesisScorer(icub(), per_primitive, arm_dofs(), 1, gl), InputError);
+  ScorerOptions silhouettes = options;
+  silhouettes.kind = LikelihoodKind::kSilhouette;
+  EXPECT_THROW(HypothesisScorer(icub(), per_primitive, arm_dofs(), 1, silhouettes), InputError);
+}
+
 TEST(HypothesisScorer, Errors) {
   try {
     arm_hypothesis_model(*icub(), {"r_hand", "r_paw"}, 8);

@@ -53,6 +53,12 @@ TEST(BodySchemaFilterConfig, CrossFieldChecksAreLocated) {
   EXPECT_EQ(error_of(filter_graph("compare_particles: [2000000]")),
             "<inline>:7:33: node 'filter', key 'params.compare_particles': expected whole numbers "
             "of particles in [1, 20000], got 2000000");
+  EXPECT_EQ(error_of(filter_graph("edge_inner_contours: true, rasterizer: software")),
+            "<inline>:7:35: node 'filter', key 'params.edge_inner_contours': needs likelihood: "
+            "edges");
+  EXPECT_EQ(error_of(filter_graph("likelihood: edges, edge_inner_contours: true")),
+            "<inline>:7:54: node 'filter', key 'params.edge_inner_contours': needs rasterizer: "
+            "software");
 }
 
 TEST(BodySchemaFilterConfig, EmbeddedBlocksAreCheckedByTheirOwnFields) {

@@ -32,13 +32,19 @@ namespace somasim::body_schema {
 
 /// The links of the internal model drawn as hypotheses and their meshes (link frame).
 struct ArmHypothesisModel {
-  std::vector<int> links;                    ///< model link indices
-  std::vector<render::TriangleMesh> meshes;  ///< one per link: its collision geometry, merged
+  std::vector<int> links;  ///< model link indices
+  /// One per link (its collision geometry, merged) or, per primitive, one per collision
+  /// primitive of each link in order.
+  std::vector<render::TriangleMesh> meshes;
+  std::vector<std::size_t> mesh_link;  ///< per mesh: the index in `links` of its link
 };
-/// Throws InputError "unknown link 'X' (links: ...)" and "link 'X' has no collision geometry to
-/// draw", and for more than render::kMaxMeshesPerHypothesis links.
+/// `per_primitive`: a mesh per collision primitive (for inner contours, where one primitive
+/// occludes another) instead of one per link. Throws InputError "unknown link 'X' (links:
+/// ...)" and "link 'X' has no collision geometry to draw", and for more than
+/// render::kMaxMeshesPerHypothesis meshes.
 ArmHypothesisModel arm_hypothesis_model(const robot::RobotModel& model,
-                                        const std::vector<std::string>& link_names, int segments);
+                                        const std::vector<std::string>& link_names, int segments,
+                                        bool per_primitive = false);
 
 enum class LikelihoodKind : std::uint8_t { kSilhouette, kEdges };
 inline constexpr NamedValue<LikelihoodKind> kLikelihoodKindNames[] = {
@@ -60,13 +66,16 @@ struct ScorerOptions {
   /// edges: cost of a perpendicular nearest edge [px] (oriented chamfer, oriented_edges.hpp,
   /// on CV_8UC2 observations from oriented_edge_map); 0: the plain chamfer distance.
   double edge_orientation_weight = 0.0;
+  /// edges: also score the hypotheses' inner contours, where one collision primitive occludes
+  /// another (render::HypothesisBatchOptions::inner_contours; the software rasterizer only).
+  bool inner_contours = false;
   /// How the hypotheses' tiles are drawn: GL (exact) or the CPU rasterizer (no GL, equal but for
   /// rare edge pixels, several times faster; render/hypothesis_batch.hpp).
   render::Rasterizer rasterizer = render::Rasterizer::kGl;
 
   /// The options as configuration fields (somasim/config.hpp), for plugins that embed them:
   /// likelihood, silhouette_form, silhouette_power, edge_lambda, edge_orientation_weight,
-  /// margin_px, contour_width, rasterizer.
+  /// edge_inner_contours, margin_px, contour_width, rasterizer.
   template <class V>
   void visit(V& v) {
     v.field("likelihood", kind)
@@ -88,6 +97,11 @@ struct ScorerOptions {
             "between its normal and the nearest observed edge's normal over 90 deg (a "
             "perpendicular edge counts as this many pixels farther); 0: the paper's plain "
             "chamfer distance");
+    v.field("edge_inner_contours", inner_contours)
+        .doc(
+            "edges: the hypotheses drawn per collision primitive with a depth test, their "
+            "contours including where one primitive occludes another (a thumb over the palm); "
+            "needs rasterizer: software");
     v.field("margin_px", margin_px).range(0, 1000).doc("ROI margin [px]");
     v.field("contour_width", contour_width).range(1, 2).doc("edges: [px]");
     v.field("rasterizer", rasterizer)
@@ -107,7 +121,8 @@ struct ScoreTiming {
 
 class HypothesisScorer {
  public:
-  /// `offset_dofs`: model dof index of each particle row. `workers` render threads.
+  /// `offset_dofs`: model dof index of each particle row. `workers` render threads. Throws
+  /// InputError for inner contours without the edge likelihood or the software rasterizer.
   HypothesisScorer(std::shared_ptr<const robot::RobotModel> model, const ArmHypothesisModel& arm,
                    std::vector<int> offset_dofs, int workers, const ScorerOptions& options,
                    render::RenderBackend backend = render::RenderBackend::kOsmesa);
@@ -133,6 +148,7 @@ class HypothesisScorer {
  private:
   std::shared_ptr<const robot::RobotModel> model_;
   std::vector<int> links_;
+  std::vector<std::size_t> mesh_link_;
   std::vector<int> offset_dofs_;
   ScorerOptions options_;
   render::HypothesisRenderer renderer_;

@@ -68,6 +68,11 @@ struct HypothesisBatchOptions {
   /// extracted and every CameraTiles::tiles entry stays empty (the bare cost of drawing and
   /// reading back, which benchmarks measure the extraction against).
   bool extract = true;
+  /// With `contour`: also the boundaries inside the silhouette where one of the batch's meshes
+  /// occludes another (a thumb over the palm): the meshes are drawn with a depth test, and a
+  /// pixel of mesh a with a 4-neighbour of mesh b is a contour pixel when a is nearer there
+  /// (one px wide, on the occluding side; see inner_contour()). Software rasterizer only.
+  bool inner_contours = false;
 };
 
 /// The tiles of one camera.
@@ -92,6 +97,13 @@ cv::Rect region_of_interest(const std::vector<Bounds>& mesh_bounds, const Hypoth
 /// silhouette pixel with a background 4-neighbour. Pixels outside the image are not background
 /// (an object cut by the ROI's edge is not outlined along it).
 cv::Mat silhouette_contour(const cv::Mat& silhouette, int width);
+
+/// The occluding boundaries inside a labelled tile: pixels whose label (CV_8U, 0 = background,
+/// else the nearest mesh + 1) differs from a 4-neighbour's non-zero label while the pixel is
+/// nearer than that neighbour (`inverse_depth`: CV_32F, 1 / camera depth [1/m], larger =
+/// nearer). Returns CV_8U 0 / 255; boundaries with the background are not included (see
+/// silhouette_contour()).
+cv::Mat inner_contour(const cv::Mat& labels, const cv::Mat& inverse_depth);
 
 /// How tiles are drawn.
 enum class Rasterizer : std::uint8_t {

@@ -1,0 +1,173 @@
+// Inner contours of hypothesis tiles (the software rasterizer with a depth test): generated
+// scenes of a small box in front of, behind or flush with a larger one, checked against the
+// small box's own outline, and the errors for options that cannot draw them.
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <random>
+#include <string>
+
+#include "somasim/error.hpp"
+#include "somasim/render/hypothesis_batch.hpp"
+
+using namespace somasim;
+using namespace somasim::render;
+
+namespace {
+
+// Looks along root +x from the origin (root z up), 320 × 240.
+Camera eye() {
+  Camera c;
+  c.name = "eye";
+  c.intrinsics = {320, 240, 257.34, 257.34, 159.5, 119.5, 0.02, 5.0};
+  c.pose_root.linear().col(0) = -Eigen::Vector3d::UnitY();
+  c.pose_root.linear().col(1) = -Eigen::Vector3d::UnitZ();
+  c.pose_root.linear().col(2) = Eigen::Vector3d::UnitX();
+  return c;
+}
+
+Eigen::Isometry3d pose(const Eigen::Vector3d& position, const Eigen::Vector3d& rotation_vector) {
+  Eigen::Isometry3d p = Eigen::Isometry3d::Identity();
+  p.translation() = position;
+  if (rotation_vector.norm() > 0)
+    p.linear() =
+        Eigen::AngleAxisd(rotation_vector.norm(), rotation_vector.normalized()).toRotationMatrix();
+  return p;
+}
+
+HypothesisBatchOptions contours(bool inner) {
+  HypothesisBatchOptions o;
+  o.contour = true;
+  o.inner_contours = inner;
+  return o;
+}
+
+// Pixels set in `b` but not in `a`, in image coordinates.
+std::vector<cv::Point> added(const CameraTiles& a, const CameraTiles& b) {
+  std::vector<cv::Point> out;
+  EXPECT_EQ(a.roi, b.roi);
+  for (int r = 0; r < a.roi.height; ++r)
+    for (int c = 0; c < a.roi.width; ++c) {
+      EXPECT_FALSE(a.tiles[0].at<std::uint8_t>(r, c) != 0 && b.tiles[0].at<std::uint8_t>(r, c) == 0)
+          << "an outer contour pixel is missing at " << c << ", " << r;
+      if (a.tiles[0].at<std::uint8_t>(r, c) == 0 && b.tiles[0].at<std::uint8_t>(r, c) != 0)
+        out.emplace_back(a.roi.x + c, a.roi.y + r);
+    }
+  return out;
+}
+
+bool set_at(const CameraTiles& t, cv::Point p) {
+  return t.roi.contains(p) && t.tiles[0].at<std::uint8_t>(p.y - t.roi.y, p.x - t.roi.x) != 0;
+}
+
+// Farther apart along the line of sight than the boxes' half-diagonals together: they do not
+// intersect (an intersection curve is an inner boundary of neither outline).
+constexpr double kApart = 0.06;  // [m]
+
+struct Scene {
+  Eigen::Isometry3d big, small;
+};
+
+// A 6 × 5 × 2 cm box 0.25-0.4 m ahead, turned up to ~25°, and a 1.2 × 1.2 × 3 cm box whose
+// centre projects well inside it, `depth_shift` [m] along the line of sight from the big box's
+// centre (negative: nearer the camera).
+Scene generated_scene(std::mt19937& rng, double depth_shift) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const Eigen::Vector3d centre(0.32 + 0.07 * u(rng), 0.05 * u(rng), 0.04 * u(rng));
+  Scene s;
+  s.big = pose(centre, Eigen::Vector3d(0.4 * u(rng), 0.4 * u(rng), 0.4 * u(rng)));
+  const Eigen::Vector3d lateral =
+      s.big.linear() * Eigen::Vector3d(0.0, 0.012 * u(rng), 0.01 * u(rng));
+  const Eigen::Vector3d at = centre + lateral;
+  s.small = pose(at + depth_shift * at.normalized(),
+                 Eigen::Vector3d(0.6 * u(rng), 0.6 * u(rng), 0.6 * u(rng)));
+  return s;
+}
+
+std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+}  // namespace
+
+// A small box in front of a big one: the inner contour is the small box's outline where it lies
+// over the big box; the outer contour is unchanged.
+TEST(InnerContours, AnOccludingMeshIsOutlinedInside) {
+  const std::vector<TriangleMesh> meshes = {tessellate_box(Eigen::Vector3d(0.06, 0.05, 0.02)),
+                                            tessellate_box(Eigen::Vector3d(0.012, 0.012, 0.03))};
+  HypothesisRenderer renderer(meshes, 2, RenderBackend::kOsmesa, Rasterizer::kSoftware);
+  std::mt19937 rng(3);
+  for (int k = 0; k < 30; ++k) {
+    const Scene s = generated_scene(rng, -kApart);
+    HypothesisBatch both{{0, 1}, {{s.big, s.small}}, {eye()}};
+    HypothesisBatch alone{{1}, {{s.small}}, {eye()}};
+    const CameraTiles plain = renderer.render(both, contours(false)).cameras[0];
+    const CameraTiles inner = renderer.render(both, contours(true)).cameras[0];
+    const CameraTiles own = renderer.render(alone, contours(false)).cameras[0];
+    const std::vector<cv::Point> extra = added(plain, inner);
+    int own_count = 0;
+    for (const cv::Mat& t : own.tiles) own_count = cv::countNonZero(t);
+    EXPECT_GT(extra.size(), own_count / 3) << "case " << k;
+    for (const cv::Point& p : extra)
+      EXPECT_TRUE(set_at(own, p)) << "case " << k << ": inner contour pixel " << p
+                                  << " is not on the small box's outline";
+  }
+}
+
+// Behind the big box, the small box adds at most the big box's own outline where it occludes the
+// small one; flush with the big box's front face, nothing.
+TEST(InnerContours, AnOccludedOrFlushMeshAddsNoOutlineOfItsOwn) {
+  const std::vector<TriangleMesh> meshes = {tessellate_box(Eigen::Vector3d(0.06, 0.05, 0.02)),
+                                            tessellate_box(Eigen::Vector3d(0.012, 0.012, 0.02))};
+  HypothesisRenderer renderer(meshes, 1, RenderBackend::kOsmesa, Rasterizer::kSoftware);
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int k = 0; k < 30; ++k) {
+    Scene s = generated_scene(rng, kApart);
+    HypothesisBatch behind{{0, 1}, {{s.big, s.small}}, {eye()}};
+    HypothesisBatch big_alone{{0}, {{s.big}}, {eye()}};
+    const CameraTiles own = renderer.render(big_alone, contours(false)).cameras[0];
+    for (const cv::Point& p : added(renderer.render(behind, contours(false)).cameras[0],
+                                    renderer.render(behind, contours(true)).cameras[0]))
+      EXPECT_TRUE(set_at(own, p)) << "case " << k << ": inner contour pixel " << p
+                                  << " is not on the big box's outline";
+    // Flush: the same orientation, the small box's front face in the big one's front face
+    // plane (both 2 cm deep), its centre within the big face.
+    s.small = s.big;
+    s.small.translate(Eigen::Vector3d(0.015 * u(rng), 0.012 * u(rng), 0.0));
+    HypothesisBatch flush{{0, 1}, {{s.big, s.small}}, {eye()}};
+    EXPECT_TRUE(added(renderer.render(flush, contours(false)).cameras[0],
+                      renderer.render(flush, contours(true)).cameras[0])
+                    .empty())
+        << "flush case " << k;
+  }
+}
+
+TEST(InnerContours, LabelledBoundariesTakeTheNearerSide) {
+  cv::Mat labels = (cv::Mat_<std::uint8_t>(1, 4) << 1, 1, 2, 0);
+  cv::Mat depth = (cv::Mat_<float>(1, 4) << 2.0F, 2.0F, 3.0F, 0.0F);
+  cv::Mat expected = (cv::Mat_<std::uint8_t>(1, 4) << 0, 0, 255, 0);
+  EXPECT_EQ(cv::countNonZero(inner_contour(labels, depth) != expected), 0);
+  depth.at<float>(0, 2) = 1.0F;  // mesh 2 now farther: mesh 1's pixel takes the boundary
+  expected = (cv::Mat_<std::uint8_t>(1, 4) << 0, 255, 0, 0);
+  EXPECT_EQ(cv::countNonZero(inner_contour(labels, depth) != expected), 0);
+}
+
+TEST(InnerContours, Errors) {
+  const std::vector<TriangleMesh> meshes = {tessellate_box(Eigen::Vector3d(0.06, 0.05, 0.02))};
+  HypothesisBatch batch{
+      {0}, {{pose(Eigen::Vector3d(0.3, 0, 0), Eigen::Vector3d::Zero())}}, {eye()}};
+  HypothesisRenderer gl(meshes, 1, RenderBackend::kOsmesa, Rasterizer::kGl);
+  EXPECT_EQ(error_of([&] { gl.render(batch, contours(true)); }),
+            "hypothesis batch: inner_contours needs the software rasterizer");
+  HypothesisRenderer software(meshes, 1, RenderBackend::kOsmesa, Rasterizer::kSoftware);
+  HypothesisBatchOptions silhouettes;
+  silhouettes.inner_contours = true;
+  EXPECT_EQ(error_of([&] { software.render(batch, silhouettes); }),
+            "hypothesis batch: inner_contours needs contour");
+}
