@@ -76,14 +76,21 @@ cv::Mat inner_contour(const cv::Mat& labels, const cv::Mat& inverse_depth) {
     const std::uint8_t* label = labels.ptr<std::uint8_t>(r);
     const float* depth = inverse_depth.ptr<float>(r);
     std::uint8_t* out = contour.ptr<std::uint8_t>(r);
+    // Neighbours outside the tile are not meshes: they never make a pixel a contour pixel.
+    const std::uint8_t* label_up = r > 0 ? labels.ptr<std::uint8_t>(r - 1) : nullptr;
+    const float* depth_up = r > 0 ? inverse_depth.ptr<float>(r - 1) : nullptr;
+    const std::uint8_t* label_down = r + 1 < rows ? labels.ptr<std::uint8_t>(r + 1) : nullptr;
+    const float* depth_down = r + 1 < rows ? inverse_depth.ptr<float>(r + 1) : nullptr;
     for (int c = 0; c < cols; ++c) {
-      if (label[c] == 0) continue;
-      const auto occludes = [&](int nr, int nc) {
-        if (nr < 0 || nr >= rows || nc < 0 || nc >= cols) return false;
-        const std::uint8_t other = labels.at<std::uint8_t>(nr, nc);
-        return other != 0 && other != label[c] && depth[c] > inverse_depth.at<float>(nr, nc);
+      const std::uint8_t here = label[c];
+      if (here == 0) continue;
+      const auto occludes = [&](std::uint8_t other, float other_depth) {
+        return other != 0 && other != here && depth[c] > other_depth;
       };
-      if (occludes(r - 1, c) || occludes(r + 1, c) || occludes(r, c - 1) || occludes(r, c + 1))
+      if ((c > 0 && occludes(label[c - 1], depth[c - 1])) ||
+          (c + 1 < cols && occludes(label[c + 1], depth[c + 1])) ||
+          (label_up != nullptr && occludes(label_up[c], depth_up[c])) ||
+          (label_down != nullptr && occludes(label_down[c], depth_down[c])))
         out[c] = 255;
     }
   }

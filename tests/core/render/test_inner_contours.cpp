@@ -148,6 +148,27 @@ TEST(InnerContours, AnOccludedOrFlushMeshAddsNoOutlineOfItsOwn) {
   }
 }
 
+// Closed meshes are drawn by their triangles facing the camera, whichever way they wind: the
+// same boxes wound the other way give the same tiles.
+TEST(InnerContours, TheSameTilesWhicheverWayTheMeshesWind) {
+  std::vector<TriangleMesh> meshes = {tessellate_box(Eigen::Vector3d(0.06, 0.05, 0.02)),
+                                      tessellate_box(Eigen::Vector3d(0.012, 0.012, 0.03))};
+  std::vector<TriangleMesh> reversed = meshes;
+  for (TriangleMesh& m : reversed)
+    for (std::size_t t = 0; t + 2 < m.indices.size(); t += 3)
+      std::swap(m.indices[t + 1], m.indices[t + 2]);
+  HypothesisRenderer a(meshes, 1, RenderBackend::kOsmesa, Rasterizer::kSoftware);
+  HypothesisRenderer b(reversed, 1, RenderBackend::kOsmesa, Rasterizer::kSoftware);
+  std::mt19937 rng(5);
+  for (int k = 0; k < 20; ++k) {
+    const Scene s = generated_scene(rng, k % 2 == 0 ? -kApart : kApart);
+    HypothesisBatch batch{{0, 1}, {{s.big, s.small}}, {eye()}};
+    const cv::Mat ta = a.render(batch, contours(true)).cameras[0].tiles[0];
+    const cv::Mat tb = b.render(batch, contours(true)).cameras[0].tiles[0];
+    EXPECT_EQ(cv::countNonZero(ta != tb), 0) << "case " << k;
+  }
+}
+
 TEST(InnerContours, LabelledBoundariesTakeTheNearerSide) {
   cv::Mat labels = (cv::Mat_<std::uint8_t>(1, 4) << 1, 1, 2, 0);
   cv::Mat depth = (cv::Mat_<float>(1, 4) << 2.0F, 2.0F, 3.0F, 0.0F);
