@@ -53,17 +53,7 @@ bool closed_and_oriented(const TriangleMesh& mesh) {
 }  // namespace
 
 SoftwareTiler::SoftwareTiler(const std::vector<TriangleMesh>& meshes) : meshes_(meshes) {
-  for (const TriangleMesh& mesh : meshes_) {
-    closed_.push_back(closed_and_oriented(mesh));
-    double volume = 0.0;  // six times the signed volume enclosed
-    for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
-      const Eigen::Vector3d a = mesh.positions[mesh.indices[t]].cast<double>();
-      const Eigen::Vector3d b = mesh.positions[mesh.indices[t + 1]].cast<double>();
-      const Eigen::Vector3d c = mesh.positions[mesh.indices[t + 2]].cast<double>();
-      volume += a.dot(b.cross(c));
-    }
-    outward_.push_back(!closed_.back() || volume == 0.0 ? 0 : (volume > 0.0 ? 1 : -1));
-  }
+  for (const TriangleMesh& mesh : meshes_) closed_.push_back(closed_and_oriented(mesh));
 }
 
 template <class Span>
@@ -169,7 +159,6 @@ void SoftwareTiler::render(const HypothesisBatch& batch, const std::vector<cv::R
         const TriangleMesh& mesh = meshes_[batch.meshes[m]];
         const bool cull = closed_[batch.meshes[m]];  // half the triangles cover a closed mesh
         const auto label = static_cast<std::uint8_t>(m + 1);
-        const int outward = outward_[batch.meshes[m]];
         auto fill = [&](const std::array<long long, 3>& x, const std::array<long long, 3>& y) {
           for_each_span(x, y, cull, roi, [&](int r, int lo, int hi) {
             std::uint8_t* row = tile_.ptr<std::uint8_t>(r - roi.y);
@@ -191,11 +180,6 @@ void SoftwareTiler::render(const HypothesisBatch& batch, const std::vector<cv::R
           int in_front = 0;
           for (const auto& p : tri) in_front += p.z() >= k.near;
           if (in_front == 0) continue;
-          // With a depth test, a closed mesh's triangles facing away from the camera (the
-          // camera at the origin: outward normal · vertex >= 0) lie behind its others.
-          if (labelled && outward != 0 &&
-              outward * (tri[1] - tri[0]).cross(tri[2] - tri[0]).dot(tri[0]) >= 0.0)
-            continue;
           if (in_front == 3) {
             if (labelled) {
               draw_labelled(tri, k, roi, label);

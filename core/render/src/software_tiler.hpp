@@ -4,9 +4,8 @@
 // 1/256 px grid as the GL path snaps them (subpixel_snap.hpp), clipped at the near plane, and
 // filled by pixel centres with the top-left rule in integer arithmetic, one row span at a time.
 // Of a closed, consistently wound mesh only the triangles of one winding on screen are drawn:
-// they cover the same pixels as all of them. With inner contours triangles are drawn with a depth
-// test (1 / depth interpolated at pixel centres) into a label tile; of a closed mesh only those
-// facing the camera (the others lie behind them).
+// they cover the same pixels as all of them. With inner contours every triangle is drawn with a
+// depth test (1 / depth interpolated at pixel centres) into a label tile.
 #include <array>
 #include <cstddef>
 #include <vector>
@@ -43,9 +42,6 @@ class SoftwareTiler {
 
   std::vector<TriangleMesh> meshes_;
   std::vector<bool> closed_;  // per mesh: closed and consistently wound (back faces culled)
-  // Per closed mesh: +1 when its triangles wind counter-clockwise seen from outside (positive
-  // enclosed volume), -1 when clockwise; 0 for a mesh that is not closed.
-  std::vector<int> outward_;
   std::vector<Eigen::Vector3d> camera_points_;  // one mesh's vertices in the camera frame
   cv::Mat tile_;                                // scratch silhouette
   cv::Mat labels_;                              // inner contours: nearest mesh + 1 per pixel

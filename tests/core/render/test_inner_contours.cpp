@@ -148,8 +148,8 @@ TEST(InnerContours, AnOccludedOrFlushMeshAddsNoOutlineOfItsOwn) {
   }
 }
 
-// Closed meshes are drawn by their triangles facing the camera, whichever way they wind: the
-// same boxes wound the other way give the same tiles.
+// The depth test, not the triangles' winding, decides what is seen: the same boxes wound the
+// other way give the same tiles.
 TEST(InnerContours, TheSameTilesWhicheverWayTheMeshesWind) {
   std::vector<TriangleMesh> meshes = {tessellate_box(Eigen::Vector3d(0.06, 0.05, 0.02)),
                                       tessellate_box(Eigen::Vector3d(0.012, 0.012, 0.03))};
