@@ -38,6 +38,20 @@ Eigen::MatrixXd candidate_particles() {
   return p;
 }
 
+std::vector<cv::Mat> edge_distance_maps(const RealEyes& eyes) {
+  std::vector<cv::Mat> distances;
+  for (const cv::Mat& rgb : eyes.rgb) distances.push_back(edge_distance_map(rgb));
+  return distances;
+}
+
+// The edge likelihood with the released code's λ = 25/255.
+ScorerOptions edge_options() {
+  ScorerOptions options;
+  options.kind = LikelihoodKind::kEdges;
+  options.edge_lambda = 25.0 / 255.0;
+  return options;
+}
+
 TEST(HypothesisScorer, TheTrueOffsetsExplainTheSilhouettesBest) {
   const Eigen::VectorXd q = encoders();
   const RealEyes eyes = look(q);
@@ -60,11 +74,8 @@ TEST(HypothesisScorer, TheTrueOffsetsExplainTheSilhouettesBest) {
 TEST(HypothesisScorer, TheTrueOffsetsExplainTheEdgesBest) {
   const Eigen::VectorXd q = encoders();
   const RealEyes eyes = look(q);
-  std::vector<cv::Mat> distances;
-  for (const cv::Mat& rgb : eyes.rgb) distances.push_back(edge_distance_map(rgb));
-  ScorerOptions options;
-  options.kind = LikelihoodKind::kEdges;
-  options.edge_lambda = 25.0 / 255.0;
+  const std::vector<cv::Mat> distances = edge_distance_maps(eyes);
+  ScorerOptions options = edge_options();
   HypothesisScorer scorer(icub(), arm_hypothesis_model(*icub(), {"r_hand"}, 8), arm_dofs(), 1,
                           options);
   const std::vector<double> l = scorer.score(q, candidate_particles(), eyes.cameras, distances);
@@ -91,11 +102,8 @@ TEST(HypothesisScorer, InnerContoursOutlineThePrimitivesInsideTheHand) {
 
   const Eigen::VectorXd q = encoders();
   const RealEyes eyes = look(q);
-  std::vector<cv::Mat> distances;
-  for (const cv::Mat& rgb : eyes.rgb) distances.push_back(edge_distance_map(rgb));
-  ScorerOptions options;
-  options.kind = LikelihoodKind::kEdges;
-  options.edge_lambda = 25.0 / 255.0;
+  const std::vector<cv::Mat> distances = edge_distance_maps(eyes);
+  ScorerOptions options = edge_options();
   options.rasterizer = render::Rasterizer::kSoftware;
   HypothesisScorer outer(icub(), per_link, arm_dofs(), 1, options);
   options.inner_contours = true;
