@@ -38,6 +38,12 @@ void BulletWorld::Config::visit(V& v) {
           "how the joints not locked move: dynamic (motors, limits, contacts push back) or "
           "kinematic (exactly as commanded, at most max_joint_speed; objects are pushed, the "
           "robot does not yield; contacts still reported with forces)");
+  v.field("kinematic_joints", kinematic_joints)
+      .doc(
+          "with joint_motion: dynamic, joints moved kinematically (names, or 'all'): their groups "
+          "follow the commands exactly as under joint_motion: kinematic while the rest stays "
+          "dynamic. A kinematic joint's subtree holds only kinematic or locked joints; a group "
+          "under moving dynamic joints is posed from their values before each step");
   v.field("joint_servo", joint_servo)
       .doc(
           "how a dynamic robot's joints are driven: constraint (Bullet motors solved with the "
@@ -173,9 +179,20 @@ void BulletWorld::configure(NodeContext& ctx) {
   miscalibrated_ = !encoder_offsets_.isZero();
   std::vector<bool> locked;
   try {
-    locked = parse_locked_joints(config_.locked_joints, *model_);
+    locked = parse_joint_set(config_.locked_joints, *model_);
   } catch (const InputError& e) {
     config_error(ctx, config_, config_.locked_joints, e.what());
+  }
+  std::vector<bool> kinematic;
+  try {
+    if (config_.joint_motion == JointMotion::kKinematic && !config_.kinematic_joints.empty())
+      throw InputError(
+          "kinematic_joints needs joint_motion: dynamic (joint_motion: kinematic already moves "
+          "every joint that is not locked kinematically)");
+    kinematic = kinematic_dofs(*model_, locked, config_.joint_motion == JointMotion::kKinematic,
+                               parse_joint_set(config_.kinematic_joints, *model_));
+  } catch (const InputError& e) {
+    config_error(ctx, config_, config_.kinematic_joints, e.what());
   }
   dt_ = ctx.period_s();
   limits_ = {config_.max_joint_speed, config_.max_object_speed, config_.max_penetration};
@@ -192,7 +209,7 @@ void BulletWorld::configure(NodeContext& ctx) {
   try {
     robot_ = std::make_unique<RobotMultiBody>(model_, physics_->world(), *shapes_, q0,
                                               LinkMaterial{friction, 0.0, restitution}, locked,
-                                              config_.joint_motion);
+                                              kinematic);
   } catch (const InputError& e) {  // e.g. a collision mesh that cannot be used
     robot::robot_error(ctx, e.what());
   }
@@ -289,7 +306,7 @@ void BulletWorld::step(NodeContext& ctx) {
   objects_->remove_expired(t);
   objects_->drive(t, dt_);
   // Kinematic joints: a hair below the blow-up detector's speed bound.
-  if (robot_->kinematic()) motors_->advance_kinematic(0.999 * config_.max_joint_speed);
+  if (robot_->any_kinematic()) motors_->advance_kinematic(0.999 * config_.max_joint_speed);
   motors_->update_limits();
   motors_->apply_torques();
   physics_->step(dt_);

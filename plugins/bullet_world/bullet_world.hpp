@@ -20,7 +20,9 @@
 /// the robot does not yield. Kinematic objects touch immovable robot geometry (locked links, the
 /// fixed base, kinematic links) too, and kinematic links touch static objects and other links:
 /// the solver ignores such pairs (both bodies immovable), so their contacts carry a penetration
-/// force, kinematic_contact_stiffness × depth.
+/// force, kinematic_contact_stiffness × depth. `kinematic_joints` mixes the two: the listed joints
+/// (a kinematic joint's subtree holds only kinematic or locked joints) move so, the others stay
+/// a multibody that the kinematic groups push as objects are pushed.
 ///
 /// `joint_servo: computed_torque` drives a dynamic robot by joint torques from its inverse
 /// dynamics instead of motor constraints (joint_motors.hpp): several times faster, with the
@@ -60,6 +62,7 @@ class BulletWorld : public Plugin {
     std::string encoder_offsets_deg;
     std::vector<std::string> locked_joints;
     JointMotion joint_motion = JointMotion::kDynamic;
+    std::vector<std::string> kinematic_joints;
     JointServo joint_servo = JointServo::kConstraint;
     std::vector<double> gravity{0, 0, -9.81};  // [m/s^2]
     double position_gain = 40.0;               // [1/s]

@@ -15,12 +15,17 @@ JointMotors::JointMotors(RobotMultiBody& robot, btMultiBodyDynamicsWorld& world,
     : robot_(robot), world_(world), gains_(gains), dt_(dt), gravity_(gravity) {
   const robot::RobotModel& m = robot.model();
   const int n = m.num_dofs();
-  const bool computed_torque = servo == JointServo::kComputedTorque && !robot.kinematic();
+  const bool computed_torque = servo == JointServo::kComputedTorque && robot.has_multibody();
   if (computed_torque) {
     std::vector<bool> locked(static_cast<std::size_t>(n));
     for (int d = 0; d < n; ++d) locked[static_cast<std::size_t>(d)] = robot.locked(d);
-    dynamics_ = std::make_unique<robot::InverseDynamics>(
-        m, robot::physical_inertials(m, kFrameLinkMass, kMinPrincipalInertia, locked));
+    std::vector<robot::Inertial> inertials =
+        robot::physical_inertials(m, kFrameLinkMass, kMinPrincipalInertia, locked);
+    // Kinematic groups are not in the multibody: their joints carry none of their mass.
+    for (int i = 0; i < m.num_links(); ++i)
+      for (const int up : m.supporting_dofs(i))
+        if (robot.kinematic(up)) inertials[static_cast<std::size_t>(i)] = robot::Inertial{};
+    dynamics_ = std::make_unique<robot::InverseDynamics>(m, std::move(inertials));
     data_ = std::make_unique<robot::RobotData>(m);
     q_ = qd_ = qdd_ = Eigen::VectorXd::Zero(n);
   }
@@ -30,7 +35,7 @@ JointMotors::JointMotors(RobotMultiBody& robot, btMultiBodyDynamicsWorld& world,
   motors_.resize(n);
   for (int d = 0; d < n; ++d) {
     const int link = robot.dof_link(d);
-    if (link < 0) {  // locked, or a kinematic robot: no motor
+    if (link < 0) {  // locked or kinematic: no motor
       mode_[d] = robot.locked(d) ? JointCommandMode::kNone : JointCommandMode::kPosition;
       position_[d] = hold[d];
       continue;
@@ -76,7 +81,10 @@ void JointMotors::advance_kinematic(double max_speed) {
   for (int d = 0; d < n; ++d) {
     const double now = robot_.position(d);
     q[d] = now;
-    if (robot_.locked(d)) continue;
+    if (!robot_.kinematic(d)) {  // locked or dynamic: as it is
+      dq[d] = robot_.velocity(d);
+      continue;
+    }
     const auto k = static_cast<std::size_t>(d);
     double target =
         mode_[k] == JointCommandMode::kVelocity ? now + velocity_[k] * dt_ : position_[k];

@@ -27,10 +27,12 @@
 /// so a step costs a fraction of the constraint motors' (what Bullet's multibody and the model
 /// differ in, and what objects push, are disturbances the feedback rejects).
 ///
-/// A kinematic robot (JointMotion::kKinematic) has no motors either: advance_kinematic() moves
-/// every joint that is not locked to its target in one step — the position target (clamped into
+/// Kinematic joints (`joint_motion: kinematic`, `kinematic_joints`) have no motors either:
+/// advance_kinematic() moves each to its target in one step — the position target (clamped into
 /// the limits), or the position reached at the commanded velocity — at most `max_speed` · dt
-/// per step, so that a step command cannot teleport the arm through what it touches.
+/// per step, so that a step command cannot teleport the arm through what it touches. The
+/// computed torques of the dynamic joints leave out the kinematic groups' masses (they are not
+/// part of the multibody).
 #include <memory>
 #include <vector>
 
@@ -84,7 +86,7 @@ class JointMotors {
   /// or vectors of the wrong size, and for commands on locked joints.
   void apply(const JointCommand& command, double t);
 
-  /// Kinematic robot: moves the joints towards their targets for a step of dt (see the file
+  /// Kinematic joints: moves them towards their targets for a step of dt (see the file
   /// comment), at most `max_speed` [rad/s] ([m/s]); call after apply(), before the step.
   void advance_kinematic(double max_speed);
 

@@ -29,10 +29,18 @@ struct RigidGroups {
   std::vector<int> body_of_rep;
 };
 
-/// The `locked_joints` parameter: joint names, or `all`
+/// A joint-list parameter (`locked_joints`, `kinematic_joints`): joint names, or `all`
 /// (every dof). Returns a per-dof mask. InputError for unknown or fixed joints (with a
 /// suggestion), to be prefixed by the parameter's location.
-std::vector<bool> parse_locked_joints(const std::vector<std::string>& names,
-                                      const robot::RobotModel& model);
+std::vector<bool> parse_joint_set(const std::vector<std::string>& names,
+                                  const robot::RobotModel& model);
+
+/// The dofs that move kinematically: every dof not locked under `all_kinematic`, else the
+/// `kinematic` mask. InputError (to be prefixed by the `kinematic_joints` location) when a joint
+/// is both locked and kinematic, or when a dynamic joint moves below a kinematic one (a
+/// kinematic group carries only kinematic or locked joints: it is posed by forward kinematics
+/// and cannot carry a dynamic subtree).
+std::vector<bool> kinematic_dofs(const robot::RobotModel& model, const std::vector<bool>& locked,
+                                 bool all_kinematic, const std::vector<bool>& kinematic);
 
 }  // namespace somasim::bullet_world

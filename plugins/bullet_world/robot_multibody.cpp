@@ -1,5 +1,7 @@
 #include "robot_multibody.hpp"
 
+#include <algorithm>
+
 #include <Eigen/Eigenvalues>
 
 #include "body_tag.hpp"
@@ -63,41 +65,57 @@ robot::Geometry frame_link_placeholder() {
 RobotMultiBody::RobotMultiBody(std::shared_ptr<const robot::RobotModel> model,
                                btMultiBodyDynamicsWorld& world, ShapeStore& shapes,
                                const Eigen::VectorXd& q, const LinkMaterial& material,
-                               const std::vector<bool>& locked, JointMotion motion)
+                               const std::vector<bool>& locked, const std::vector<bool>& kinematic)
     : model_(std::move(model)),
       world_(world),
       groups_(*model_, locked, q),
-      kinematic_(motion == JointMotion::kKinematic),
       q_locked_(q),
       q_kinematic_(q),
       dq_kinematic_(Eigen::VectorXd::Zero(q.size())),
       fk_(*model_) {
   const robot::RobotModel& m = *model_;
-  locked_ =
-      locked.empty() ? std::vector<bool>(static_cast<std::size_t>(m.num_dofs()), false) : locked;
+  const auto dofs = static_cast<std::size_t>(m.num_dofs());
+  locked_ = locked.empty() ? std::vector<bool>(dofs, false) : locked;
+  kinematic_ = kinematic.empty() ? std::vector<bool>(dofs, false) : kinematic;
+  SOMASIM_CHECK(locked_.size() == dofs && kinematic_.size() == dofs, "per-dof masks");
+  any_kinematic_ = std::find(kinematic_.begin(), kinematic_.end(), true) != kinematic_.end();
   const std::vector<int>& reps = groups_.representatives;
   const int nb = static_cast<int>(reps.size());
   std::vector<BodyFrame> frames(nb);
   body_in_rep_.resize(nb);
+  body_kinematic_.assign(static_cast<std::size_t>(nb), false);
+  // The multibody's links: the bodies behind dynamic joints, in body order (parents first).
+  std::vector<int> mb_link(static_cast<std::size_t>(nb), -1);
+  mb_body_ = {0};
   for (int b = 0; b < nb; ++b) {
     frames[b] = body_frame(group_inertial(m, groups_, reps[b]));
     body_in_rep_[b] = frames[b].in_rep;
+    if (b == 0) continue;
+    const int dof = m.joint(m.link(reps[b]).parent_joint).dof;
+    body_kinematic_[static_cast<std::size_t>(b)] = kinematic_[static_cast<std::size_t>(dof)];
+    if (body_kinematic_[static_cast<std::size_t>(b)]) continue;
+    mb_link[static_cast<std::size_t>(b)] = static_cast<int>(mb_body_.size()) - 1;
+    mb_body_.push_back(b);
   }
+  const int links = static_cast<int>(mb_body_.size()) - 1;
 
   dof_link_.assign(m.num_dofs(), -1);
-  if (nb > 1 && !kinematic_) {
+  if (links > 0) {
     multibody_ =
-        std::make_unique<btMultiBody>(nb - 1, frames[0].mass, to_bt(frames[0].principal_inertia),
+        std::make_unique<btMultiBody>(links, frames[0].mass, to_bt(frames[0].principal_inertia),
                                       /*fixedBase=*/true, /*canSleep=*/false);
     const Eigen::Isometry3d& base = frames[0].in_rep;
     multibody_->setBasePos(to_bt(Eigen::Vector3d(base.translation())));
     multibody_->setWorldToBaseRot(to_bt_quat(base.linear().transpose()));
-    for (int b = 1; b < nb; ++b) {
+    for (int k = 0; k < links; ++k) {
+      const int b = mb_body_[static_cast<std::size_t>(k) + 1];
       const robot::Link& link = m.link(reps[b]);
       const robot::Joint& j = m.joint(link.parent_joint);
       // The joint's parent link may be folded: express `pre` in the parent representative frame.
       const int parent_rep = groups_.rep[link.parent_link];
       const int parent_body = groups_.body_of_rep[parent_rep];
+      const int parent_mb = mb_link[static_cast<std::size_t>(parent_body)];
+      SOMASIM_CHECK(parent_body == 0 || parent_mb >= 0, "a dynamic joint below a kinematic one");
       const Eigen::Isometry3d pre = groups_.in_rep[link.parent_link] * j.pre;
       const Eigen::Isometry3d& cp = frames[parent_body].in_rep;
       const Eigen::Isometry3d& cc = frames[b].in_rep;
@@ -119,12 +137,12 @@ RobotMultiBody::RobotMultiBody(std::shared_ptr<const robot::RobotModel> model,
           to_bt(Eigen::Vector3d(cp.linear().transpose() * (pivot - cp.translation())));
       const btVector3 inertia = to_bt(frames[b].principal_inertia);
       if (j.type == robot::JointType::Revolute)
-        multibody_->setupRevolute(b - 1, frames[b].mass, inertia, parent_body - 1, parent_to_this,
+        multibody_->setupRevolute(k, frames[b].mass, inertia, parent_mb, parent_to_this,
                                   to_bt(axis), com_to_pivot, to_bt(pivot_to_com), false);
       else  // representatives are only reached through unlocked movable joints
-        multibody_->setupPrismatic(b - 1, frames[b].mass, inertia, parent_body - 1, parent_to_this,
+        multibody_->setupPrismatic(k, frames[b].mass, inertia, parent_mb, parent_to_this,
                                    to_bt(axis), com_to_pivot, to_bt(pivot_to_com), false);
-      dof_link_[j.dof] = b - 1;
+      dof_link_[j.dof] = k;
     }
     multibody_->finalizeMultiDof();
     multibody_->setHasSelfCollision(true);  // pairs are filtered by SelfCollisionFilter
@@ -142,7 +160,7 @@ RobotMultiBody::RobotMultiBody(std::shared_ptr<const robot::RobotModel> model,
   child_link_.resize(m.num_links());
   colliders_.resize(nb);
   motion_states_.resize(nb);
-  if (kinematic_) robot::forward_kinematics(m, fk_, q);
+  if (any_kinematic_) robot::forward_kinematics(m, fk_, q);
   for (int b = 0; b < nb; ++b) {
     const int r = reps[b];
     // The group's geometry in the representative's frame; child k belongs to child_link_[r][k].
@@ -156,11 +174,13 @@ RobotMultiBody::RobotMultiBody(std::shared_ptr<const robot::RobotModel> model,
       }
     }
     const bool has_geometry = !geometry.empty();
-    const bool moved = kinematic_ && b > 0;  // a kinematic body posed by move_kinematic()
-    if (moved && !has_geometry) continue;    // nothing to collide, no motor to carry
+    // A kinematic body posed by move_kinematic().
+    const bool moved = body_kinematic_[static_cast<std::size_t>(b)];
+    if (moved && !has_geometry) continue;  // nothing to collide, no motor to carry
     std::unique_ptr<btCollisionObject> col;
-    if (multibody_) {
-      col = std::make_unique<btMultiBodyLinkCollider>(multibody_.get(), b - 1);
+    if (multibody_ && !moved) {
+      col = std::make_unique<btMultiBodyLinkCollider>(multibody_.get(),
+                                                      mb_link[static_cast<std::size_t>(b)]);
     } else if (moved) {
       const Eigen::Isometry3d pose = fk_.link_poses[static_cast<std::size_t>(r)] * frames[b].in_rep;
       motion_states_[b] = std::make_unique<btDefaultMotionState>(to_bt(pose));
@@ -188,7 +208,7 @@ RobotMultiBody::RobotMultiBody(std::shared_ptr<const robot::RobotModel> model,
     col->setRestitution(material.restitution);
     if (!multibody_ && !moved) {
       // Static geometry at its (constant) pose: the whole robot when every dof is locked, the
-      // root's group in kinematic mode.
+      // root's group when every other joint is kinematic.
       col->setCollisionFlags(col->getCollisionFlags() | btCollisionObject::CF_STATIC_OBJECT);
       col->setWorldTransform(to_bt(frames[0].in_rep));
     }
@@ -200,12 +220,12 @@ RobotMultiBody::RobotMultiBody(std::shared_ptr<const robot::RobotModel> model,
                                 btBroadphaseProxy::AllFilter);
     else
       world_.addCollisionObject(col.get(), /*group=*/0, /*mask=*/0);
-    if (multibody_) {
+    if (multibody_ && !moved) {
       auto* link_col = static_cast<btMultiBodyLinkCollider*>(col.get());
       if (b == 0)
         multibody_->setBaseCollider(link_col);
       else
-        multibody_->getLink(b - 1).m_collider = link_col;
+        multibody_->getLink(mb_link[static_cast<std::size_t>(b)]).m_collider = link_col;
     }
     colliders_[b] = std::move(col);
   }
@@ -224,13 +244,13 @@ RobotMultiBody::~RobotMultiBody() {
 }
 
 void RobotMultiBody::move_kinematic(const Eigen::VectorXd& q, const Eigen::VectorXd& dq) {
-  SOMASIM_CHECK(kinematic_, "move_kinematic() on a dynamic robot");
+  SOMASIM_CHECK(any_kinematic_, "move_kinematic() without kinematic joints");
   q_kinematic_ = q;
   dq_kinematic_ = dq;
   robot::forward_kinematics(*model_, fk_, q);
   const std::vector<int>& reps = groups_.representatives;
   for (std::size_t b = 1; b < reps.size(); ++b)
-    if (motion_states_[b])
+    if (body_kinematic_[b] && motion_states_[b])
       motion_states_[b]->setWorldTransform(
           to_bt(fk_.link_poses[static_cast<std::size_t>(reps[b])] * body_in_rep_[b]));
 }
@@ -246,7 +266,7 @@ void RobotMultiBody::read_joint_state(JointState& state) const {
 }
 
 void RobotMultiBody::link_poses(std::vector<Eigen::Isometry3d>& poses) const {
-  if (kinematic_) {
+  if (any_kinematic_ && !multibody_) {
     poses = fk_.link_poses;
     return;
   }
@@ -264,10 +284,15 @@ void RobotMultiBody::link_poses(std::vector<Eigen::Isometry3d>& poses) const {
           local_origin_[parent + 1] +
           quatRotate(world_to_local_[k + 1].inverse(), multibody_->getRVector(k));
     }
-    for (int b = 0; b <= nl; ++b) {
-      const btTransform body(world_to_local_[b].inverse(), local_origin_[b]);
+    for (int k = 0; k <= nl; ++k) {
+      const btTransform body(world_to_local_[k].inverse(), local_origin_[k]);
+      const int b = mb_body_[static_cast<std::size_t>(k)];
       rep_pose_[b] = to_eigen(body) * body_in_rep_[b].inverse();
     }
+    // Kinematic groups under dynamic joints: where move_kinematic() put them.
+    const std::vector<int>& reps = groups_.representatives;
+    for (std::size_t b = 1; b < reps.size(); ++b)
+      if (body_kinematic_[b]) rep_pose_[b] = fk_.link_poses[static_cast<std::size_t>(reps[b])];
   }  // else: static robot, the root group at the identity
   const int n = model_->num_links();
   poses.resize(n);

@@ -60,12 +60,14 @@ inline constexpr double kMinPrincipalInertia = 1e-5;  ///< [kg·m²]
 class RobotMultiBody {
  public:
   /// Builds the robot at joint values `q` (model dof order) and adds it to `world`. `locked`:
-  /// per dof, true = fixed at q (empty: none locked). `motion`: how the other joints move; with
-  /// kKinematic there is no multibody: each rigid group but the root's is a kinematic rigid body
-  /// that move_kinematic() poses.
+  /// per dof, true = fixed at q (empty: none locked). `kinematic`: per dof, true = moved
+  /// kinematically (empty: none); a kinematic joint's subtree holds only kinematic or locked
+  /// joints (rigid_groups.hpp: kinematic_dofs()). The rigid groups behind kinematic joints are
+  /// kinematic rigid bodies that move_kinematic() poses; the others form a multibody (none when
+  /// every joint is locked or kinematic).
   RobotMultiBody(std::shared_ptr<const robot::RobotModel> model, btMultiBodyDynamicsWorld& world,
                  ShapeStore& shapes, const Eigen::VectorXd& q, const LinkMaterial& material,
-                 const std::vector<bool>& locked = {}, JointMotion motion = JointMotion::kDynamic);
+                 const std::vector<bool>& locked = {}, const std::vector<bool>& kinematic = {});
   ~RobotMultiBody();
   RobotMultiBody(const RobotMultiBody&) = delete;
   RobotMultiBody& operator=(const RobotMultiBody&) = delete;
@@ -76,10 +78,12 @@ class RobotMultiBody {
   bool has_multibody() const { return multibody_ != nullptr; }
   btMultiBody& multibody() { return *multibody_; }
   const btMultiBody& multibody() const { return *multibody_; }
-  /// Bullet link index of a dof; -1 for locked dofs and in kinematic mode.
+  /// Bullet link index of a dof; -1 for locked and kinematic dofs.
   int dof_link(int dof) const { return dof_link_[dof]; }
   bool locked(int dof) const { return locked_[static_cast<std::size_t>(dof)]; }
-  bool kinematic() const { return kinematic_; }
+  bool kinematic(int dof) const { return kinematic_[static_cast<std::size_t>(dof)]; }
+  /// True when some joint moves kinematically (move_kinematic() poses its group each step).
+  bool any_kinematic() const { return any_kinematic_; }
 
   /// Joint values/velocities (model dof order) [rad], [rad/s]; locked dofs: their fixed value, 0.
   double position(int dof) const {
@@ -90,8 +94,10 @@ class RobotMultiBody {
     if (dof_link_[dof] >= 0) return multibody_->getJointVel(dof_link_[dof]);
     return locked(dof) ? 0.0 : dq_kinematic_[dof];
   }
-  /// Kinematic mode: the joints (not locked) move to `q` with velocities `dq` (model dof order)
-  /// by the next physics step; the bodies' poses follow (Bullet derives their velocities).
+  /// The kinematic joints move to `q` with velocities `dq` (model dof order) by the next physics
+  /// step; their bodies' poses follow (Bullet derives their velocities). The other entries of
+  /// `q` must hold the current joint values: a kinematic group under dynamic joints is posed
+  /// from their values before the step (it lags their motion by one step).
   void move_kinematic(const Eigen::VectorXd& q, const Eigen::VectorXd& dq);
   void read_joint_state(JointState& state) const;
 
@@ -111,12 +117,15 @@ class RobotMultiBody {
   std::shared_ptr<const robot::RobotModel> model_;
   btMultiBodyDynamicsWorld& world_;
   RigidGroups groups_;
-  std::vector<bool> locked_;  ///< per dof
-  bool kinematic_ = false;
+  std::vector<bool> locked_;     ///< per dof
+  std::vector<bool> kinematic_;  ///< per dof
+  bool any_kinematic_ = false;
+  std::vector<bool> body_kinematic_;  ///< per body (groups_.representatives order)
+  std::vector<int> mb_body_;          ///< per multibody link + 1 (0: the base): the body
   Eigen::VectorXd q_locked_;
-  Eigen::VectorXd q_kinematic_, dq_kinematic_;  ///< kinematic mode: the joints' state
+  Eigen::VectorXd q_kinematic_, dq_kinematic_;                        ///< kinematic joints' state
   std::vector<std::unique_ptr<btDefaultMotionState>> motion_states_;  ///< per body (kinematic)
-  mutable robot::RobotData fk_;                                       ///< kinematic mode
+  mutable robot::RobotData fk_;                 ///< link poses at the last move_kinematic()
   std::vector<Eigen::Isometry3d> body_in_rep_;  ///< per body (groups_.representatives order)
   std::vector<int> dof_link_;
   std::vector<std::vector<int>> child_link_;  ///< per model link (representatives only)

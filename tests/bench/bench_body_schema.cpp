@@ -9,6 +9,8 @@
 #include <benchmark/benchmark.h>
 
 #include <chrono>
+#include <cmath>
+#include <limits>
 #include <random>
 
 #include "../core/body_schema/real_arm_views.hpp"
@@ -127,31 +129,55 @@ void BM_EdgeScoring(benchmark::State& state) {
 BENCHMARK(BM_EdgeScoring)->ArgName("inner")->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 // The estimate's KDE (the argmax of ω_i + α/M Σ_m ω_m K(β_i, β_m)) over M particles spread as a
-// filter's mid-movement cloud (7 offsets, σ 2°): what the O(M²) estimate costs as M grows.
-Eigen::MatrixXd kde_cloud(int m, Eigen::VectorXd& weights) {
+// filter's mid-movement cloud (7 offsets, σ 2°): what the exhaustive O(M²) estimate costs as M
+// grows, and the screened one (KdeOptions: S = 512 draws, 2 × 64 candidates scored exactly).
+// `same_pick` is 1 where the screened pick is the exhaustive one, `score_ratio` the screened
+// pick's exact score over the best.
+// Weights uniform at random (no relation to position: the screen's hardest case) or, `peaked`,
+// a Gaussian likelihood of width 2° around a point 1.5° from the cloud's centre (as images give).
+Eigen::MatrixXd kde_cloud(int m, bool peaked, Eigen::VectorXd& weights) {
   std::mt19937_64 rng(5);
   std::normal_distribution<double> noise(0.0, 2.0);
   Eigen::MatrixXd p(7, m);
   for (Eigen::Index k = 0; k < p.size(); ++k) p.data()[k] = noise(rng);
   weights =
       Eigen::VectorXd::NullaryExpr(m, [&] { return std::uniform_real_distribution<>(0, 1)(rng); });
+  if (peaked) {
+    const Eigen::VectorXd truth = Eigen::VectorXd::Constant(7, 1.5 / std::sqrt(7.0));
+    for (int i = 0; i < m; ++i) weights[i] = std::exp(-0.125 * (p.col(i) - truth).squaredNorm());
+  }
   weights /= weights.sum();
   return p;
 }
 
 void BM_KdeArgmax(benchmark::State& state) {
   Eigen::VectorXd w;
-  const Eigen::MatrixXd p = kde_cloud(static_cast<int>(state.range(0)), w);
+  const Eigen::MatrixXd p = kde_cloud(static_cast<int>(state.range(0)), state.range(3) != 0, w);
   const auto threads = static_cast<int>(state.range(1));
-  for (auto _ : state) benchmark::DoNotOptimize(kde_argmax(p, w, KdeOptions{}, threads));
+  KdeOptions exhaustive;
+  exhaustive.exact_max_particles = std::numeric_limits<int>::max();
+  KdeOptions kde = exhaustive;
+  if (state.range(2) != 0) kde.exact_max_particles = 1;
+  for (auto _ : state) benchmark::DoNotOptimize(kde_argmax(p, w, kde, threads));
+  if (state.range(2) != 0) {
+    const int pick = kde_argmax(p, w, kde, threads);
+    const int best = kde_argmax(p, w, exhaustive, threads);
+    state.counters["same_pick"] = pick == best ? 1.0 : 0.0;
+    state.counters["score_ratio"] = kde_score(p, w, kde, pick) / kde_score(p, w, kde, best);
+  }
 }
 BENCHMARK(BM_KdeArgmax)
-    ->ArgNames({"M", "threads"})
-    ->Args({200, 1})
-    ->Args({2000, 1})
-    ->Args({2000, 2})
-    ->Args({10000, 1})
-    ->Args({10000, 2})
+    ->ArgNames({"M", "threads", "screened", "peaked"})
+    ->Args({200, 1, 0, 0})
+    ->Args({2000, 1, 0, 0})
+    ->Args({2000, 2, 0, 0})
+    ->Args({2000, 1, 1, 0})
+    ->Args({10000, 1, 0, 0})
+    ->Args({10000, 2, 0, 0})
+    ->Args({10000, 1, 1, 0})
+    ->Args({10000, 2, 1, 0})
+    ->Args({10000, 1, 1, 1})
+    ->Args({10000, 2, 1, 1})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

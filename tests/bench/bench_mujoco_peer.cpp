@@ -8,6 +8,8 @@
 //   BM_BulletMoving/1: bullet_world `joint_motion: kinematic`
 //   BM_BulletMoving/2: bullet_world `joint_motion: dynamic`, `joint_servo: computed_torque`
 //   BM_BulletMoving/3: the same with `rolling_friction: 0` (sliding friction only)
+//   BM_BulletMoving/4: both arms kinematic (`kinematic_joints`), torso, head and eyes dynamic
+//                      (motor constraints); /5: the same with `joint_servo: computed_torque`
 //   BM_MujocoMoving/0: mj_step of the exported model (MuJoCo's default solver and integrator),
 //                      sliding friction only (condim 3): the contact model of BM_BulletMoving/3
 //   BM_MujocoMoving/1: with bullet_world's default rolling and spinning friction, 0.5 mm
@@ -88,7 +90,7 @@ struct MujocoScene {
 void BM_BulletMoving(benchmark::State& state) {
   run_bullet_moving(state, kDrives[state.range(0)]);
 }
-BENCHMARK(BM_BulletMoving)->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_BulletMoving)->DenseRange(0, 5)->Unit(benchmark::kMicrosecond);
 
 void BM_MujocoMoving(benchmark::State& state) {
   const auto model = somasim::robot::load_robot_model_shared(kRobot);

@@ -69,6 +69,13 @@ inline const char* const kDrives[] = {
     "joint_motion: kinematic",                              // exact, kinematic bodies
     "joint_motion: dynamic, joint_servo: computed_torque",  // inverse-dynamics torques
     "joint_motion: dynamic, joint_servo: computed_torque, rolling_friction: 0",  // sliding only
+    // Both arms kinematic, torso, head and eyes dynamic: motors, then computed torques.
+    "kinematic_joints: [l_shoulder_pitch, l_shoulder_roll, l_shoulder_yaw, l_elbow, "
+    "l_wrist_prosup, l_wrist_pitch, l_wrist_yaw, r_shoulder_pitch, r_shoulder_roll, "
+    "r_shoulder_yaw, r_elbow, r_wrist_prosup, r_wrist_pitch, r_wrist_yaw]",
+    "joint_servo: computed_torque, kinematic_joints: [l_shoulder_pitch, l_shoulder_roll, "
+    "l_shoulder_yaw, l_elbow, l_wrist_prosup, l_wrist_pitch, l_wrist_yaw, r_shoulder_pitch, "
+    "r_shoulder_roll, r_shoulder_yaw, r_elbow, r_wrist_prosup, r_wrist_pitch, r_wrist_yaw]",
 };
 
 /// The scene stepped by the bullet_world plugin (through the harness) with `params` added to its

@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "somasim/error.hpp"
@@ -22,6 +24,11 @@ OffsetParticleFilter::OffsetParticleFilter(int dims, int particles, const NoiseS
     throw InputError(
         fmt::format("body schema filter: KDE sigma must be > 0 and alpha >= 0, got {} and {}",
                     kde.sigma_deg, kde.alpha));
+  if (kde.exact_max_particles < 1 || kde.screen_samples < 1 || kde.screen_keep < 1)
+    throw InputError(fmt::format(
+        "body schema filter: KDE exact limit, screen samples and screen keep must be >= 1, got "
+        "{}, {} and {}",
+        kde.exact_max_particles, kde.screen_samples, kde.screen_keep));
   particles_.resize(dims, particles);
   reset();
 }
@@ -140,53 +147,161 @@ struct Candidate {
   int index = 0;
 };
 
-// The best of the candidates [first, last): strict comparison, so the lowest index wins ties.
-Candidate kde_best_in(const Eigen::MatrixXd& particles, const Eigen::VectorXd& weights,
-                      const KdeOptions& kde, Eigen::Index first, Eigen::Index last) {
-  const Eigen::Index m_count = particles.cols();
-  const double inv_two_var = 0.5 / (kde.sigma_deg * kde.sigma_deg);
-  // |Σ| = σ^(2 dims) for Σ = σ² I.
-  const double norm = std::pow(kde.sigma_deg, -2.0 * static_cast<double>(particles.rows()));
-  const double scale = kde.alpha * norm / static_cast<double>(m_count);
-  Candidate best;
-  for (Eigen::Index i = first; i < last; ++i) {
-    double neighbours = 0.0;
-    for (Eigen::Index m = 0; m < m_count; ++m) {
-      if (weights[m] == 0.0) continue;
-      const double d2 = (particles.col(i) - particles.col(m)).squaredNorm();
-      neighbours += weights[m] * std::exp(-d2 * inv_two_var);
-    }
-    const double score = weights[i] + scale * neighbours;
-    if (score > best.score) best = {score, static_cast<int>(i)};
+// The kernel's constants: score_i = ω_i + scale Σ_m ω_m exp(−d²_im · inv_two_var).
+struct KdeKernel {
+  double inv_two_var = 0.0;
+  double scale = 0.0;
+
+  KdeKernel(const KdeOptions& kde, Eigen::Index dims, Eigen::Index m_count)
+      : inv_two_var(0.5 / (kde.sigma_deg * kde.sigma_deg)),
+        // |Σ| = σ^(2 dims) for Σ = σ² I.
+        scale(kde.alpha * std::pow(kde.sigma_deg, -2.0 * static_cast<double>(dims)) /
+              static_cast<double>(m_count)) {}
+};
+
+double exact_score(const Eigen::MatrixXd& particles, const Eigen::VectorXd& weights,
+                   const KdeKernel& kernel, Eigen::Index i) {
+  double neighbours = 0.0;
+  for (Eigen::Index m = 0; m < particles.cols(); ++m) {
+    if (weights[m] == 0.0) continue;
+    const double d2 = (particles.col(i) - particles.col(m)).squaredNorm();
+    neighbours += weights[m] * std::exp(-d2 * kernel.inv_two_var);
   }
-  return best;
+  return weights[i] + kernel.scale * neighbours;
 }
 
-}  // namespace
-
-int kde_argmax(const Eigen::MatrixXd& particles, const Eigen::VectorXd& weights,
-               const KdeOptions& kde, int threads) {
+// Runs body(first, last) over [0, count) split into contiguous ranges, one per thread (at least
+// 256 items each), and returns the ranges' results in index order.
+template <class Body>
+auto over_ranges(Eigen::Index count, int threads, Body body) {
   constexpr Eigen::Index kLeastPerThread = 256;
-  const Eigen::Index m_count = particles.cols();
   const auto parts = static_cast<Eigen::Index>(
-      std::clamp<Eigen::Index>(m_count / kLeastPerThread, 1, std::max(threads, 1)));
-  if (parts == 1) return kde_best_in(particles, weights, kde, 0, m_count).index;
-  std::vector<Candidate> best(static_cast<std::size_t>(parts));
-  auto range = [&](Eigen::Index part) { return part * m_count / parts; };
+      std::clamp<Eigen::Index>(count / kLeastPerThread, 1, std::max(threads, 1)));
+  std::vector<decltype(body(Eigen::Index{0}, Eigen::Index{0}))> results(
+      static_cast<std::size_t>(parts));
+  auto range = [&](Eigen::Index part) { return part * count / parts; };
   {
     std::vector<std::jthread> workers;
     for (Eigen::Index part = 1; part < parts; ++part)
       workers.emplace_back([&, part] {
-        best[static_cast<std::size_t>(part)] =
-            kde_best_in(particles, weights, kde, range(part), range(part + 1));
+        results[static_cast<std::size_t>(part)] = body(range(part), range(part + 1));
       });
-    best[0] = kde_best_in(particles, weights, kde, 0, range(1));
+    results[0] = body(0, range(1));
   }
+  return results;
+}
+
+// The best of candidates[first, last) (ascending indices): strict comparison, so the lowest
+// index wins ties.
+Candidate best_of(const Eigen::MatrixXd& particles, const Eigen::VectorXd& weights,
+                  const KdeKernel& kernel, const std::vector<Eigen::Index>& candidates,
+                  int threads) {
+  const std::vector<Candidate> best =
+      over_ranges(static_cast<Eigen::Index>(candidates.size()), threads,
+                  [&](Eigen::Index first, Eigen::Index last) {
+                    Candidate b;
+                    for (Eigen::Index k = first; k < last; ++k) {
+                      const Eigen::Index i = candidates[static_cast<std::size_t>(k)];
+                      const double score = exact_score(particles, weights, kernel, i);
+                      if (score > b.score) b = {score, static_cast<int>(i)};
+                    }
+                    return b;
+                  });
   // Ranges in index order, strict comparison: the lowest index wins ties, as with one thread.
   Candidate winner = best[0];
   for (const Candidate& c : best)
     if (c.score > winner.score) winner = c;
-  return winner.index;
+  return winner;
+}
+
+// Particles drawn by weight, systematically with the offset 1/(2S), as (index, copies).
+std::vector<std::pair<Eigen::Index, int>> screen_sample(const Eigen::VectorXd& weights,
+                                                        int samples) {
+  const Eigen::Index m_count = weights.size();
+  const double total = weights.sum();
+  const double step = total / static_cast<double>(samples);
+  std::vector<std::pair<Eigen::Index, int>> drawn;
+  double cumulative = weights[0];
+  Eigen::Index i = 0;
+  for (int s = 0; s < samples; ++s) {
+    const double u = step * (static_cast<double>(s) + 0.5);
+    while (u >= cumulative && i < m_count - 1) cumulative += weights[++i];
+    if (!drawn.empty() && drawn.back().first == i)
+      ++drawn.back().second;
+    else
+      drawn.emplace_back(i, 1);
+  }
+  return drawn;
+}
+
+// The indices of the `keep` largest values (ties: lower index first), in ascending index order.
+std::vector<Eigen::Index> largest(const std::vector<double>& values, int keep) {
+  std::vector<Eigen::Index> order(values.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = static_cast<Eigen::Index>(k);
+  const auto n = std::min<std::size_t>(order.size(), static_cast<std::size_t>(keep));
+  std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(n), order.end(),
+                    [&](Eigen::Index a, Eigen::Index b) {
+                      const double va = values[static_cast<std::size_t>(a)];
+                      const double vb = values[static_cast<std::size_t>(b)];
+                      return va > vb || (va == vb && a < b);
+                    });
+  order.resize(n);
+  std::sort(order.begin(), order.end());
+  return order;
+}
+
+// Candidates for exact scoring: the best by a neighbour sum estimated from the screen sample,
+// and the heaviest particles.
+std::vector<Eigen::Index> screened_candidates(const Eigen::MatrixXd& particles,
+                                              const Eigen::VectorXd& weights, const KdeOptions& kde,
+                                              const KdeKernel& kernel, int threads) {
+  const Eigen::Index m_count = particles.cols();
+  const auto drawn = screen_sample(weights, kde.screen_samples);
+  const double per_draw = weights.sum() / static_cast<double>(kde.screen_samples);
+  const auto parts = over_ranges(m_count, threads, [&](Eigen::Index first, Eigen::Index last) {
+    std::vector<double> scores;
+    scores.reserve(static_cast<std::size_t>(last - first));
+    for (Eigen::Index i = first; i < last; ++i) {
+      double neighbours = 0.0;
+      for (const auto& [m, copies] : drawn) {
+        const double d2 = (particles.col(i) - particles.col(m)).squaredNorm();
+        neighbours += static_cast<double>(copies) * std::exp(-d2 * kernel.inv_two_var);
+      }
+      scores.push_back(weights[i] + kernel.scale * per_draw * neighbours);
+    }
+    return scores;
+  });
+  std::vector<double> screened;
+  screened.reserve(static_cast<std::size_t>(m_count));
+  for (const auto& part : parts) screened.insert(screened.end(), part.begin(), part.end());
+  std::vector<Eigen::Index> candidates = largest(screened, kde.screen_keep);
+  const std::vector<Eigen::Index> heaviest =
+      largest(std::vector<double>(weights.data(), weights.data() + m_count), kde.screen_keep);
+  std::vector<Eigen::Index> merged;
+  std::set_union(candidates.begin(), candidates.end(), heaviest.begin(), heaviest.end(),
+                 std::back_inserter(merged));
+  return merged;
+}
+
+}  // namespace
+
+double kde_score(const Eigen::MatrixXd& particles, const Eigen::VectorXd& weights,
+                 const KdeOptions& kde, int i) {
+  return exact_score(particles, weights, KdeKernel(kde, particles.rows(), particles.cols()), i);
+}
+
+int kde_argmax(const Eigen::MatrixXd& particles, const Eigen::VectorXd& weights,
+               const KdeOptions& kde, int threads) {
+  const Eigen::Index m_count = particles.cols();
+  const KdeKernel kernel(kde, particles.rows(), m_count);
+  std::vector<Eigen::Index> candidates;
+  if (m_count <= kde.exact_max_particles) {
+    candidates.resize(static_cast<std::size_t>(m_count));
+    for (Eigen::Index i = 0; i < m_count; ++i) candidates[static_cast<std::size_t>(i)] = i;
+  } else {
+    candidates = screened_candidates(particles, weights, kde, kernel, threads);
+  }
+  return best_of(particles, weights, kernel, candidates, threads).index;
 }
 
 }  // namespace somasim::body_schema

@@ -239,6 +239,66 @@ TEST(KdeArgmax, AnyThreadCountPicksTheSameParticle) {
             "body schema filter: estimate threads must be >= 1, got 0");
 }
 
+// Above the exhaustive limit the candidates are screened. On the clouds a filter produces (paper
+// schedule, likelihoods of two widths, three seeds, every frame of a movement) the screened pick
+// is the exhaustive one; a filter using screening converges as the exhaustive one does.
+TEST(KdeArgmax, ScreeningPicksTheExhaustiveArgmaxOnAFiltersClouds) {
+  constexpr int kParticles = 1200;
+  KdeOptions exhaustive;
+  exhaustive.exact_max_particles = kParticles;
+  KdeOptions screened = exhaustive;
+  screened.exact_max_particles = kParticles / 4;
+  int frames = 0;
+  int agree = 0;
+  for (const double width : {1.0, 3.0}) {
+    for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+      OffsetParticleFilter f(7, kParticles, noise_schedule_preset("paper"), seed, screened);
+      OffsetParticleFilter reference(7, kParticles, noise_schedule_preset("paper"), seed,
+                                     exhaustive);
+      for (int t = 0; t < 20; ++t) {
+        f.predict();
+        reference.predict();
+        const std::vector<double> l = synthetic_likelihoods(f, width);
+        Eigen::VectorXd w = Eigen::Map<const Eigen::VectorXd>(l.data(), kParticles);
+        w /= w.sum();
+        const int pick = kde_argmax(f.particles(), w, screened, 2);
+        agree += pick == kde_argmax(f.particles(), w, exhaustive, 2) ? 1 : 0;
+        ++frames;
+        EXPECT_EQ(f.update(l).best_particle, pick);
+        reference.update(synthetic_likelihoods(reference, width));
+      }
+      EXPECT_NEAR((f.estimate() - kTrueOffsets).norm(),
+                  (reference.estimate() - kTrueOffsets).norm(), 0.25 * width)
+          << "width " << width << ", seed " << seed;
+    }
+  }
+  EXPECT_EQ(frames, 120);
+  EXPECT_GE(agree, 117) << "of " << frames << " frames";
+}
+
+// The screen is the same for any thread count, and with every particle kept it is exhaustive.
+TEST(KdeArgmax, ScreeningIsDeterministicAndExhaustiveWhenEveryParticleIsKept) {
+  std::mt19937 rng(29);
+  std::normal_distribution<double> normal(0.0, 2.0);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int cloud = 0; cloud < 6; ++cloud) {
+    const int m = 600 + 97 * cloud;
+    Eigen::MatrixXd p(7, m);
+    for (Eigen::Index k = 0; k < p.size(); ++k) p.data()[k] = normal(rng);
+    Eigen::VectorXd w(m);
+    for (int i = 0; i < m; ++i) w[i] = cloud % 2 == 0 ? unit(rng) : std::pow(unit(rng), 8.0);
+    w /= w.sum();
+    KdeOptions screened;
+    screened.exact_max_particles = 100;
+    screened.screen_samples = 64;
+    const int serial = kde_argmax(p, w, screened, 1);
+    for (const int threads : {2, 3}) EXPECT_EQ(kde_argmax(p, w, screened, threads), serial);
+    KdeOptions all = screened;
+    all.screen_keep = m;
+    EXPECT_EQ(kde_argmax(p, w, all, 2), kde_argmax(p, w, KdeOptions{}, 1)) << "cloud " << cloud;
+  }
+}
+
 TEST(OffsetParticleFilter, Errors) {
   const NoiseSchedule s = noise_schedule_preset("paper");
   EXPECT_EQ(error_of([&] { OffsetParticleFilter(7, 0, s, 1); }),
@@ -256,6 +316,11 @@ TEST(OffsetParticleFilter, Errors) {
             "body schema filter: likelihood of particle 1 is -0.5 (expected finite and >= 0)");
   EXPECT_EQ(error_of([&] { f.set_particles(Eigen::MatrixXd::Zero(7, 4)); }),
             "body schema filter: particles must be 7 x 3, got 7 x 4");
+  KdeOptions no_keep;
+  no_keep.screen_keep = 0;
+  EXPECT_EQ(error_of([&] { OffsetParticleFilter(7, 10, s, 1, no_keep); }),
+            "body schema filter: KDE exact limit, screen samples and screen keep must be >= 1, "
+            "got 4096, 512 and 0");
 }
 
 }  // namespace

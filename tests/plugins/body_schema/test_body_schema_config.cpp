@@ -66,6 +66,9 @@ TEST(BodySchemaFilterConfig, EmbeddedBlocksAreCheckedByTheirOwnFields) {
                 .find("key 'params.kde_sigma_deg': value 0 "
                       "is out of range"),
             std::string::npos);
+  EXPECT_NE(error_of(filter_graph("kde_screen_keep: 0"))
+                .find("key 'params.kde_screen_keep': value 0 is out of range"),
+            std::string::npos);
   EXPECT_NE(error_of(filter_graph("contour_width: 3"))
                 .find("key 'params.contour_width': value 3 "
                       "is out of range"),

@@ -20,15 +20,37 @@ namespace somasim::body_schema {
 
 /// KDE smoothing of the estimate: ω'_i = ω_i + α (1/M) Σ_m ω_m K(β_i, β_m) with the Gaussian
 /// kernel K = exp(−½ ‖β_i − β_m‖² / σ²) / |Σ|, Σ = σ² I (σ in degrees; paper: σ = 1°, α = 500).
+///
+/// Up to `exact_max_particles` particles every ω'_i is computed (O(M²) kernel evaluations).
+/// Above it the candidates are screened first: the neighbour sum of every particle is estimated
+/// from `screen_samples` particles drawn by weight (systematic, fixed offset: no random draw),
+/// and ω' is computed exactly only for the `screen_keep` best screened particles and the
+/// `screen_keep` heaviest ones: O(M (S + K)). The screened pick is the exact argmax whenever the
+/// exact argmax is among those candidates, else a candidate of nearly the same score.
 struct KdeOptions {
   double sigma_deg = 1.0;  ///< σ_KDE [deg]
   double alpha = 500.0;
+  int exact_max_particles = 4096;  ///< largest M scored exhaustively (>= 1)
+  int screen_samples = 512;        ///< S: draws by weight estimating each neighbour sum (>= 1)
+  int screen_keep = 64;            ///< K: candidates of each kind scored exactly (>= 1)
 
-  /// The options as configuration fields (somasim/config.hpp): kde_sigma_deg, kde_alpha.
+  /// The options as configuration fields (somasim/config.hpp): kde_sigma_deg, kde_alpha,
+  /// kde_exact_max_particles, kde_screen_samples, kde_screen_keep.
   template <class V>
   void visit(V& v) {
     v.field("kde_sigma_deg", sigma_deg).unit("deg").at_least(1e-9).doc("σ_KDE of the estimate");
     v.field("kde_alpha", alpha).at_least(0.0).doc("α of the estimate's KDE");
+    v.field("kde_exact_max_particles", exact_max_particles)
+        .at_least(1)
+        .doc(
+            "up to this M every particle's KDE score is computed (O(M²)); above it candidates are "
+            "screened by kde_screen_samples draws and kde_screen_keep are scored exactly");
+    v.field("kde_screen_samples", screen_samples)
+        .at_least(1)
+        .doc("particles drawn by weight to screen the KDE's candidates (M above the exact limit)");
+    v.field("kde_screen_keep", screen_keep)
+        .at_least(1)
+        .doc("best screened and heaviest particles whose KDE score is computed exactly");
   }
 };
 
@@ -95,12 +117,18 @@ class OffsetParticleFilter {
 
 /// The particle (column of `particles`, dims × M [deg]) with the largest KDE-smoothed weight
 /// ω_i + α (1/M) Σ_m ω_m K(β_i, β_m) (KdeOptions; the lowest index wins ties): O(M²) kernel
-/// evaluations (bench_body_schema's BM_KdeArgmax measures it up to M = 10⁴). `threads` (>= 1)
-/// share the candidates i in contiguous ranges, each score computed exactly as with one thread,
-/// so the index is the same for any count; fewer threads run where M is small (at least 256
-/// candidates each).
+/// evaluations up to kde.exact_max_particles, screened candidates above (see KdeOptions;
+/// bench_body_schema's BM_KdeArgmax measures both up to M = 10⁴). `weights` sum to 1. `threads`
+/// (>= 1) share the candidates in contiguous ranges, each score computed exactly as with one
+/// thread, so the index is the same for any count; fewer threads run where M is small (at least
+/// 256 candidates each).
 int kde_argmax(const Eigen::MatrixXd& particles, const Eigen::VectorXd& weights,
                const KdeOptions& kde, int threads = 1);
+
+/// The KDE-smoothed weight ω_i + α (1/M) Σ_m ω_m K(β_i, β_m) of particle `i` (column of
+/// `particles`, dims × M [deg]; `weights` sum to 1): the score kde_argmax maximises.
+double kde_score(const Eigen::MatrixXd& particles, const Eigen::VectorXd& weights,
+                 const KdeOptions& kde, int i);
 
 /// Indices chosen by systematic resampling of normalised `weights` (sum 1) with the offset
 /// u0 in [0, 1/M): particle i is copied floor or ceil of M·w_i times, in index order.
