@@ -23,18 +23,6 @@ namespace {
 
 constexpr double kDeg = M_PI / 180.0;
 
-/// A posture drawn inside the limits, 10° clear of them, for every joint.
-Eigen::VectorXd random_posture(const somasim::robot::RobotModel& model, std::mt19937& rng) {
-  Eigen::VectorXd q(model.num_dofs());
-  for (int d = 0; d < model.num_dofs(); ++d) {
-    const double lo = model.lower_limits()[d] + 10 * kDeg;
-    const double hi = model.upper_limits()[d] - 10 * kDeg;
-    q[d] = lo < hi ? std::uniform_real_distribution<double>(lo, hi)(rng)
-                   : 0.5 * (model.lower_limits()[d] + model.upper_limits()[d]);
-  }
-  return q;
-}
-
 }  // namespace
 
 TEST(ComputedTorque, HoldsRandomPosturesUnderGravity) {

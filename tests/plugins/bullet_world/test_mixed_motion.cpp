@@ -5,7 +5,9 @@
 // are located errors.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <random>
 
 #include "somasim/robot/kinematics.hpp"
 #include "world_test_support.hpp"
@@ -151,6 +153,99 @@ TEST(MixedMotion, ABallLandingOnAKinematicForearmIsFeltAndDoesNotMoveIt) {
   EXPECT_GT(force, 1.0);  // a 0.2 kg ball at 2 m/s, stopped by the arm
   EXPECT_LT(moved, 1e-12);
   EXPECT_EQ(h.finish(), "");
+}
+
+// Generated mixes: kinematic subtrees (each drawn joint with every joint below it), some other
+// joints locked, a random posture, every free joint waving, motor constraints or computed
+// torques. Kinematic joints equal their commands; links behind dynamic joints only are the
+// forward kinematics of the joint state; links of kinematic groups are the forward kinematics of
+// their kinematic joints now and of the dynamic joints above them one step earlier (the
+// documented lag).
+TEST(MixedMotion, GeneratedMixesKeepKinematicJointsExactAndPosesConsistent) {
+  const auto model = icub();
+  const int n = model->num_dofs();
+  std::mt19937 rng(31);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  auto below = [&](int e, int d) {
+    const std::vector<int>& up =
+        model->supporting_dofs(model->joint(model->dof_joint(e)).child_link);
+    return std::find(up.begin(), up.end(), d) != up.end();
+  };
+  int mixed = 0;
+  for (int trial = 0; trial < 12; ++trial) {
+    std::vector<bool> kinematic(static_cast<std::size_t>(n), false);
+    std::vector<bool> locked(static_cast<std::size_t>(n), false);
+    for (int d = 0; d < n; ++d)
+      if (unit(rng) < 0.2)
+        for (int e = 0; e < n; ++e)
+          if (below(e, d)) kinematic[static_cast<std::size_t>(e)] = true;
+    std::string kinematic_names, locked_names;
+    for (int d = 0; d < n; ++d) {
+      const auto k = static_cast<std::size_t>(d);
+      if (!kinematic[k] && unit(rng) < 0.15) locked[k] = true;
+      std::string& list = kinematic[k] ? kinematic_names
+                          : locked[k]  ? locked_names
+                                       : kinematic_names;
+      if (kinematic[k] || locked[k])
+        list += (list.empty() ? "" : ", ") + model->joint(model->dof_joint(d)).name;
+    }
+    const bool any = !kinematic_names.empty();
+    const bool all = std::count(kinematic.begin(), kinematic.end(), true) +
+                         std::count(locked.begin(), locked.end(), true) ==
+                     n;
+    mixed += any && !all ? 1 : 0;
+    const Eigen::VectorXd q0 = random_posture(*model, rng);
+    Harness h(world_yaml("initial_posture_deg: " + posture_param(*model, q0) +
+                         ", kinematic_joints: [" + kinematic_names + "], locked_joints: [" +
+                         locked_names +
+                         "], joint_servo: " + (trial % 2 == 0 ? "constraint" : "computed_torque")));
+    auto& cmd = h.input<JointCommand>("cmd");
+    const auto& state = h.output<JointState>("world.joint_state");
+    const auto& poses = h.output<LinkPoses>("world.link_poses");
+    Eigen::VectorXd phase(n);
+    for (int d = 0; d < n; ++d) phase[d] = 2.0 * M_PI * unit(rng);
+    somasim::robot::RobotData fk_state(*model), fk_mixed(*model);
+    double exact = 0.0, dynamic_pose = 0.0, kinematic_pose = 0.0;
+    for (int step = 0; step < 300; ++step) {
+      const double t = step * 1e-3;
+      cmd = hold(q0);
+      for (int d = 0; d < n; ++d) {
+        const auto k = static_cast<std::size_t>(d);
+        if (locked[k]) {
+          cmd.mode[k] = JointCommandMode::kNone;
+          continue;
+        }
+        cmd.position[d] = q0[d] + 5 * kDeg * std::sin(4.0 * t + phase[d]);
+        cmd.velocity[d] = 20 * kDeg * std::cos(4.0 * t + phase[d]);
+      }
+      const Eigen::VectorXd before = state.position;
+      h.step();
+      for (int d = 0; d < n; ++d)
+        if (kinematic[static_cast<std::size_t>(d)])
+          exact = std::max(exact, std::abs(state.position[d] - cmd.position[d]));
+      if (step % 50 != 49) continue;
+      Eigen::VectorXd mixed_q = state.position;
+      for (int d = 0; d < n; ++d)
+        if (!kinematic[static_cast<std::size_t>(d)]) mixed_q[d] = before[d];
+      somasim::robot::forward_kinematics(*model, fk_state, state.position);
+      somasim::robot::forward_kinematics(*model, fk_mixed, mixed_q);
+      for (int i = 0; i < model->num_links(); ++i) {
+        const std::vector<int>& up = model->supporting_dofs(i);
+        const bool in_kinematic_group = std::any_of(
+            up.begin(), up.end(), [&](int d) { return kinematic[static_cast<std::size_t>(d)]; });
+        const auto& reference = in_kinematic_group ? fk_mixed : fk_state;
+        double& worst = in_kinematic_group ? kinematic_pose : dynamic_pose;
+        worst =
+            std::max(worst, (poses.poses[i].matrix() - reference.link_poses[i].matrix()).norm());
+      }
+    }
+    SCOPED_TRACE("kinematic [" + kinematic_names + "], locked [" + locked_names + "]");
+    EXPECT_LT(exact, 1e-12);
+    EXPECT_LT(dynamic_pose, 1e-9);
+    EXPECT_LT(kinematic_pose, 1e-9);
+    EXPECT_EQ(h.finish(), "");
+  }
+  EXPECT_GE(mixed, 8);  // most draws mix both kinds
 }
 
 TEST(MixedMotion, MixesThatCannotBeBuiltAreLocatedErrors) {

@@ -91,6 +91,18 @@ Eigen::VectorXd palm_up_posture(const RobotModel& model) {
   return q;
 }
 
+Eigen::VectorXd random_posture(const RobotModel& model, std::mt19937& rng) {
+  constexpr double kMargin = 10 * M_PI / 180.0;
+  Eigen::VectorXd q(model.num_dofs());
+  for (int d = 0; d < model.num_dofs(); ++d) {
+    const double lo = model.lower_limits()[d] + kMargin;
+    const double hi = model.upper_limits()[d] - kMargin;
+    q[d] = lo < hi ? std::uniform_real_distribution<double>(lo, hi)(rng)
+                   : 0.5 * (model.lower_limits()[d] + model.upper_limits()[d]);
+  }
+  return q;
+}
+
 somasim::ObjectSpawn sphere(std::uint64_t id, const std::string& name, double radius,
                             const Eigen::Vector3d& position, somasim::ObjectMotion motion) {
   somasim::ObjectSpawn s;

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <random>
 #include <string>
 
 #include <Eigen/Geometry>
@@ -29,6 +30,9 @@ std::string posture_param(const somasim::robot::RobotModel& model, const Eigen::
 Eigen::VectorXd rest_posture(const somasim::robot::RobotModel& model);
 /// The right palm facing up in front of the robot (IK on the right_arm chain).
 Eigen::VectorXd palm_up_posture(const somasim::robot::RobotModel& model);
+
+/// A posture drawn inside the limits, 10° clear of them, for every joint.
+Eigen::VectorXd random_posture(const somasim::robot::RobotModel& model, std::mt19937& rng);
 
 /// Joint values from named degrees (others from `base`).
 Eigen::VectorXd with_joints_deg(const somasim::robot::RobotModel& model, Eigen::VectorXd base,
