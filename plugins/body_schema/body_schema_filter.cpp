@@ -115,6 +115,8 @@ void BodySchemaFilter::Config::validate(ConfigChecks& checks) const {
                  scorer.inner_contours, "needs likelihood: edges");
   checks.require(!scorer.inner_contours || scorer.rasterizer == render::Rasterizer::kSoftware,
                  scorer.inner_contours, "needs rasterizer: software");
+  checks.require(!scorer.crease_contours || scorer.inner_contours, scorer.crease_contours,
+                 "needs edge_inner_contours: true");
   for (double m : compare_particles)
     checks.require(
         m >= 1.0 && m == std::floor(m) && m <= kMaxParticles, compare_particles,

@@ -87,6 +87,8 @@ HypothesisScorer::HypothesisScorer(std::shared_ptr<const robot::RobotModel> mode
     throw InputError("edge_inner_contours needs likelihood: edges");
   if (options.inner_contours && options.rasterizer != render::Rasterizer::kSoftware)
     throw InputError("edge_inner_contours needs rasterizer: software");
+  if (options.crease_contours && !options.inner_contours)
+    throw InputError("edge_crease_contours needs edge_inner_contours");
   if (mesh_link_.size() != arm.meshes.size())
     throw InputError(fmt::format("hypothesis scorer: {} meshes but {} mesh links",
                                  arm.meshes.size(), mesh_link_.size()));
@@ -131,6 +133,7 @@ std::vector<double> HypothesisScorer::score(const Eigen::VectorXd& q,
   render_options.contour = options_.kind == LikelihoodKind::kEdges;
   render_options.contour_width = options_.contour_width;
   render_options.inner_contours = options_.inner_contours;
+  render_options.crease_contours = options_.crease_contours;
   last_ = renderer_.render(batch_, render_options);
   timing_.render_ms = ms_since(t0);
 

@@ -171,6 +171,8 @@ HypothesisBatchResult HypothesisRenderer::render(const HypothesisBatch& batch,
     throw InputError("hypothesis batch: inner_contours needs contour");
   if (options.inner_contours && pool_->rasterizer != Rasterizer::kSoftware)
     throw InputError("hypothesis batch: inner_contours needs the software rasterizer");
+  if (options.crease_contours && !options.inner_contours)
+    throw InputError("hypothesis batch: crease_contours needs inner_contours");
   for (std::size_t m = 0; m < batch.meshes.size(); ++m)
     if (batch.meshes[m] >= bounds_.size())
       throw InputError(

@@ -2,8 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <map>
 #include <utility>
+
+#include <fmt/format.h>
+
+#include "somasim/error.hpp"
 
 namespace somasim::render {
 namespace {
@@ -50,19 +55,82 @@ bool closed_and_oriented(const TriangleMesh& mesh) {
   return true;
 }
 
+/// Per triangle of `mesh`, its smooth patch (0, 1, ... in order of first triangle): triangles
+/// sharing an edge are in one patch when their normals are less than kCreaseAngleDeg apart.
+std::vector<std::uint8_t> smooth_patches(const TriangleMesh& mesh, std::uint8_t& count) {
+  const std::size_t triangles = mesh.indices.size() / 3;
+  std::map<std::array<float, 3>, std::uint32_t> ids;
+  auto id = [&](std::uint32_t v) {
+    const Eigen::Vector3f& p = mesh.positions[v];
+    return ids
+        .emplace(std::array<float, 3>{p.x(), p.y(), p.z()}, static_cast<std::uint32_t>(ids.size()))
+        .first->second;
+  };
+  std::vector<Eigen::Vector3f> normal(triangles);
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::size_t>> edges;
+  for (std::size_t t = 0; t < triangles; ++t) {
+    const Eigen::Vector3f& a = mesh.positions[mesh.indices[3 * t]];
+    normal[t] = (mesh.positions[mesh.indices[3 * t + 1]] - a)
+                    .cross(mesh.positions[mesh.indices[3 * t + 2]] - a)
+                    .normalized();
+    for (std::size_t i = 0; i < 3; ++i) {
+      const std::uint32_t p = id(mesh.indices[3 * t + i]);
+      const std::uint32_t q = id(mesh.indices[3 * t + (i + 1) % 3]);
+      edges[{std::min(p, q), std::max(p, q)}].push_back(t);
+    }
+  }
+  std::vector<std::size_t> parent(triangles);
+  for (std::size_t t = 0; t < triangles; ++t) parent[t] = t;
+  auto root = [&](std::size_t t) {
+    while (parent[t] != t) t = parent[t] = parent[parent[t]];
+    return t;
+  };
+  const float smooth = static_cast<float>(std::cos(kCreaseAngleDeg * M_PI / 180.0));
+  for (const auto& [edge, sharing] : edges)
+    for (std::size_t i = 1; i < sharing.size(); ++i)
+      if (normal[sharing[0]].dot(normal[sharing[i]]) > smooth)
+        parent[root(sharing[i])] = root(sharing[0]);
+  std::map<std::size_t, std::uint8_t> patch_of_root;
+  std::vector<std::uint8_t> patch(triangles);
+  for (std::size_t t = 0; t < triangles; ++t) {
+    const std::size_t r = root(t);
+    const auto found = patch_of_root.find(r);
+    if (found != patch_of_root.end()) {
+      patch[t] = found->second;
+      continue;
+    }
+    const auto next = static_cast<std::uint8_t>(std::min<std::size_t>(patch_of_root.size(), 254));
+    patch_of_root.emplace(r, next);
+    patch[t] = next;
+  }
+  count = static_cast<std::uint8_t>(std::min<std::size_t>(patch_of_root.size(), 255));
+  return patch;
+}
+
 }  // namespace
 
 SoftwareTiler::SoftwareTiler(const std::vector<TriangleMesh>& meshes) : meshes_(meshes) {
-  for (const TriangleMesh& mesh : meshes_) closed_.push_back(closed_and_oriented(mesh));
+  for (const TriangleMesh& mesh : meshes_) {
+    closed_.push_back(closed_and_oriented(mesh));
+    double volume = 0.0;  // six times the signed volume: > 0 when wound outward
+    for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3)
+      volume += mesh.positions[mesh.indices[t]].cast<double>().dot(
+          mesh.positions[mesh.indices[t + 1]].cast<double>().cross(
+              mesh.positions[mesh.indices[t + 2]].cast<double>()));
+    outward_.push_back(volume > 0.0);
+    std::uint8_t count = 0;
+    patches_.push_back(smooth_patches(mesh, count));
+    patch_count_.push_back(count);
+  }
 }
 
 template <class Span>
 void SoftwareTiler::for_each_span(const std::array<long long, 3>& x,
-                                  const std::array<long long, 3>& y, bool cull_negative,
+                                  const std::array<long long, 3>& y, int skip_sign,
                                   const cv::Rect& roi, Span&& span) {
   // Orient counter-clockwise in (x right, y down) so that the inside is E >= 0 for every edge.
   const long long area = (x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]);
-  if (area == 0 || (area < 0 && cull_negative)) return;
+  if (area == 0 || (skip_sign < 0 && area < 0) || (skip_sign > 0 && area > 0)) return;
   std::array<int, 3> order = {0, 1, 2};
   if (area < 0) std::swap(order[1], order[2]);
   // Edge i from vertex order[i] to order[i+1]: E(px, py) = a px + b py + c.
@@ -105,7 +173,7 @@ void SoftwareTiler::for_each_span(const std::array<long long, 3>& x,
 
 void SoftwareTiler::draw_labelled(const std::array<Eigen::Vector3d, 3>& triangle,
                                   const PinholeIntrinsics& k, const cv::Rect& roi,
-                                  std::uint8_t label) {
+                                  std::uint8_t label, int skip_sign) {
   // 1 / z is affine in pixel coordinates (u, v): fit the plane through the three vertices.
   std::array<long long, 3> x{}, y{};
   std::array<double, 3> u{}, v{}, w{};
@@ -124,7 +192,7 @@ void SoftwareTiler::draw_labelled(const std::array<Eigen::Vector3d, 3>& triangle
   // Coincident faces of two meshes (a finger's end on the palm's face) keep the first drawn:
   // a later surface must be nearer by more than this fraction of the depth.
   constexpr double kNearerBy = 1e-5;
-  for_each_span(x, y, /*cull_negative=*/false, roi, [&](int r, int lo, int hi) {
+  for_each_span(x, y, skip_sign, roi, [&](int r, int lo, int hi) {
     auto* labels = labels_.ptr<std::uint8_t>(r - roi.y);
     auto* depth = inverse_depth_.ptr<float>(r - roi.y);
     for (int c = lo; c <= hi; ++c) {
@@ -140,6 +208,14 @@ void SoftwareTiler::draw_labelled(const std::array<Eigen::Vector3d, 3>& triangle
 void SoftwareTiler::render(const HypothesisBatch& batch, const std::vector<cv::Rect>& rois,
                            std::size_t begin, std::size_t end,
                            const HypothesisBatchOptions& options, std::vector<CameraTiles>& out) {
+  if (options.crease_contours) {
+    int patches = 0;
+    for (const std::size_t mesh : batch.meshes) patches += patch_count_[mesh];
+    if (patches > 255)
+      throw InputError(fmt::format(
+          "hypothesis batch: crease_contours: the meshes have {} smooth patches, at most 255",
+          patches));
+  }
   for (std::size_t h = begin; h < end; ++h)
     for (std::size_t cam = 0; cam < batch.cameras.size(); ++cam) {
       const Camera& camera = batch.cameras[cam];
@@ -155,12 +231,25 @@ void SoftwareTiler::render(const HypothesisBatch& batch, const std::vector<cv::R
         inverse_depth_.setTo(0.0F);
       }
       const Eigen::Isometry3d root_to_camera = camera.pose_root.inverse();
+      int first_label = 1;  // of the mesh's first patch (creases) or of the mesh
       for (std::size_t m = 0; m < batch.meshes.size(); ++m) {
         const TriangleMesh& mesh = meshes_[batch.meshes[m]];
         const bool cull = closed_[batch.meshes[m]];  // half the triangles cover a closed mesh
-        const auto label = static_cast<std::uint8_t>(m + 1);
+        const std::vector<std::uint8_t>& patch = patches_[batch.meshes[m]];
+        auto label_of = [&](std::size_t t) {
+          return static_cast<std::uint8_t>(first_label +
+                                           (options.crease_contours ? patch[t / 3] : 0));
+        };
+        first_label += options.crease_contours ? patch_count_[batch.meshes[m]] : 1;
+        // Creases tell a closed mesh's faces apart: its back faces, never seen, are not drawn
+        // (where rounding let one win a pixel it would draw a crease that is not there).
+        // A triangle facing the camera has its normal toward -z: a negative area on screen (x
+        // right, y down) when the mesh winds counter-clockwise seen from outside.
+        const int skip_back = !(options.crease_contours && cull) ? 0
+                              : outward_[batch.meshes[m]]        ? 1
+                                                                 : -1;
         auto fill = [&](const std::array<long long, 3>& x, const std::array<long long, 3>& y) {
-          for_each_span(x, y, cull, roi, [&](int r, int lo, int hi) {
+          for_each_span(x, y, cull ? -1 : 0, roi, [&](int r, int lo, int hi) {
             std::uint8_t* row = tile_.ptr<std::uint8_t>(r - roi.y);
             std::fill(row + (lo - roi.x), row + (hi - roi.x) + 1, std::uint8_t{255});
           });
@@ -182,7 +271,7 @@ void SoftwareTiler::render(const HypothesisBatch& batch, const std::vector<cv::R
           if (in_front == 0) continue;
           if (in_front == 3) {
             if (labelled) {
-              draw_labelled(tri, k, roi, label);
+              draw_labelled(tri, k, roi, label_of(t), skip_back);
               continue;
             }
             std::array<long long, 3> x{}, y{};
@@ -201,7 +290,8 @@ void SoftwareTiler::render(const HypothesisBatch& batch, const std::vector<cv::R
           }
           for (std::size_t i = 1; i + 1 < polygon.size(); ++i) {
             if (labelled) {
-              draw_labelled({polygon[0], polygon[i], polygon[i + 1]}, k, roi, label);
+              draw_labelled({polygon[0], polygon[i], polygon[i + 1]}, k, roi, label_of(t),
+                            skip_back);
               continue;
             }
             std::array<long long, 3> x{}, y{};

@@ -109,7 +109,7 @@ TEST(HypothesisScorer, InnerContoursOutlineThePrimitivesInsideTheHand) {
   options.inner_contours = true;
   HypothesisScorer inner(icub(), per_primitive, arm_dofs(), 1, options);
   const Eigen::MatrixXd particles = candidate_particles();
-  const std::vector<double> lo = outer.score(q, particles, eyes.cameras, distances);
+  outer.score(q, particles, eyes.cameras, distances);
   const std::vector<double> li = inner.score(q, particles, eyes.cameras, distances);
   for (std::size_t c = 0; c < eyes.cameras.size(); ++c)
     EXPECT_GT(cv::countNonZero(inner.last_batch().cameras[c].tiles[0]),
@@ -122,7 +122,26 @@ TEST(HypothesisScorer, InnerContoursOutlineThePrimitivesInsideTheHand) {
   int better = 0;
   for (std::size_t m = 2; m < li.size(); ++m) better += li[m] > li[0] ? 1 : 0;
   EXPECT_LE(better, 2);
-  EXPECT_EQ(lo.size(), li.size());
+
+  // Creases too (the palm box's edges, the fingers' rims): more contour, the truth still best.
+  options.crease_contours = true;
+  HypothesisScorer creased(icub(), per_primitive, arm_dofs(), 1, options);
+  const std::vector<double> lc = creased.score(q, particles, eyes.cameras, distances);
+  for (std::size_t c = 0; c < eyes.cameras.size(); ++c)
+    EXPECT_GT(cv::countNonZero(creased.last_batch().cameras[c].tiles[0]),
+              cv::countNonZero(inner.last_batch().cameras[c].tiles[0]) + 20)
+        << "camera " << c;
+  std::printf("edge L with creases: truth %.4f, nominal %.4f, 2 deg off:", lc[0], lc[1]);
+  for (std::size_t m = 2; m < lc.size(); ++m) std::printf(" %.4f", lc[m]);
+  std::printf("\n");
+  EXPECT_LT(lc[1], 0.6 * lc[0]);
+  better = 0;
+  for (std::size_t m = 2; m < lc.size(); ++m) better += lc[m] > lc[0] ? 1 : 0;
+  EXPECT_LE(better, 2);
+  options.inner_contours = false;
+  EXPECT_THROW(HypothesisScorer(icub(), per_primitive, arm_dofs(), 1, options), InputError);
+  options.inner_contours = true;
+  options.crease_contours = false;
 
   ScorerOptions gl = options;
   gl.rasterizer = render::Rasterizer::kGl;

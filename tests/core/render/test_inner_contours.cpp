@@ -1,8 +1,11 @@
 // Inner contours of hypothesis tiles (the software rasterizer with a depth test): generated
 // scenes of a small box in front of, behind or flush with a larger one, checked against the
-// small box's own outline, and the errors for options that cannot draw them.
+// small box's own outline; creases of a box at generated poses against its visible edges and of
+// a faceted cylinder against its rims; the errors for options that cannot draw them.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <functional>
 #include <random>
 #include <string>
@@ -39,6 +42,12 @@ HypothesisBatchOptions contours(bool inner) {
   HypothesisBatchOptions o;
   o.contour = true;
   o.inner_contours = inner;
+  return o;
+}
+
+HypothesisBatchOptions creases() {
+  HypothesisBatchOptions o = contours(true);
+  o.crease_contours = true;
   return o;
 }
 
@@ -149,7 +158,7 @@ TEST(InnerContours, AnOccludedOrFlushMeshAddsNoOutlineOfItsOwn) {
 }
 
 // The depth test, not the triangles' winding, decides what is seen: the same boxes wound the
-// other way give the same tiles.
+// other way give the same tiles, with creases too (their back faces are told by the winding).
 TEST(InnerContours, TheSameTilesWhicheverWayTheMeshesWind) {
   std::vector<TriangleMesh> meshes = {tessellate_box(Eigen::Vector3d(0.06, 0.05, 0.02)),
                                       tessellate_box(Eigen::Vector3d(0.012, 0.012, 0.03))};
@@ -163,10 +172,112 @@ TEST(InnerContours, TheSameTilesWhicheverWayTheMeshesWind) {
   for (int k = 0; k < 20; ++k) {
     const Scene s = generated_scene(rng, k % 2 == 0 ? -kApart : kApart);
     HypothesisBatch batch{{0, 1}, {{s.big, s.small}}, {eye()}};
-    const cv::Mat ta = a.render(batch, contours(true)).cameras[0].tiles[0];
-    const cv::Mat tb = b.render(batch, contours(true)).cameras[0].tiles[0];
-    EXPECT_EQ(cv::countNonZero(ta != tb), 0) << "case " << k;
+    for (const HypothesisBatchOptions& options : {contours(true), creases()}) {
+      const cv::Mat ta = a.render(batch, options).cameras[0].tiles[0];
+      const cv::Mat tb = b.render(batch, options).cameras[0].tiles[0];
+      EXPECT_EQ(cv::countNonZero(ta != tb), 0)
+          << "case " << k << (options.crease_contours ? ", creases" : "");
+    }
   }
+}
+
+// A camera-frame point's pixel coordinates.
+Eigen::Vector2d project(const Camera& camera, const Eigen::Vector3d& root_point) {
+  const Eigen::Vector3d p = camera.pose_root.inverse() * root_point;
+  const PinholeIntrinsics& k = camera.intrinsics;
+  return {k.fx * p.x() / p.z() + k.cx, k.fy * p.y() / p.z() + k.cy};
+}
+
+double distance_to_segment(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
+                           const Eigen::Vector2d& b) {
+  const Eigen::Vector2d ab = b - a;
+  const double t = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+  return (p - (a + t * ab)).norm();
+}
+
+// A box at generated poses: the crease pixels lie on the projections of its edges between two
+// faces that both face the camera, and they draw most of those edges' length.
+TEST(InnerContours, CreasesOutlineTheVisibleEdgesOfABox) {
+  const Eigen::Vector3d size(0.06, 0.04, 0.03);
+  const std::vector<TriangleMesh> meshes = {tessellate_box(size)};
+  HypothesisRenderer renderer(meshes, 1, RenderBackend::kOsmesa, Rasterizer::kSoftware);
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const Camera camera = eye();
+  int with_creases = 0;
+  for (int k = 0; k < 30; ++k) {
+    const Eigen::Isometry3d box =
+        pose(Eigen::Vector3d(0.3 + 0.05 * u(rng), 0.04 * u(rng), 0.03 * u(rng)),
+             Eigen::Vector3d(1.2 * u(rng), 1.2 * u(rng), 1.2 * u(rng)));
+    HypothesisBatch batch{{0}, {{box}}, {camera}};
+    const std::vector<cv::Point> extra = added(renderer.render(batch, contours(true)).cameras[0],
+                                               renderer.render(batch, creases()).cameras[0]);
+    // Edges: along axis a at the corners (±, ±) of the other two; its faces' normals ±e_b, ±e_c.
+    std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> visible;
+    double visible_px = 0.0;
+    const Eigen::Vector3d eye_position = camera.pose_root.translation();
+    for (int a = 0; a < 3; ++a) {
+      const int b = (a + 1) % 3, c = (a + 2) % 3;
+      for (const double sb : {-1.0, 1.0})
+        for (const double sc : {-1.0, 1.0}) {
+          auto faces_camera = [&](int axis, double sign) {
+            Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+            centre[axis] = sign * 0.5 * size[axis];
+            const Eigen::Vector3d normal = box.linear().col(axis) * sign;
+            return normal.dot(eye_position - box * centre) > 0.0;
+          };
+          if (!faces_camera(b, sb) || !faces_camera(c, sc)) continue;
+          Eigen::Vector3d p = Eigen::Vector3d::Zero();
+          p[b] = sb * 0.5 * size[b];
+          p[c] = sc * 0.5 * size[c];
+          Eigen::Vector3d q = p;
+          p[a] = -0.5 * size[a];
+          q[a] = 0.5 * size[a];
+          visible.emplace_back(project(camera, box * p), project(camera, box * q));
+          visible_px += (visible.back().second - visible.back().first).norm();
+        }
+    }
+    for (const cv::Point& px : extra) {
+      double nearest = 1e9;
+      for (const auto& [p, q] : visible)
+        nearest = std::min(nearest, distance_to_segment(Eigen::Vector2d(px.x, px.y), p, q));
+      EXPECT_LT(nearest, 1.5) << "case " << k << ": crease pixel " << px << " on no visible edge";
+    }
+    EXPECT_GT(static_cast<double>(extra.size()), 0.5 * visible_px - 12.0) << "case " << k;
+    with_creases += extra.empty() ? 0 : 1;
+  }
+  EXPECT_GE(with_creases, 25);
+}
+
+// An 8-sided cylinder seen from the side: its sides meet at 45°, below the crease angle, so no
+// line runs along it; its rims (90°) are creases.
+TEST(InnerContours, ACylindersSidesAreOneSmoothPatch) {
+  const double length = 0.08;
+  const std::vector<TriangleMesh> meshes = {tessellate_cylinder(0.012, length, 8)};
+  HypothesisRenderer renderer(meshes, 1, RenderBackend::kOsmesa, Rasterizer::kSoftware);
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const Camera camera = eye();
+  int rim_pixels = 0;
+  for (int k = 0; k < 20; ++k) {
+    // Axis across the view (root y), tilted up to ~30° toward the camera, spun about itself.
+    const Eigen::Isometry3d cylinder =
+        pose(Eigen::Vector3d(0.3, 0.03 * u(rng), 0.03 * u(rng)), Eigen::Vector3d::Zero()) *
+        pose(Eigen::Vector3d::Zero(), Eigen::Vector3d(0.0, 0.0, 0.5 * u(rng))) *
+        pose(Eigen::Vector3d::Zero(), Eigen::Vector3d(M_PI / 2, 0.0, 0.0)) *
+        pose(Eigen::Vector3d::Zero(), Eigen::Vector3d(0.0, 0.0, M_PI * u(rng)));
+    HypothesisBatch batch{{0}, {{cylinder}}, {camera}};
+    const Eigen::Vector2d a = project(camera, cylinder * Eigen::Vector3d(0, 0, -length / 2));
+    const Eigen::Vector2d b = project(camera, cylinder * Eigen::Vector3d(0, 0, length / 2));
+    for (const cv::Point& px : added(renderer.render(batch, contours(true)).cameras[0],
+                                     renderer.render(batch, creases()).cameras[0])) {
+      const double t = (Eigen::Vector2d(px.x, px.y) - a).dot(b - a) / (b - a).squaredNorm();
+      EXPECT_GT(std::abs(t - 0.5), 0.25)
+          << "case " << k << ": crease pixel " << px << " in the middle of the cylinder";
+      ++rim_pixels;
+    }
+  }
+  EXPECT_GT(rim_pixels, 100);  // the rims facing the camera
 }
 
 TEST(InnerContours, LabelledBoundariesTakeTheNearerSide) {
@@ -191,4 +302,8 @@ TEST(InnerContours, Errors) {
   silhouettes.inner_contours = true;
   EXPECT_EQ(error_of([&] { software.render(batch, silhouettes); }),
             "hypothesis batch: inner_contours needs contour");
+  HypothesisBatchOptions outer_only = contours(false);
+  outer_only.crease_contours = true;
+  EXPECT_EQ(error_of([&] { software.render(batch, outer_only); }),
+            "hypothesis batch: crease_contours needs inner_contours");
 }

@@ -59,6 +59,11 @@ TEST(BodySchemaFilterConfig, CrossFieldChecksAreLocated) {
   EXPECT_EQ(error_of(filter_graph("likelihood: edges, edge_inner_contours: true")),
             "<inline>:7:54: node 'filter', key 'params.edge_inner_contours': needs rasterizer: "
             "software");
+  EXPECT_NE(error_of(filter_graph("likelihood: edges, rasterizer: software, "
+                                  "edge_crease_contours: true"))
+                .find("node 'filter', key 'params.edge_crease_contours': needs "
+                      "edge_inner_contours: true"),
+            std::string::npos);
 }
 
 TEST(BodySchemaFilterConfig, EmbeddedBlocksAreCheckedByTheirOwnFields) {

@@ -69,13 +69,16 @@ struct ScorerOptions {
   /// edges: also score the hypotheses' inner contours, where one collision primitive occludes
   /// another (render::HypothesisBatchOptions::inner_contours; the software rasterizer only).
   bool inner_contours = false;
+  /// edges, with inner_contours: also the creases inside each primitive (a box's edges, a
+  /// cylinder's rims; render::HypothesisBatchOptions::crease_contours).
+  bool crease_contours = false;
   /// How the hypotheses' tiles are drawn: GL (exact) or the CPU rasterizer (no GL, equal but for
   /// rare edge pixels, several times faster; render/hypothesis_batch.hpp).
   render::Rasterizer rasterizer = render::Rasterizer::kGl;
 
   /// The options as configuration fields (somasim/config.hpp), for plugins that embed them:
   /// likelihood, silhouette_form, silhouette_power, edge_lambda, edge_orientation_weight,
-  /// edge_inner_contours, margin_px, contour_width, rasterizer.
+  /// edge_inner_contours, edge_crease_contours, margin_px, contour_width, rasterizer.
   template <class V>
   void visit(V& v) {
     v.field("likelihood", kind)
@@ -102,6 +105,10 @@ struct ScorerOptions {
             "edges: the hypotheses drawn per collision primitive with a depth test, their "
             "contours including where one primitive occludes another (a thumb over the palm); "
             "needs rasterizer: software");
+    v.field("edge_crease_contours", crease_contours)
+        .doc(
+            "edges, with edge_inner_contours: the contours also include each primitive's creases "
+            "(the palm box's edges, the fingers' rims: faces meeting at 60 deg or more)");
     v.field("margin_px", margin_px).range(0, 1000).doc("ROI margin [px]");
     v.field("contour_width", contour_width).range(1, 2).doc("edges: [px]");
     v.field("rasterizer", rasterizer)

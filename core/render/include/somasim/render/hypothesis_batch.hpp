@@ -73,6 +73,10 @@ struct HypothesisBatchOptions {
   /// pixel of mesh a with a 4-neighbour of mesh b is a contour pixel when a is nearer there
   /// (one px wide, on the occluding side; see inner_contour()). Software rasterizer only.
   bool inner_contours = false;
+  /// With `inner_contours`: also the creases inside one mesh, where its smooth patches meet
+  /// (faces at 60° or more: a box's edges, a cylinder's rims), on the nearer side, 1 px. Every
+  /// hypothesis' meshes together may have at most 255 patches.
+  bool crease_contours = false;
 };
 
 /// The tiles of one camera.
