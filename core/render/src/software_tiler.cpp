@@ -29,12 +29,9 @@ long long snapped(double pixel) {
   return static_cast<long long>(std::floor((pixel + 0.5) * kGrid + 0.5));
 }
 
-/// True when every edge of `mesh` is shared by exactly two triangles that run along it in
-/// opposite directions: then the triangles of either winding cover its whole projection.
-
-bool closed_and_oriented(const TriangleMesh& mesh) {
-  // Vertices by position (meshes repeat positions with other normals), then every directed edge
-  // must be met once in each direction.
+/// Per vertex of `mesh`, an id shared by the vertices at the same position (meshes repeat
+/// positions with other normals).
+std::vector<std::uint32_t> position_ids(const TriangleMesh& mesh) {
   std::map<std::array<float, 3>, std::uint32_t> ids;
   std::vector<std::uint32_t> id(mesh.positions.size());
   for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
@@ -43,6 +40,14 @@ bool closed_and_oriented(const TriangleMesh& mesh) {
                         static_cast<std::uint32_t>(ids.size()))
                 .first->second;
   }
+  return id;
+}
+
+/// True when every edge of `mesh` is shared by exactly two triangles that run along it in
+/// opposite directions: then the triangles of either winding cover its whole projection.
+bool closed_and_oriented(const TriangleMesh& mesh) {
+  // Every directed edge between positions must be met once in each direction.
+  const std::vector<std::uint32_t> id = position_ids(mesh);
   std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
   for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3)
     for (std::size_t i = 0; i < 3; ++i)
@@ -59,13 +64,7 @@ bool closed_and_oriented(const TriangleMesh& mesh) {
 /// sharing an edge are in one patch when their normals are less than kCreaseAngleDeg apart.
 std::vector<std::uint8_t> smooth_patches(const TriangleMesh& mesh, std::uint8_t& count) {
   const std::size_t triangles = mesh.indices.size() / 3;
-  std::map<std::array<float, 3>, std::uint32_t> ids;
-  auto id = [&](std::uint32_t v) {
-    const Eigen::Vector3f& p = mesh.positions[v];
-    return ids
-        .emplace(std::array<float, 3>{p.x(), p.y(), p.z()}, static_cast<std::uint32_t>(ids.size()))
-        .first->second;
-  };
+  const std::vector<std::uint32_t> id = position_ids(mesh);
   std::vector<Eigen::Vector3f> normal(triangles);
   std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::size_t>> edges;
   for (std::size_t t = 0; t < triangles; ++t) {
@@ -74,8 +73,8 @@ std::vector<std::uint8_t> smooth_patches(const TriangleMesh& mesh, std::uint8_t&
                     .cross(mesh.positions[mesh.indices[3 * t + 2]] - a)
                     .normalized();
     for (std::size_t i = 0; i < 3; ++i) {
-      const std::uint32_t p = id(mesh.indices[3 * t + i]);
-      const std::uint32_t q = id(mesh.indices[3 * t + (i + 1) % 3]);
+      const std::uint32_t p = id[mesh.indices[3 * t + i]];
+      const std::uint32_t q = id[mesh.indices[3 * t + (i + 1) % 3]];
       edges[{std::min(p, q), std::max(p, q)}].push_back(t);
     }
   }
