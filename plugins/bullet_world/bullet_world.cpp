@@ -189,8 +189,13 @@ void BulletWorld::configure(NodeContext& ctx) {
       throw InputError(
           "kinematic_joints needs joint_motion: dynamic (joint_motion: kinematic already moves "
           "every joint that is not locked kinematically)");
-    kinematic = kinematic_dofs(*model_, locked, config_.joint_motion == JointMotion::kKinematic,
-                               parse_joint_set(config_.kinematic_joints, *model_));
+    // 'all' means every joint not locked, as joint_motion: kinematic does.
+    const bool all = config_.joint_motion == JointMotion::kKinematic ||
+                     std::find(config_.kinematic_joints.begin(), config_.kinematic_joints.end(),
+                               "all") != config_.kinematic_joints.end();
+    kinematic = kinematic_dofs(
+        *model_, locked, all,
+        all ? std::vector<bool>{} : parse_joint_set(config_.kinematic_joints, *model_));
   } catch (const InputError& e) {
     config_error(ctx, config_, config_.kinematic_joints, e.what());
   }

@@ -272,4 +272,6 @@ TEST(MixedMotion, MixesThatCannotBeBuiltAreLocatedErrors) {
   // A kinematic wrist under a dynamic arm, and every joint kinematic, are fine.
   EXPECT_EQ(message("kinematic_joints: [l_wrist_pitch, l_wrist_yaw]"), "<no exception>");
   EXPECT_EQ(message("kinematic_joints: [all]"), "<no exception>");
+  EXPECT_EQ(message("kinematic_joints: [all], locked_joints: [torso_pitch, l_elbow]"),
+            "<no exception>");  // 'all': every joint not locked
 }
