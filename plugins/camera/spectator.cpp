@@ -35,6 +35,9 @@ void Spectator::Config::visit(V& v) {
       .doc(
           "segments around each taxel's sphere (segments² / 2 triangles; 4, an octahedron, is "
           "enough for taxels a few pixels across and draws a quarter of the triangles of 8)");
+  v.field("resolution", resolution)
+      .range(3, 256)
+      .doc("segments around the robot's curved primitives (spheres, cylinders, capsules)");
   v.field("backend", backend).doc("OpenGL back end (as the camera's)");
   v.field("asynchronous", asynchronous)
       .doc(
@@ -126,7 +129,9 @@ void Spectator::configure(NodeContext& ctx) {
 
 void Spectator::make_gl_objects(render::RenderContext& context) {
   renderer_ = std::make_unique<render::SceneRenderer>(context.gl());
-  scene_ = std::make_unique<render::RobotScene>(*renderer_, model_);
+  render::RobotSceneOptions scene_options;
+  scene_options.segments = config_.resolution;
+  scene_ = std::make_unique<render::RobotScene>(*renderer_, model_, scene_options);
   taxel_mesh_ =
       renderer_->upload(render::tessellate_sphere(config_.taxel_radius, config_.taxel_segments));
 }

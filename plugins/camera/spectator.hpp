@@ -35,6 +35,7 @@ class Spectator : public Plugin {
     int height = 480;                                 // [px]
     double taxel_radius = 0.004;                      // [m]
     int taxel_segments = 8;  // around each taxel's sphere (its triangles: segments² / 2)
+    int resolution = 24;     // segments of the robot's curved primitives
     render::RenderBackend backend = render::RenderBackend::kOsmesa;
     bool asynchronous = false;
     template <class V>

@@ -1,7 +1,9 @@
 // PNG and SVG output, PNG input and the default palette.
+#include <exception>
 #include <fstream>
 #include <string_view>
 #include <system_error>
+#include <thread>
 
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -67,8 +69,9 @@ void save_png(const Image& image, const std::filesystem::path& path) {
     throw InputError("cannot write PNG file '" + path.string() + "': the image is empty or its " +
                      "pixel buffer does not match its size");
   std::vector<std::uint8_t> bytes;
-  // Fixed compression level: identical pixels give identical bytes.
-  cv::imencode(".png", to_bgr_mat(image), bytes, {cv::IMWRITE_PNG_COMPRESSION, 6});
+  // Fixed compression level: identical pixels give identical bytes. Level 1 (zlib's fastest):
+  // figures are flat colours and text, which it packs nearly as well as the slower levels.
+  cv::imencode(".png", to_bgr_mat(image), bytes, {cv::IMWRITE_PNG_COMPRESSION, 1});
   write_whole_file(path, {reinterpret_cast<const char*>(bytes.data()), bytes.size()}, "PNG");
 }
 
@@ -80,12 +83,31 @@ void save_svg(const Figure& figure, const std::filesystem::path& path) {
 }
 
 void save_figure(const Figure& figure, const std::filesystem::path& png_path) {
-  save_png(figure.image, png_path);
-  if (figure.drawing) {
-    std::filesystem::path svg = png_path;
-    svg.replace_extension(".svg");
-    save_svg(figure, svg);
+  if (!figure.drawing) {
+    save_png(figure.image, png_path);
+    return;
   }
+  std::filesystem::path svg = png_path;
+  svg.replace_extension(".svg");
+  // The PNG is encoded on a thread of its own while this one writes the SVG (both are
+  // compression-bound); the PNG's error, if any, is reported first, as if written first.
+  std::exception_ptr png_error;
+  std::thread png_writer([&] {
+    try {
+      save_png(figure.image, png_path);
+    } catch (...) {
+      png_error = std::current_exception();
+    }
+  });
+  std::exception_ptr svg_error;
+  try {
+    save_svg(figure, svg);
+  } catch (...) {
+    svg_error = std::current_exception();
+  }
+  png_writer.join();
+  if (png_error) std::rethrow_exception(png_error);
+  if (svg_error) std::rethrow_exception(svg_error);
 }
 
 Image load_png(const std::filesystem::path& path) {

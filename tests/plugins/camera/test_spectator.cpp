@@ -137,6 +137,31 @@ TEST(Spectator, AsynchronousPublishesEachFrameOneStepLaterPixelForPixel) {
   }
 }
 
+// `resolution` tessellates the robot's curved primitives: a coarse robot differs from the
+// default one along the outlines of its cylinders and spheres only.
+TEST(Spectator, ResolutionTessellatesTheRobotsCurvedPrimitives) {
+  auto render = [&](const std::string& resolution) {
+    Harness h(graph("width: 320, height: 240" + resolution));
+    feed(h);
+    h.step(1);
+    cv::Mat rgb = h.output<RgbImage>("view.rgb").data.clone();
+    EXPECT_EQ(h.finish(), "");
+    return rgb;
+  };
+  const cv::Mat fine = render(""), coarse = render(", resolution: 6"),
+                same = render(", resolution: 24");
+  EXPECT_EQ(cv::norm(fine, same, cv::NORM_INF), 0.0);  // 24 is the default
+  int changed = 0, robot = 0;  // pixels that differ; pixels of the robot (not background)
+  const cv::Vec3b background = fine.at<cv::Vec3b>(0, 0);
+  for (int r = 0; r < fine.rows; ++r)
+    for (int c = 0; c < fine.cols; ++c) {
+      changed += fine.at<cv::Vec3b>(r, c) != coarse.at<cv::Vec3b>(r, c) ? 1 : 0;
+      robot += fine.at<cv::Vec3b>(r, c) != background ? 1 : 0;
+    }
+  EXPECT_GT(changed, 50);
+  EXPECT_LT(changed, robot / 2) << "changed " << changed << " of the robot's " << robot << " px";
+}
+
 TEST(RenderWorker, AJobsErrorReachesWaitOnceAndTheWorkerGoesOn) {
   somasim::plugins::RenderWorker worker(somasim::render::RenderBackend::kOsmesa);
   int ran = 0;
@@ -181,4 +206,5 @@ TEST(Spectator, AViewThatCannotBeMadeIsRefusedWhereItIsWritten) {
             std::string::npos);
   EXPECT_NE(error("fov_deg: 200").find("'params.fov_deg'"), std::string::npos);
   EXPECT_NE(error("position: [0, 1]").find("'params.position'"), std::string::npos);
+  EXPECT_NE(error("resolution: 2").find("'params.resolution'"), std::string::npos);
 }
