@@ -3,12 +3,13 @@
 #include <BulletCollision/BroadphaseCollision/btDbvtBroadphase.h>
 
 #include "bullet_math.hpp"
+#include "sphere_contact_dispatcher.hpp"
 
 namespace somasim::bullet_world {
 
 PhysicsWorld::PhysicsWorld(const Eigen::Vector3d& gravity, int solver_iterations)
     : config_(std::make_unique<btDefaultCollisionConfiguration>()),
-      dispatcher_(std::make_unique<btCollisionDispatcher>(config_.get())),
+      dispatcher_(std::make_unique<SphereContactDispatcher>(config_.get())),
       broadphase_(std::make_unique<btDbvtBroadphase>()),
       solver_(std::make_unique<btMultiBodyConstraintSolver>()),
       world_(std::make_unique<btMultiBodyDynamicsWorld>(dispatcher_.get(), broadphase_.get(),
