@@ -158,7 +158,8 @@ PluginSpec BulletWorld::spec() {
       "bullet_world",
       "Physics (Bullet, double precision): the robot as a fixed-base btMultiBody with "
       "joint motors and limits, gravity, self-collision (adjacent links filtered), "
-      "static/dynamic/kinematic/guided objects and contacts. One fixed step per tick.");
+      "static/dynamic/kinematic/guided objects and contacts (a sphere touches a convex shape at "
+      "one point per step). One fixed step per tick.");
 }
 
 void BulletWorld::configure(NodeContext& ctx) {
