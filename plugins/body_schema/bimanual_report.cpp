@@ -5,8 +5,11 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <limits>
 
+#include "somasim/robot/clearance.hpp"
 #include "somasim/robot/experiment_robot.hpp"
+#include "somasim/robot/shape_distance.hpp"
 
 namespace somasim::plugins {
 namespace {
@@ -64,6 +67,20 @@ void BimanualReport::configure(NodeContext& ctx) {
       config_error(ctx, config_, config_.palms, e.what());
     }
   }
+  // The finger of each tip: the collision shape of its link whose surface is nearest the frame.
+  for (int k = 0; k < 2; ++k) {
+    const robot::Link& link = model_->link(tips_[k].link);
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const robot::Geometry& shape : link.collision) {
+      const double d = std::abs(robot::distance_to_shape(shape, tips_[k].pose.translation()));
+      if (d < nearest) nearest = d, fingers_[k] = &shape;
+    }
+    if (!fingers_[k] || fingers_[k]->type == robot::GeometryType::Mesh)
+      config_error(ctx, config_, config_.fingertips,
+                   fmt::format("frame '{}': its link '{}' has no primitive collision shape to "
+                               "measure the fingers' surface gap on",
+                               config_.fingertips[static_cast<std::size_t>(k)], link.name));
+  }
   open_frames_ = config_.open_loop_frames;
   closed_frames_ = config_.closed_loop_frames;
   poses_ = &ports_.true_link_poses.get();
@@ -80,15 +97,22 @@ void BimanualReport::step(NodeContext&) {
     return (poses_->poses[static_cast<std::size_t>(f.link)] * f.pose).translation();
   };
   const double gap = (at(tips_[0]) - at(tips_[1])).norm() * 1e3;
+  const double surface_gap =
+      robot::shape_distance(*fingers_[0], poses_->poses[static_cast<std::size_t>(tips_[0].link)],
+                            *fingers_[1], poses_->poses[static_cast<std::size_t>(tips_[1].link)]) *
+      1e3;
   const double palm =
       std::abs((at(palms_[0]) - at(palms_[1])).norm() - config_.palm_distance) * 1e3;
   (end_open ? gap_open_ : gap_closed_).push_back(gap);
+  (end_open ? surface_gap_open_ : surface_gap_closed_).push_back(surface_gap);
   (end_open ? palm_open_ : palm_closed_).push_back(palm);
 }
 
 void BimanualReport::finish(NodeContext& ctx) {
   put_mean_sd(ctx, "bimanual_tip_gap_open_loop_mm", gap_open_);
   put_mean_sd(ctx, "bimanual_tip_gap_closed_loop_mm", gap_closed_);
+  put_mean_sd(ctx, "bimanual_tip_surface_gap_open_loop_mm", surface_gap_open_);
+  put_mean_sd(ctx, "bimanual_tip_surface_gap_closed_loop_mm", surface_gap_closed_);
   put_mean_sd(ctx, "bimanual_palm_distance_error_open_loop_mm", palm_open_);
   put_mean_sd(ctx, "bimanual_palm_distance_error_closed_loop_mm", palm_closed_);
 }

@@ -194,8 +194,14 @@ TEST(BodySchemaEdges, BothArmsAdaptFromEdgesAndTheBimanualErrorIsReported) {
   const auto& b = m["nodes"]["bimanual"];
   for (const char* key :
        {"bimanual_tip_gap_open_loop_mm", "bimanual_tip_gap_closed_loop_mm",
+        "bimanual_tip_surface_gap_open_loop_mm", "bimanual_tip_surface_gap_closed_loop_mm",
         "bimanual_palm_distance_error_open_loop_mm", "bimanual_palm_distance_error_closed_loop_mm"})
     EXPECT_TRUE(b[key].is_number()) << key;
   EXPECT_LT(b["bimanual_tip_gap_closed_loop_mm"].get<double>(),
             b["bimanual_tip_gap_open_loop_mm"].get<double>());
+  // The fingertip frames lie on the fingers' surfaces: the surfaces are never farther apart.
+  for (const std::string loop : {"open", "closed"})
+    EXPECT_LE(b["bimanual_tip_surface_gap_" + loop + "_loop_mm"].get<double>(),
+              b["bimanual_tip_gap_" + loop + "_loop_mm"].get<double>())
+        << loop;
 }

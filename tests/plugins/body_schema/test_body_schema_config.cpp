@@ -133,3 +133,21 @@ TEST(ReachControllerConfig, TargetsAndStartDistance) {
   EXPECT_NE(error_of(reach_graph("palm_frame: r_paw")).find("key 'params.palm_frame'"),
             std::string::npos);
 }
+
+// The bimanual report measures the fingers' surfaces from the collision shapes the fingertip
+// frames lie on: a frame on a link without a primitive shape is refused where it is written.
+TEST(BimanualReportConfig, FingertipsNeedAShapeToMeasureOn) {
+  auto graph = [](const std::string& params) {
+    return "seed: 1\nbase_rate_hz: 10\nrobots: {icub: " + kRobot +
+           "}\nnodes:\n  bimanual:\n    plugin: bimanual_report\n    params: {" + params +
+           "}\n    inputs: {true_link_poses: harness.poses, phase: harness.phase}\n";
+  };
+  EXPECT_EQ(error_of(graph("")), "");
+  EXPECT_NE(error_of(graph("fingertips: [r_index_tip, l_eye]"))
+                .find("key 'params.fingertips': frame 'l_eye': its link 'l_eye' has no primitive "
+                      "collision shape"),
+            std::string::npos)
+      << error_of(graph("fingertips: [r_index_tip, l_eye]"));
+  EXPECT_NE(error_of(graph("fingertips: [r_index_tip, l_nail]")).find("key 'params.fingertips'"),
+            std::string::npos);
+}
