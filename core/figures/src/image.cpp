@@ -69,8 +69,8 @@ void save_png(const Image& image, const std::filesystem::path& path) {
     throw InputError("cannot write PNG file '" + path.string() + "': the image is empty or its " +
                      "pixel buffer does not match its size");
   std::vector<std::uint8_t> bytes;
-  // Fixed compression level: identical pixels give identical bytes. Level 1 (zlib's fastest):
-  // figures are flat colours and text, which it packs nearly as well as the slower levels.
+  // Fixed compression level: identical pixels give identical bytes. Level 1, zlib's fastest:
+  // figures of flat colours and text come out about a fifth larger than at level 6.
   cv::imencode(".png", to_bgr_mat(image), bytes, {cv::IMWRITE_PNG_COMPRESSION, 1});
   write_whole_file(path, {reinterpret_cast<const char*>(bytes.data()), bytes.size()}, "PNG");
 }
