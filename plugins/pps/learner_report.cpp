@@ -54,14 +54,16 @@ struct Summary {
 struct EstimatorStats {
   Summary estimate;      // estimates of taxels with enough samples
   Summary error;         // |estimate - truth| where both are defined
+  Summary bias;          // estimate - truth where both are defined (signed)
   std::size_t none = 0;  // taxels with enough samples and a finite truth but no estimate
 
   void add(const std::optional<double>& e, double truth) {
     if (e) estimate.add(*e);
     if (!std::isfinite(truth)) return;
-    if (e)
+    if (e) {
       error.add(std::abs(*e - truth));
-    else
+      bias.add(*e - truth);
+    } else
       ++none;
   }
 };
@@ -239,6 +241,9 @@ void report_learning(NodeContext& ctx, std::vector<LearnerPart>& parts, int min_
         j["true_offset_mean_m"] = s.truth.mean_json();
         j["offset_error_max_m"] = s.contact.error.max_json();
         j["offset_error_mean_m"] = s.contact.error.mean_json();
+        // The group's offset (the mean over its taxels, the paper's Fig 8 figure) minus the
+        // true one, over the taxels with both.
+        j["group_offset_error_m"] = s.contact.bias.mean_json();
         j["offset_taxels_evaluated"] = s.evaluated;
       }
       by_group[groups[g].name] = std::move(j);

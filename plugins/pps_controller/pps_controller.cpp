@@ -64,6 +64,12 @@ void PpsController::Config::visit(V& v) {
       .unit("deg/s")
       .at_least(0)
       .doc("joint speed limits: one value for all chain joints or one per joint");
+  v.field("hold_orientation", hold_orientation)
+      .doc(
+          "move the body part without turning it (the point's velocity and a zero angular "
+          "velocity of its link, a 6-row task): a hand next to the voting taxels then moves as "
+          "they do instead of swinging ahead of them; false = the point alone (the paper's "
+          "rule)");
   v.field("limit_margin_deg", limit_margin_deg)
       .unit("deg")
       .range(0, 90)
@@ -125,6 +131,7 @@ void PpsController::configure(NodeContext& ctx) {
       Eigen::Map<const Eigen::VectorXd>(max_deg.data(), static_cast<Eigen::Index>(max_deg.size())) *
       kDeg;
   options.limit_margin = config_.limit_margin_deg * kDeg;
+  options.hold_orientation = config_.hold_orientation;
   const auto n_chain = static_cast<Eigen::Index>(chain.dofs.size());
   try {
     controller_ = std::make_unique<control::CartesianVelocityController>(model_, chain, options);

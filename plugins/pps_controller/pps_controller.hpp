@@ -8,7 +8,9 @@
 // above-threshold tick, returns to the start posture (joint space) `return_after` s after it,
 // and never carries any point of the body part farther than `workspace_radius` from where it was
 // at the home posture: at the limit the joint velocities are scaled down (WorkspaceGuard), so the
-// arm slides along the boundary or stops there, and only motion back inside is allowed.
+// arm slides along the boundary or stops there, and only motion back inside is allowed. With
+// `hold_orientation` the part's link is also asked not to turn (a 6-row task): the whole part,
+// and the hand next to a forearm, then moves as the voted point does.
 #include <memory>
 #include <span>
 #include <string>
@@ -64,6 +66,7 @@ class PpsController : public Plugin {
     double return_tolerance_deg = 0.1;                 // [deg]
     std::vector<double> max_joint_velocity_deg{60.0};  // [deg/s]
     double limit_margin_deg = 2.0;                     // [deg]
+    bool hold_orientation = false;
     template <class V>
     void visit(V& v);
   };

@@ -454,6 +454,11 @@ TEST(PpsLearnerParts, OffsetGroupsReportTheirTaxelsTogether) {
             h.metric("pps", "per_part")["palm"]["offset_error_max_m"]);
   EXPECT_EQ(groups["up"]["offset_taxels_evaluated"], 1);
   EXPECT_NEAR(groups["up"]["true_offset_mean_m"].get<double>(), -0.02, 1e-12);
+  // The group's offset against the true one: signed, the estimate minus the truth.
+  EXPECT_NEAR(groups["up"]["group_offset_error_m"].get<double>(),
+              groups["up"]["offset_mean_m"].get<double>() + 0.02, 1e-12);
+  EXPECT_NEAR(std::abs(groups["up"]["group_offset_error_m"].get<double>()), 0.00125, 1e-12);
+  EXPECT_TRUE(groups["down"]["group_offset_error_m"].is_null());
 }
 
 TEST(PpsLearnerParts, BadOffsetGroups) {
