@@ -600,11 +600,14 @@ void ObjectThrower::withdraw_at(double time_s) {
   withdraw_at_s_ = std::min(withdraw_at_s_, time_s);
 }
 
-void ObjectThrower::watch_robot_contacts() {
+void ObjectThrower::watch_robot_contacts(NodeContext& ctx) {
   const Presentation& p = *presentation_;
   if (!p.active) return;
   const std::optional<double> first =
       robot_contacts_->add(*world_contacts_, *objects_, p.object, p.id);
+  for (const int link : robot_contacts_->newly_touched())
+    ctx.log().debug("presentation {} ({} aimed at '{}'): touches link '{}' at t = {:.3f} s", p.id,
+                    p.object, p.body_part, model_->link(link).name, ctx.time_s());
   if (first && config_.withdraw_after_robot_contact >= 0)
     withdraw_at(*first + config_.withdraw_after_robot_contact);
 }
@@ -640,7 +643,7 @@ void ObjectThrower::step(NodeContext& ctx) {
   const bool done = !p.active && !between && launched_ >= config_.approaches;
   if (!p.active && !between && !done && now >= retry_at_s_ - 1e-9) try_launch(ctx, now);
   if (config_.withdraw_after_skin_contact >= 0) withdraw_when_felt();
-  if (world_contacts_) watch_robot_contacts();
+  if (world_contacts_) watch_robot_contacts(ctx);
   withdraw_if_due(now);
   perceive(ctx);
   if (learner_stimulus_ && p.active && learner_stimulus_->present)

@@ -131,7 +131,7 @@ class ObjectThrower : public Plugin {
   void withdraw_when_felt();
   /// Logs the current object's touches of robot links; withdraws it
   /// withdraw_after_robot_contact_ after the first.
-  void watch_robot_contacts();
+  void watch_robot_contacts(NodeContext& ctx);
   /// The current object goes at `time_s` [s] or earlier.
   void withdraw_at(double time_s);
   /// Asks the world to remove the current object once its withdrawal time has come.

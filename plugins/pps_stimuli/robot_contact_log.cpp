@@ -17,6 +17,7 @@ std::optional<double> RobotContactLog::add(const Contacts& contacts, const Objec
     presentation_ = presentation;
     links_.clear();
   }
+  newly_touched_.clear();
   std::optional<double> first;
   double newest = last_time_s_;
   for (const Contact& c : contacts.recent) {
@@ -31,6 +32,7 @@ std::optional<double> RobotContactLog::add(const Contacts& contacts, const Objec
       first = c.time_s;
     }
     if (!links_.insert(c.link_a).second) continue;
+    newly_touched_.push_back(c.link_a);
     if (skinned_[static_cast<std::size_t>(c.link_a)]) continue;
     if (std::none_of(links_.begin(), links_.end(), [&](int l) {
           return l != c.link_a && !skinned_[static_cast<std::size_t>(l)];

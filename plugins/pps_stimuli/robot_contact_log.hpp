@@ -27,6 +27,9 @@ class RobotContactLog {
   std::optional<double> add(const Contacts& contacts, const ObjectStates& objects,
                             const std::string& object, std::uint64_t presentation);
 
+  /// Links the last add() found touched for the first time in its presentation, in order.
+  const std::vector<int>& newly_touched() const { return newly_touched_; }
+
   int presentations_touching() const { return touching_; }
   int presentations_touching_unskinned() const { return touching_unskinned_; }
   /// Per link without skin: presentations that touched it.
@@ -42,6 +45,7 @@ class RobotContactLog {
   double last_time_s_ = -1.0;  // contacts up to this time are logged
   std::uint64_t presentation_ = 0;
   std::set<int> links_;  // links the current presentation touched
+  std::vector<int> newly_touched_;
   int touching_ = 0, touching_unskinned_ = 0;
   std::map<std::string, int> unskinned_links_;
 };
