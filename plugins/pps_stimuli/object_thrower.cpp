@@ -606,8 +606,8 @@ void ObjectThrower::watch_robot_contacts(NodeContext& ctx) {
   const std::optional<double> first =
       robot_contacts_->add(*world_contacts_, *objects_, p.object, p.id);
   for (const int link : robot_contacts_->newly_touched())
-    ctx.log().debug("presentation {} ({} aimed at '{}'): touches link '{}' at t = {:.3f} s", p.id,
-                    p.object, p.body_part, model_->link(link).name, ctx.time_s());
+    ctx.log().debug("presentation {} ({} aimed at '{}'): touches link '{}' (seen at t = {:.3f} s)",
+                    p.id, p.object, p.body_part, model_->link(link).name, ctx.time_s());
   if (first && config_.withdraw_after_robot_contact >= 0)
     withdraw_at(*first + config_.withdraw_after_robot_contact);
 }
