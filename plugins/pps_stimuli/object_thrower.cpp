@@ -14,6 +14,8 @@
 #include "somasim/robot/experiment_robot.hpp"
 #include "somasim/units.hpp"
 
+#include "skin_link_shapes.hpp"
+
 namespace somasim::plugins {
 
 namespace {
@@ -23,6 +25,10 @@ const std::vector<std::string> kMotionNames = {"approach", "static", "receding"}
 // The least clearance [m] of an object's path from the links it is not aimed at: where no path
 // keeps path_clearance, the presentation is drawn again with this one.
 constexpr double kLeastPathClearance = 0.005;
+// How far an object stays from the shapes of its aimed link beside the skin (a hand's thumb and
+// fingers beside the palm's skin) until it touches the skin [m]. They move with the skin, so this
+// is a contact margin, not room for the arm's motion as path_clearance is.
+constexpr double kBesideSkinClearance = 0.002;
 // Taxels drawn, and paths tried for each, before a presentation is given up as impossible.
 constexpr int kTaxelDraws = 50;
 constexpr int kPathAttempts = 100;
@@ -80,7 +86,10 @@ void ObjectThrower::Config::visit(V& v) {
           "presentation is drawn again keeping 5 mm (presentations_reduced_clearance). Raise it "
           "where the robot moves toward the object (reaching), so that the arm's own motion "
           "does not bring a neighbouring link (the hand next to a wrist taxel) into the "
-          "object's way");
+          "object's way. The aimed link's own shapes beside the skin (a hand's thumb and "
+          "fingers beside the palm's skin) move with the skin: the whole object keeps 2 mm from "
+          "them until it touches the skin, along its path and along the part's normal "
+          "(paths_met_beside_skin counts the paths given up for them)");
   v.field("distance_min", distance_min)
       .unit("m")
       .range(0.0, 5)
@@ -406,6 +415,11 @@ bool ObjectThrower::launch(NodeContext& ctx) {
       shape == ObjectShape::kCylinder && config_.cylinder_axis != CylinderAxis::kAny
           ? part_long_axis(sp->positions)
           : Eigen::Vector3d::Zero();
+  // The aimed link's shapes beside the skin, met before the skin by an object larger than the
+  // part aimed near its edge (a thumb standing above the palm).
+  const std::vector<robot::Geometry> beside_skin =
+      link_poses_ ? shapes_beside_skin(model_->link(aimed_link).collision, sp->positions_link)
+                  : std::vector<robot::Geometry>{};
   std::size_t k = 0;
   PresentedBody body;
   std::vector<robot::CoverSphere> cover;
@@ -419,6 +433,21 @@ bool ObjectThrower::launch(NodeContext& ctx) {
         !robot::object_path_clear_of_robot(*model_, link_poses_->poses, cover, body.rotation, start,
                                            end, clearance, std::span(&aimed_link, 1)))
       return false;
+    const std::optional<robot::Geometry> solid = robot::object_geometry(shape, body.size);
+    if (!beside_skin.empty() && solid) {
+      // The object reaches the skin before the aimed link's other shapes along its path and
+      // along the part's normal (the way a reaching part moves toward it).
+      const Eigen::Isometry3d& link_pose = link_poses_->poses[static_cast<std::size_t>(aimed_link)];
+      const Eigen::Vector3d normal_start = end + sp->normals[k].normalized() * (end - start).norm();
+      if (!robot::object_path_clear_of_shapes(*solid, body.rotation, start, end, beside_skin,
+                                              link_pose, kBesideSkinClearance) ||
+          (motion == PresentationMotion::kApproach &&
+           !robot::object_path_clear_of_shapes(*solid, body.rotation, normal_start, end,
+                                               beside_skin, link_pose, kBesideSkinClearance))) {
+        ++paths_met_beside_skin_;
+        return false;
+      }
+    }
     if (config_.view == ViewPolicy::kRequire) {
       unseen = view_->unseen(link_poses_->poses, motion, start, end, reach);
       if (unseen) {
@@ -442,7 +471,7 @@ bool ObjectThrower::launch(NodeContext& ctx) {
       unplaced_ = fmt::format(
           "no path clear of the robot for a {} (motion '{}') aimed at '{}': {} taxels drawn, {} "
           "paths each (start {}-{} m from the skin within {:.0f} deg of its normal, the object "
-          "{} clear of the other links{}); raise 'distance_min', lower 'cone_deg' or 'size', "
+          "{} clear of the other links{}{}); raise 'distance_min', lower 'cone_deg' or 'size', "
           "or change the posture",
           shape_name(shape), motion_name(motion), part, kTaxelDraws, kPathAttempts,
           motion == PresentationMotion::kReceding ? g.receding_start_min : g.distance_min,
@@ -450,6 +479,11 @@ bool ObjectThrower::launch(NodeContext& ctx) {
           rad_to_deg(g.cone_rad),
           reduced ? fmt::format("{:.3f} m, then {:.3f} m", config_.path_clearance, clearance)
                   : fmt::format("{:.3f} m", clearance),
+          beside_skin.empty()
+              ? std::string()
+              : fmt::format(" and {:.3f} m of its own link's shapes beside the skin until it "
+                            "touches the skin",
+                            kBesideSkinClearance),
           out_of_view == 0
               ? std::string()
               : fmt::format(", seen coming by the cameras (view: require): {} clear paths were "
@@ -660,6 +694,7 @@ void ObjectThrower::finish(NodeContext& ctx) {
   if (link_poses_) ctx.report_metric("presentations_postponed", postponed_);
   if (link_poses_ && config_.path_clearance > kLeastPathClearance)
     ctx.report_metric("presentations_reduced_clearance", reduced_clearance_);
+  if (link_poses_) ctx.report_metric("paths_met_beside_skin", paths_met_beside_skin_);
   if (config_.withdraw_after_skin_contact >= 0 || config_.withdraw_after_robot_contact >= 0)
     ctx.report_metric("objects_withdrawn", withdrawn_);
   if (robot_contacts_) robot_contacts_->report(ctx);

@@ -145,8 +145,9 @@ class ObjectThrower : public Plugin {
   std::vector<PresentationMotion> motions_;
   PresentationGeometry geometry_;
   bool box_corner_ = false;
-  int reduced_clearance_ = 0;   // presentations placed with the least clearance
-  double withdraw_at_s_ = 0.0;  // when the current object goes (inf: not yet)
+  int reduced_clearance_ = 0;      // presentations placed with the least clearance
+  int paths_met_beside_skin_ = 0;  // paths that met the aimed link beside its skin
+  double withdraw_at_s_ = 0.0;     // when the current object goes (inf: not yet)
   ObjectMotion object_motion_ = ObjectMotion::kGuided;
   double retry_at_s_ = 0.0;  // no launch before this time (first_after, then retries) [s]
   std::optional<double> waiting_since_s_;            // first failed launch of the current wait [s]

@@ -5,31 +5,37 @@
 #include <limits>
 
 #include "somasim/numeric.hpp"
+#include "somasim/robot/shape_distance.hpp"
 
 namespace somasim::robot {
+namespace {
+
+// The radius [m] of a sphere about a primitive's origin that holds it; +infinity for meshes.
+double bounding_radius(const Geometry& g) {
+  switch (g.type) {
+    case GeometryType::Sphere:
+      return g.radius;
+    case GeometryType::Box:
+      return 0.5 * g.size.norm();
+    case GeometryType::Cylinder:
+      return std::hypot(g.radius, 0.5 * g.length);
+    case GeometryType::Capsule:
+      return g.radius + 0.5 * g.length;
+    case GeometryType::Mesh:
+      break;
+  }
+  return std::numeric_limits<double>::infinity();
+}
+
+}  // namespace
 
 bool point_clear_of_robot(const RobotModel& model, const std::vector<Eigen::Isometry3d>& link_poses,
                           const Eigen::Vector3d& point, double margin) {
   if (link_poses.size() != static_cast<std::size_t>(model.num_links())) return true;
   for (int l = 0; l < model.num_links(); ++l)
     for (const auto& g : model.link(l).collision) {
-      double bound = 0.0;
-      switch (g.type) {
-        case GeometryType::Sphere:
-          bound = g.radius;
-          break;
-        case GeometryType::Box:
-          bound = 0.5 * g.size.norm();
-          break;
-        case GeometryType::Cylinder:
-          bound = std::hypot(g.radius, 0.5 * g.length);
-          break;
-        case GeometryType::Capsule:
-          bound = g.radius + 0.5 * g.length;
-          break;
-        case GeometryType::Mesh:
-          continue;
-      }
+      const double bound = bounding_radius(g);
+      if (!std::isfinite(bound)) continue;  // a mesh
       const Eigen::Vector3d centre =
           link_poses[static_cast<std::size_t>(l)] * g.origin.translation();
       if ((point - centre).norm() < bound + margin) return false;
@@ -128,6 +134,70 @@ bool object_path_clear_of_robot(const RobotModel& model,
     if (!segment_clear_of_robot(model, link_poses, from + offset, to + offset, s.radius + clearance,
                                 ignored_links))
       return false;
+  }
+  return true;
+}
+
+std::optional<Geometry> object_geometry(ObjectShape shape, const Eigen::Vector3d& size) {
+  Geometry g;
+  switch (shape) {
+    case ObjectShape::kSphere:
+      g.type = GeometryType::Sphere;
+      g.radius = size.x();
+      return g;
+    case ObjectShape::kBox:
+      g.type = GeometryType::Box;
+      g.size = 2.0 * size;
+      return g;
+    case ObjectShape::kCylinder:
+      g.type = GeometryType::Cylinder;
+      g.radius = size.x();
+      g.length = 2.0 * size.y();
+      return g;
+    case ObjectShape::kMesh:
+      break;
+  }
+  return std::nullopt;
+}
+
+bool object_path_clear_of_shapes(const Geometry& object, const Eigen::Matrix3d& rotation,
+                                 const Eigen::Vector3d& from, const Eigen::Vector3d& to,
+                                 std::span<const Geometry> shapes,
+                                 const Eigen::Isometry3d& link_pose, double clearance) {
+  constexpr double kStep = 0.002;       // [m]
+  constexpr int kMaxSamples = 1000000;  // 2 km of path
+  const double length = (to - from).norm();
+  const int samples = 1 + to_integer_clamped<int>(length / kStep, 0, kMaxSamples, Rounding::kUp);
+  const double spacing = length / samples;
+  const double bound = bounding_radius(object);
+  const Eigen::Isometry3d link_from_root = link_pose.inverse();
+  const Eigen::Isometry3d identity = Eigen::Isometry3d::Identity();
+  // The distance [m] between the object at sample i and `shape`, or a lower bound of it above
+  // the clearance: the object's bounding sphere's distance, exact distances only near the shape.
+  const auto distance = [&](const Geometry& shape, int i) {
+    const Eigen::Vector3d centre = from + (to - from) * (static_cast<double>(i) / samples);
+    const Eigen::Vector3d object_centre = centre + rotation * object.origin.translation();
+    const double lower = distance_to_shape(shape, link_from_root * object_centre) - bound;
+    if (lower > clearance) return lower;
+    Geometry placed = object;
+    placed.origin = Eigen::Isometry3d::Identity();
+    placed.origin.translate(centre);
+    placed.origin.rotate(rotation);
+    placed.origin = placed.origin * object.origin;
+    return shape_distance(placed, identity, shape, link_pose);
+  };
+  for (const Geometry& shape : shapes) {
+    if (shape.type == GeometryType::Mesh) continue;
+    // The end first: where an object aimed at the skin beside the shape comes closest to it.
+    if (distance(shape, samples) <= clearance) return false;
+    for (int i = 0; i < samples;) {
+      const double d = distance(shape, i);
+      if (d <= clearance) return false;
+      // Distances between solids change no faster than one of them moves.
+      const double clear_samples = spacing > 0.0 ? 0.999 * (d - clearance) / spacing : 0.0;
+      i += clear_samples >= samples ? samples + 1
+                                    : std::max(1, static_cast<int>(std::ceil(clear_samples)));
+    }
   }
   return true;
 }

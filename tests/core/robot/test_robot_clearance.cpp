@@ -1,15 +1,20 @@
 // point_clear_of_robot: points inside or next to the robot are not clear; far points are.
-// distance_to_shape against sampled surfaces; segment_clear_of_robot with an ignored link.
+// distance_to_shape against sampled surfaces; segment_clear_of_robot with an ignored link;
+// object_path_clear_of_shapes against closed forms and a dense search.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include "robot_test_support.hpp"
 #include "somasim/robot/clearance.hpp"
 #include "somasim/robot/kinematics.hpp"
+#include "somasim/robot/shape_distance.hpp"
 
 using namespace somasim::robot;
+using somasim::ObjectShape;
 using somasim::robot::test::load_icub;
 
 namespace {
@@ -203,4 +208,122 @@ TEST(RobotClearance, SkippingSamplesByTheirDistanceDecidesAsEverySampleWould) {
   EXPECT_GT(blocked, cases / 5);
   EXPECT_LT(blocked, cases * 4 / 5);
   EXPECT_EQ(grazing, kGrazingPaths);
+}
+
+// object_geometry turns an ObjectSpawn's size into the primitive's own dimensions.
+TEST(RobotClearance, ObjectGeometryHasTheSpawnsDimensions) {
+  const auto sphere = object_geometry(ObjectShape::kSphere, Eigen::Vector3d(0.03, 0, 0));
+  ASSERT_TRUE(sphere);
+  EXPECT_EQ(sphere->type, GeometryType::Sphere);
+  EXPECT_DOUBLE_EQ(sphere->radius, 0.03);
+  const auto box = object_geometry(ObjectShape::kBox, Eigen::Vector3d(0.01, 0.02, 0.03));
+  ASSERT_TRUE(box);
+  EXPECT_TRUE(box->size.isApprox(Eigen::Vector3d(0.02, 0.04, 0.06)));
+  const auto cylinder = object_geometry(ObjectShape::kCylinder, Eigen::Vector3d(0.06, 0.05, 0));
+  ASSERT_TRUE(cylinder);
+  EXPECT_DOUBLE_EQ(cylinder->radius, 0.06);
+  EXPECT_DOUBLE_EQ(cylinder->length, 0.10);
+  EXPECT_FALSE(object_geometry(ObjectShape::kMesh, Eigen::Vector3d::Ones()));
+}
+
+namespace {
+
+Eigen::Isometry3d random_pose(std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> u(-0.2, 0.2);
+  std::normal_distribution<double> gauss;
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.translate(Eigen::Vector3d(u(rng), u(rng), u(rng)));
+  pose.rotate(Eigen::Quaterniond(gauss(rng), gauss(rng), gauss(rng), gauss(rng)).normalized());
+  return pose;
+}
+
+}  // namespace
+
+// A ball moved past a ball fixed to a link: clear exactly when the closed-form least distance
+// between the two surfaces exceeds the clearance (generated paths on both sides of it).
+TEST(RobotClearance, AnObjectPathPastABallIsClearExactlyWhenItsLeastDistanceIs) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-0.15, 0.15), radius(0.005, 0.05);
+  std::normal_distribution<double> gauss;
+  int clear = 0, blocked = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const Eigen::Isometry3d link = random_pose(rng);
+    Geometry ball;
+    ball.type = GeometryType::Sphere;
+    ball.radius = radius(rng);
+    const Geometry object =
+        *object_geometry(ObjectShape::kSphere, Eigen::Vector3d(radius(rng), 0, 0));
+    const Eigen::Vector3d from(u(rng), u(rng), u(rng)), to(u(rng), u(rng), u(rng));
+    // The ball beside a point of the path, about as far from it as the two radii.
+    const Eigen::Vector3d beside =
+        from + std::uniform_real_distribution<double>(0, 1)(rng) * (to - from) +
+        (ball.radius + object.radius + 0.01 * gauss(rng)) *
+            Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng)).normalized();
+    ball.origin.translation() = link.inverse() * beside;
+    const double clearance = 0.003;
+    const Eigen::Vector3d c = link * ball.origin.translation();
+    const double t = std::clamp((c - from).dot(to - from) / (to - from).squaredNorm(), 0.0, 1.0);
+    const double least = (from + t * (to - from) - c).norm() - ball.radius - object.radius;
+    if (std::abs(least - clearance) < 2e-4) continue;  // within the sampling's reach
+    const std::vector<Geometry> shapes{ball};
+    const bool is_clear = object_path_clear_of_shapes(object, Eigen::Matrix3d::Identity(), from, to,
+                                                      shapes, link, clearance);
+    EXPECT_EQ(is_clear, least > clearance) << "trial " << trial << ": least " << least;
+    (is_clear ? clear : blocked) += 1;
+  }
+  EXPECT_GT(clear, 50);
+  EXPECT_GT(blocked, 50);
+}
+
+// A turned cylinder moved past boxes and cylinders: the same decision as evaluating every
+// 0.5 mm of the path (the skipped samples and the bounding test change nothing).
+TEST(RobotClearance, AnObjectPathPastShapesDecidesAsADenseSearchWould) {
+  std::mt19937_64 rng(12);
+  std::uniform_real_distribution<double> u(-0.06, 0.06), extent(0.01, 0.04);
+  std::normal_distribution<double> gauss;
+  int clear = 0, blocked = 0;
+  for (int trial = 0; trial < 100; ++trial) {
+    const Eigen::Isometry3d link = random_pose(rng);
+    Geometry shape;
+    shape.origin = random_pose(rng);
+    if (trial % 2) {
+      shape.type = GeometryType::Box;
+      shape.size = Eigen::Vector3d(extent(rng), extent(rng), extent(rng));
+    } else {
+      shape.type = GeometryType::Cylinder;
+      shape.radius = 0.5 * extent(rng);
+      shape.length = 2.0 * extent(rng);
+    }
+    const Geometry object =
+        *object_geometry(ObjectShape::kCylinder, Eigen::Vector3d(extent(rng), extent(rng), 0));
+    const Eigen::Matrix3d rotation =
+        Eigen::Quaterniond(gauss(rng), gauss(rng), gauss(rng), gauss(rng))
+            .normalized()
+            .toRotationMatrix();
+    const Eigen::Vector3d from(u(rng), u(rng), u(rng)), to(u(rng), u(rng), u(rng));
+    // The shape beside a point of the path, about as far from it as the two sizes.
+    const Eigen::Vector3d beside =
+        from + std::uniform_real_distribution<double>(0, 1)(rng) * (to - from) +
+        (0.05 + 0.02 * gauss(rng)) *
+            Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng)).normalized();
+    shape.origin.translation() = link.inverse() * beside;
+    const double clearance = 0.004;
+    double least = std::numeric_limits<double>::infinity();
+    const int samples = static_cast<int>(std::ceil((to - from).norm() / 0.0005));
+    for (int i = 0; i <= samples; ++i) {
+      Geometry placed = object;
+      placed.origin = Eigen::Isometry3d::Identity();
+      placed.origin.translate(from + (to - from) * (double(i) / samples));
+      placed.origin.rotate(rotation);
+      least = std::min(least, shape_distance(placed, Eigen::Isometry3d::Identity(), shape, link));
+    }
+    if (std::abs(least - clearance) < 5e-4) continue;
+    const std::vector<Geometry> shapes{shape};
+    const bool is_clear =
+        object_path_clear_of_shapes(object, rotation, from, to, shapes, link, clearance);
+    EXPECT_EQ(is_clear, least > clearance) << "trial " << trial << ": least " << least;
+    (is_clear ? clear : blocked) += 1;
+  }
+  EXPECT_GT(clear, 10);
+  EXPECT_GT(blocked, 10);
 }

@@ -1,13 +1,16 @@
 // object_thrower's presented geometry: how a cylinder's axis lies relative to the skin part
 // (cylinder_axis), and how far the object's path keeps from the links it is not aimed at
-// (path_clearance), checked against the spawn requests on generated parts and on the real
-// left forearm.
+// (path_clearance) and from the aimed link's shapes beside the skin, checked against the spawn
+// requests on generated parts, the real left forearm and the real right palm.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
 
 #include "object_thrower_test_support.hpp"
+#include "skin_link_shapes.hpp"
 #include "somasim/robot/clearance.hpp"
+#include "somasim/robot/shape_distance.hpp"
 
 using namespace object_thrower_test;
 using somasim::LinkPoses;
@@ -177,4 +180,153 @@ TEST(ObjectThrowerGeometry, AClearanceNoPathKeepsFallsBackToTheLeastOne) {
   const auto [least, reduced] = scene.least_clearance(0.15);
   EXPECT_EQ(reduced, 30);
   EXPECT_GE(least, 0.005 - 0.002);
+}
+
+namespace {
+
+// The real right palm, the arm raised in front: a grid of taxels over the palm's face of the
+// hand's box (its link frame: z = 0, normal +z), the thumb standing 3.5 cm above it at one side.
+struct PalmScene {
+  std::shared_ptr<const somasim::robot::RobotModel> model =
+      somasim::robot::load_robot_model_shared(kRobot);
+  somasim::robot::RobotData data{*model};
+  int hand_link = model->link_index("r_hand");
+  SkinPart part;
+
+  PalmScene() {
+    Eigen::VectorXd q = Eigen::VectorXd::Zero(model->num_dofs());
+    const std::pair<const char*, double> posture[] = {{"r_shoulder_pitch", -60},
+                                                      {"r_shoulder_roll", 40},
+                                                      {"r_shoulder_yaw", 45},
+                                                      {"r_elbow", 55},
+                                                      {"r_wrist_prosup", -45}};
+    for (const auto& [joint, deg] : posture) q[model->dof_index(joint)] = deg * M_PI / 180;
+    somasim::robot::forward_kinematics(*model, data, q);
+    const Eigen::Isometry3d& hand = data.link_poses[std::size_t(hand_link)];
+    part.name = "right_palm";
+    part.link = "r_hand";
+    for (int i = 0; i < 7; ++i)
+      for (int j = 0; j < 7; ++j) {
+        part.taxel_ids.push_back(7 * i + j);
+        part.positions_link.push_back(Eigen::Vector3d(-0.058 + 0.01 * i, -0.027 + 0.009 * j, 0));
+        part.normals_link.push_back(Eigen::Vector3d::UnitZ());
+        part.positions.push_back(hand * part.positions_link.back());
+        part.normals.push_back(hand.linear() * Eigen::Vector3d::UnitZ());
+      }
+  }
+
+  // The least surface distance [m] between `object` moved from `start` to `end` (turned by
+  // `rotation`) and the hand's thumb and fingers (every shape of the hand but its box), every
+  // 1 mm.
+  double beside_skin_distance(const somasim::robot::Geometry& object,
+                              const Eigen::Matrix3d& rotation, const Eigen::Vector3d& start,
+                              const Eigen::Vector3d& end) const {
+    const auto& shapes = model->links()[std::size_t(hand_link)].collision;
+    double least = std::numeric_limits<double>::infinity();
+    const int samples = std::max(1, int(std::ceil((end - start).norm() / 0.001)));
+    for (int i = 0; i <= samples; ++i) {
+      somasim::robot::Geometry placed = object;
+      placed.origin = Eigen::Isometry3d::Identity();
+      placed.origin.translate(start + (end - start) * (double(i) / samples));
+      placed.origin.rotate(rotation);
+      const Eigen::Isometry3d& hand = data.link_poses[std::size_t(hand_link)];
+      for (std::size_t s = 1; s < shapes.size(); ++s) {  // shape 0: the palm's box
+        // Far from the shape (by its distance from the object's centre less the object's
+        // half diagonal) the exact distance is not needed.
+        const double far = somasim::robot::distance_to_shape(
+                               shapes[s], hand.inverse() * placed.origin.translation()) -
+                           std::hypot(object.radius, 0.5 * object.length);
+        least = std::min(least, far > 0.01
+                                    ? far
+                                    : somasim::robot::shape_distance(
+                                          placed, Eigen::Isometry3d::Identity(), shapes[s], hand));
+      }
+    }
+    return least;
+  }
+};
+
+}  // namespace
+
+// A cylinder wider than the palm aimed near the thumb would meet the thumb (the palm's own link,
+// beside its skin) before the skin: such paths are given up, every presented one reaches the
+// skin first, and the paths given up are counted.
+TEST(ObjectThrowerGeometry, ObjectsWiderThanThePalmReachItsSkinBeforeTheThumb) {
+  const PalmScene scene;
+  constexpr double kRadius = 0.06, kHalfHeight = 0.05;
+  Harness h(
+      thrower("parts: right_palm, shapes: cylinder, size: 0.06, cylinder_half_height: 0.05, "
+              "cylinder_axis: across_part, cone_deg: 45, distance_min: 0.15, distance_max: 0.2, "
+              "approaches: 24, pause: 0, speed_min: 1, speed_max: 1",
+              "link_poses: harness.poses"));
+  feed_world(h);
+  h.input<SkinTaxels>("taxels").parts = {scene.part};
+  h.input<LinkPoses>("poses").poses = scene.data.link_poses;
+  const auto spawns = all_spawns(h, false);
+  ASSERT_EQ(spawns.size(), 24u);
+  const auto object = somasim::robot::object_geometry(somasim::ObjectShape::kCylinder,
+                                                      Eigen::Vector3d(kRadius, kHalfHeight, 0));
+  ASSERT_TRUE(object);
+  for (const auto& s : spawns) {
+    // The path ends one radius above the aimed taxel (the cylinder's side faces it).
+    const Eigen::Vector3d start = s.pose.translation();
+    const Eigen::Vector3d dir = s.linear_velocity.normalized();
+    double best = std::numeric_limits<double>::infinity();
+    Eigen::Vector3d end = start;
+    for (std::size_t k = 0; k < scene.part.positions.size(); ++k) {
+      const Eigen::Vector3d target = scene.part.positions[k] + kRadius * scene.part.normals[k];
+      const double off = ((target - start) - (target - start).dot(dir) * dir).norm();
+      if (off < best) best = off, end = target;
+    }
+    EXPECT_LT(best, 1e-6);
+    EXPECT_GE(scene.beside_skin_distance(*object, s.pose.linear(), start, end), 0.002 - 1e-4);
+  }
+  EXPECT_GT(h.metric("t", "paths_met_beside_skin").get<int>(), 0);
+}
+
+// Links of 2-5 generated primitives apart from one another, taxels on the surface of one of
+// them: that one is the skin's own shape and every other is beside the skin.
+TEST(ObjectThrowerGeometry, TheSkinsOwnShapeIsTheOneItsTaxelsLieOn) {
+  using somasim::robot::Geometry;
+  using somasim::robot::GeometryType;
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> extent(0.01, 0.04), unit(-1.0, 1.0);
+  std::normal_distribution<double> gauss;
+  for (int trial = 0; trial < 40; ++trial) {
+    const int count = 2 + trial % 4;
+    std::vector<Geometry> shapes(static_cast<std::size_t>(count));
+    for (int s = 0; s < count; ++s) {
+      Geometry& g = shapes[std::size_t(s)];
+      g.origin.translation() = Eigen::Vector3d(0.15 * s, 0.0, 0.0);
+      if ((s + trial) % 2) {
+        g.type = GeometryType::Sphere;
+        g.radius = extent(rng);
+      } else {
+        g.type = GeometryType::Box;
+        g.size = Eigen::Vector3d(extent(rng), extent(rng), extent(rng)) * 2.0;
+      }
+    }
+    const int own = trial % count;
+    const Geometry& g = shapes[std::size_t(own)];
+    std::vector<Eigen::Vector3d> taxels;
+    for (int k = 0; k < 12; ++k) {
+      Eigen::Vector3d local;
+      if (g.type == GeometryType::Sphere) {
+        local = g.radius * Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng)).normalized();
+      } else {  // a point on one of the box's faces
+        local = 0.5 * g.size.cwiseProduct(Eigen::Vector3d(unit(rng), unit(rng), unit(rng)));
+        const int axis = k % 3;
+        local[axis] = (k % 2 ? 0.5 : -0.5) * g.size[axis];
+      }
+      taxels.push_back(g.origin * local);
+    }
+    const auto beside = somasim::plugins::shapes_beside_skin(shapes, taxels);
+    ASSERT_EQ(beside.size(), std::size_t(count - 1)) << "trial " << trial;
+    for (const Geometry& b : beside)
+      EXPECT_FALSE(b.origin.translation().isApprox(g.origin.translation())) << "trial " << trial;
+  }
+  // One shape, or no taxel: nothing beside the skin.
+  EXPECT_TRUE(
+      somasim::plugins::shapes_beside_skin({Geometry{}}, {Eigen::Vector3d::Zero()}).empty());
+  EXPECT_TRUE(somasim::plugins::shapes_beside_skin({Geometry{}, Geometry{}}, {}).empty());
 }
