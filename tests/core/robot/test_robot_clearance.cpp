@@ -237,6 +237,17 @@ Eigen::Isometry3d random_pose(std::mt19937_64& rng) {
   return pose;
 }
 
+// A point `distance` [m] from a uniformly drawn point of the segment from -> to, in a uniformly
+// drawn direction.
+Eigen::Vector3d beside_segment(std::mt19937_64& rng, const Eigen::Vector3d& from,
+                               const Eigen::Vector3d& to, double distance) {
+  std::normal_distribution<double> gauss;
+  const double along = std::uniform_real_distribution<double>(0, 1)(rng);
+  Eigen::Vector3d direction;
+  for (int k = 0; k < 3; ++k) direction[k] = gauss(rng);
+  return from + along * (to - from) + distance * direction.normalized();
+}
+
 }  // namespace
 
 // A ball moved past a ball fixed to a link: clear exactly when the closed-form least distance
@@ -255,11 +266,8 @@ TEST(RobotClearance, AnObjectPathPastABallIsClearExactlyWhenItsLeastDistanceIs) 
         *object_geometry(ObjectShape::kSphere, Eigen::Vector3d(radius(rng), 0, 0));
     const Eigen::Vector3d from(u(rng), u(rng), u(rng)), to(u(rng), u(rng), u(rng));
     // The ball beside a point of the path, about as far from it as the two radii.
-    const Eigen::Vector3d beside =
-        from + std::uniform_real_distribution<double>(0, 1)(rng) * (to - from) +
-        (ball.radius + object.radius + 0.01 * gauss(rng)) *
-            Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng)).normalized();
-    ball.origin.translation() = link.inverse() * beside;
+    const double distance = ball.radius + object.radius + 0.01 * gauss(rng);
+    ball.origin.translation() = link.inverse() * beside_segment(rng, from, to, distance);
     const double clearance = 0.003;
     const Eigen::Vector3d c = link * ball.origin.translation();
     const double t = std::clamp((c - from).dot(to - from) / (to - from).squaredNorm(), 0.0, 1.0);
@@ -302,11 +310,8 @@ TEST(RobotClearance, AnObjectPathPastShapesDecidesAsADenseSearchWould) {
             .toRotationMatrix();
     const Eigen::Vector3d from(u(rng), u(rng), u(rng)), to(u(rng), u(rng), u(rng));
     // The shape beside a point of the path, about as far from it as the two sizes.
-    const Eigen::Vector3d beside =
-        from + std::uniform_real_distribution<double>(0, 1)(rng) * (to - from) +
-        (0.05 + 0.02 * gauss(rng)) *
-            Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng)).normalized();
-    shape.origin.translation() = link.inverse() * beside;
+    const double distance = 0.05 + 0.02 * gauss(rng);
+    shape.origin.translation() = link.inverse() * beside_segment(rng, from, to, distance);
     const double clearance = 0.004;
     double least = std::numeric_limits<double>::infinity();
     const int samples = static_cast<int>(std::ceil((to - from).norm() / 0.0005));
