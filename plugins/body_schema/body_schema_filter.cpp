@@ -58,11 +58,6 @@ void BodySchemaFilter::Config::visit(V& v) {
       .at_least(0.0)
       .unit("deg")
       .doc("σ of a jump (with jump_fraction > 0)");
-  v.field("movement_prior", movement_prior)
-      .doc(
-          "where each movement's particles start (with phase): nominal = N(0, σ_i² I) as in the "
-          "paper; last_estimate = N(β̂, σ_i² I), β̂ the previous movement's last estimate (the "
-          "first movement starts from the nominal model)");
   v.block(kde);
   v.block(scorer);
   v.field("canny", canny).size(2).doc("Canny thresholds");
@@ -359,10 +354,8 @@ void BodySchemaFilter::step(NodeContext& ctx) {
     if (phase_->stage != ReachStage::kOpenLoop && phase_->stage != ReachStage::kClosedLoop) return;
     if (phase_->movement != movement_) {
       movement_ = phase_->movement;
-      const bool carry = config_.movement_prior == MovementPrior::kLastEstimate;
-      filter_->reset(carry ? Eigen::VectorXd(filter_->estimate())
-                           : Eigen::VectorXd(Eigen::VectorXd::Zero(filter_->dims())));
-      if (comparison_) comparison_->reset(carry);
+      filter_->reset();
+      if (comparison_) comparison_->reset();
     }
   }
   const auto t0 = std::chrono::steady_clock::now();

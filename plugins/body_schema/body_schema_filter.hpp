@@ -43,17 +43,6 @@ constexpr std::span<const NamedValue<OnNoMatch>> name_table(OnNoMatch) {
   return kOnNoMatchNames;
 }
 
-/// Where each movement's particles start: the paper's prior N(0, σ_i² I) around the nominal
-/// model, or N(β̂, σ_i² I) around the previous movement's last estimate β̂ (the offsets are the
-/// same from one movement to the next, so what one movement learned is the next one's prior).
-enum class MovementPrior : std::uint8_t { kNominal, kLastEstimate };
-/// "nominal", "last_estimate".
-inline constexpr NamedValue<MovementPrior> kMovementPriorNames[] = {
-    {MovementPrior::kNominal, "nominal"}, {MovementPrior::kLastEstimate, "last_estimate"}};
-constexpr std::span<const NamedValue<MovementPrior>> name_table(MovementPrior) {
-  return kMovementPriorNames;
-}
-
 class BodySchemaFilter : public Plugin {
  public:
   /// The most particles a filter may have: the KDE of the estimate is O(M²) per frame
@@ -73,7 +62,6 @@ class BodySchemaFilter : public Plugin {
     double sigma_floor_deg = 0.0;  // [deg]
     double jump_fraction = 0.0;
     double jump_sigma_deg = 1.5;  // [deg]
-    MovementPrior movement_prior = MovementPrior::kNominal;
     body_schema::KdeOptions kde;  // kde_sigma_deg, kde_alpha
     // likelihood, silhouette_form, silhouette_power, edge_lambda, edge_orientation_weight,
     // margin_px, contour_width

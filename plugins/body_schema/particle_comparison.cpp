@@ -33,10 +33,8 @@ ParticleComparison::ParticleComparison(const std::vector<int>& sizes, int dims,
   }
 }
 
-void ParticleComparison::reset(bool from_last_estimate) {
-  for (auto& f : filters_)
-    f->reset(from_last_estimate ? Eigen::VectorXd(f->estimate())
-                                : Eigen::VectorXd(Eigen::VectorXd::Zero(f->dims())));
+void ParticleComparison::reset() {
+  for (auto& f : filters_) f->reset();
 }
 
 void ParticleComparison::step(const ScoreFn& score) {

@@ -32,9 +32,7 @@ class ParticleComparison {
                      std::uint64_t seed, double reinflate_factor);
 
   bool empty() const { return filters_.empty(); }
-  /// A new movement: each filter's particles around the nominal model, or around its own last
-  /// estimate when `from_last_estimate` (body_schema_filter's movement_prior).
-  void reset(bool from_last_estimate);
+  void reset();  ///< a new movement
   /// Likelihoods of all particles (columns, [deg]) on this frame's images.
   using ScoreFn = std::function<std::vector<double>(const Eigen::MatrixXd& particles_deg)>;
   /// One frame of every compared filter: predict, `score`, update.

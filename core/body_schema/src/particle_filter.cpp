@@ -33,19 +33,12 @@ OffsetParticleFilter::OffsetParticleFilter(int dims, int particles, const NoiseS
   reset();
 }
 
-void OffsetParticleFilter::reset() { reset(Eigen::VectorXd::Zero(particles_.rows())); }
-
-void OffsetParticleFilter::reset(const Eigen::VectorXd& prior_mean) {
-  if (prior_mean.size() != particles_.rows() || !prior_mean.allFinite())
-    throw InputError(fmt::format(
-        "body schema filter: the prior mean must be {} finite offsets [deg], got {} ({})",
-        particles_.rows(), prior_mean.size(),
-        prior_mean.allFinite() ? "all finite" : "not all finite"));
+void OffsetParticleFilter::reset() {
   std::normal_distribution<double> gauss(0.0, 1.0);
   for (Eigen::Index m = 0; m < particles_.cols(); ++m)
     for (Eigen::Index j = 0; j < particles_.rows(); ++j)
-      particles_(j, m) = prior_mean(j) + schedule_.initial_sigma_deg * gauss(rng_);
-  estimate_ = prior_mean;
+      particles_(j, m) = schedule_.initial_sigma_deg * gauss(rng_);
+  estimate_ = Eigen::VectorXd::Zero(particles_.rows());
   sigma_ = schedule_.step_sigma_deg;
 }
 

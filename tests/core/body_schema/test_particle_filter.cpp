@@ -69,53 +69,6 @@ TEST(OffsetParticleFilter, EstimateIsZeroBeforeTheFirstUpdateAndAfterReset) {
   EXPECT_DOUBLE_EQ(f.sigma_deg(), 4.0);
 }
 
-TEST(OffsetParticleFilter, AResetAroundAPriorMeanShiftsTheNominalDraws) {
-  std::mt19937_64 draw(11);
-  std::uniform_real_distribution<double> offset(-10.0, 10.0);
-  for (int trial = 0; trial < 20; ++trial) {
-    Eigen::VectorXd mean(7);
-    for (Eigen::Index j = 0; j < 7; ++j) mean(j) = offset(draw);
-    const auto seed = static_cast<std::uint64_t>(trial);
-    OffsetParticleFilter nominal(7, 400, noise_schedule_preset("paper"), seed);
-    OffsetParticleFilter shifted(7, 400, noise_schedule_preset("paper"), seed);
-    for (OffsetParticleFilter* f : {&nominal, &shifted}) {  // move away from the first draws
-      f->predict();
-      f->update(synthetic_likelihoods(*f, 3.0));
-    }
-    nominal.reset();
-    shifted.reset(mean);
-    EXPECT_EQ(shifted.estimate(), mean);
-    EXPECT_DOUBLE_EQ(shifted.sigma_deg(), nominal.sigma_deg());
-    EXPECT_LT((shifted.particles().colwise() - mean - nominal.particles()).cwiseAbs().maxCoeff(),
-              1e-12);
-    // The draws spread as the prior says: σ_i = 5 deg about `mean`.
-    const Eigen::VectorXd sample_mean = shifted.particles().rowwise().mean();
-    EXPECT_LT((sample_mean - mean).cwiseAbs().maxCoeff(), 1.0) << "trial " << trial;
-    const double spread =
-        std::sqrt((shifted.particles().colwise() - mean).array().square().mean());
-    EXPECT_NEAR(spread, 5.0, 0.3) << "trial " << trial;
-  }
-}
-
-TEST(OffsetParticleFilter, AResetAroundAZeroMeanIsTheNominalReset) {
-  OffsetParticleFilter a(7, 60, noise_schedule_preset("paper"), 5);
-  OffsetParticleFilter b(7, 60, noise_schedule_preset("paper"), 5);
-  a.reset();
-  b.reset(Eigen::VectorXd::Zero(7));
-  EXPECT_EQ(a.particles(), b.particles());
-  EXPECT_EQ(a.estimate(), b.estimate());
-}
-
-TEST(OffsetParticleFilter, AResetRefusesAPriorMeanOfTheWrongSizeOrNotFinite) {
-  OffsetParticleFilter f(7, 10, noise_schedule_preset("paper"), 1);
-  EXPECT_THROW(f.reset(Eigen::VectorXd::Zero(6)), InputError);
-  Eigen::VectorXd bad = Eigen::VectorXd::Zero(7);
-  bad(3) = std::nan("");
-  EXPECT_THROW(f.reset(bad), InputError);
-  bad(3) = INFINITY;
-  EXPECT_THROW(f.reset(bad), InputError);
-}
-
 TEST(OffsetParticleFilter, SameSeedSameParticlesOtherSeedOtherParticles) {
   EXPECT_EQ(run("paper", 100, 10, 7, 3.0), run("paper", 100, 10, 7, 3.0));
   EXPECT_NE(run("paper", 100, 10, 7, 3.0), run("paper", 100, 10, 8, 3.0));

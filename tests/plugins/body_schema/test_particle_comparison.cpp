@@ -1,7 +1,7 @@
 // The particle study's compared filters: each size runs its own filter on the same likelihood
 // (here a Gaussian around a known offset), their estimates come back in the order of the sizes
-// and approach the offset, a new movement starts them afresh or from their last estimates, and
-// the metrics per size hold the recorded errors (null where none was recorded).
+// and approach the offset, a new movement starts them afresh, and the metrics per size hold
+// the recorded errors (null where none was recorded).
 #include <gtest/gtest.h>
 
 #include <vector>
@@ -39,21 +39,8 @@ TEST(ParticleComparison, EverySizeConvergesOnTheSameLikelihood) {
   for (const auto& r : c.records()) EXPECT_EQ(r.step_ms.size(), 40u);
   EXPECT_EQ(c.records()[0].particles, 50);
   EXPECT_EQ(c.records()[1].particles, 400);
-  c.reset(false);
+  c.reset();
   for (const Eigen::VectorXd& e : c.estimates()) EXPECT_EQ(e, Eigen::Vector2d::Zero());
-}
-
-TEST(ParticleComparison, ANewMovementCanStartFromEachFiltersLastEstimate) {
-  ParticleComparison c = comparison();
-  for (int frame = 0; frame < 40; ++frame) c.step(likelihoods);
-  const auto learned = c.estimates();
-  c.reset(true);
-  const auto restarted = c.estimates();
-  ASSERT_EQ(restarted.size(), learned.size());
-  for (std::size_t k = 0; k < learned.size(); ++k) {
-    EXPECT_LT((learned[k] - kOffsetDeg).norm(), 0.5) << learned[k];
-    EXPECT_EQ(restarted[k], learned[k]);
-  }
 }
 
 TEST(ParticleComparison, MetricsPerSize) {

@@ -73,11 +73,6 @@ class OffsetParticleFilter {
 
   /// New movement: particles drawn from N(0, σ_i² I), σ_s back to its first value, estimate 0.
   void reset();
-  /// New movement around `prior_mean` [deg] (size dims()): particles drawn from
-  /// N(prior_mean, σ_i² I), σ_s back to its first value, the estimate `prior_mean`. The same
-  /// draws as reset() shifted by `prior_mean`. Throws somasim::InputError for a wrong size or a
-  /// non-finite entry.
-  void reset(const Eigen::VectorXd& prior_mean);
   /// Adds N(0, σ_s² I) to every particle (particle 0 set to 0 first under reset_particle_zero);
   /// a share `jump_fraction` of them, drawn at random, get N(0, max(σ_s, jump_sigma_deg)² I).
   void predict();
