@@ -387,8 +387,23 @@ void BodySchemaFilter::step(NodeContext& ctx) {
       return score(joint_state_->position, particles, cameras, observations);
     });
   publish(ctx, update);
-  if (phase_ != nullptr && phase_->frame == config_.evaluate_frame)
+  if (phase_ != nullptr && phase_->frame == config_.evaluate_frame) {
     evaluate(joint_state_->position);
+    if (true_offsets_.size() > 0) score_truth(joint_state_->position, cameras, observations);
+  }
+}
+
+void BodySchemaFilter::score_truth(const Eigen::VectorXd& q,
+                                   const std::vector<render::Camera>& cameras,
+                                   const std::vector<cv::Mat>& observations) {
+  Eigen::MatrixXd truth_and_estimate(filter_->dims(), 2);
+  for (std::size_t j = 0; j < offset_dofs_.size(); ++j)
+    truth_and_estimate(static_cast<Eigen::Index>(j), 0) =
+        true_offsets_[offset_dofs_[j]] * kRadToDeg;
+  truth_and_estimate.col(1) = filter_->estimate();
+  const std::vector<double> l = score(q, truth_and_estimate, cameras, observations);
+  truth_likelihood_.push_back(l[0]);
+  estimate_likelihood_.push_back(l[1]);
 }
 
 void BodySchemaFilter::on_no_match(NodeContext& ctx, const body_schema::FilterUpdate&) {
@@ -486,6 +501,14 @@ void BodySchemaFilter::finish(NodeContext& ctx) {
                     main_record_.step_ms.empty() ? 0.0 : median(main_record_.step_ms));
   ctx.report_metric("filter_render_ms", render_ms_.empty() ? 0.0 : median(render_ms_));
   ctx.report_metric("filter_frames_without_match", lost_frames_);
+  if (!truth_likelihood_.empty()) {
+    std::int64_t outscored = 0;
+    for (std::size_t k = 0; k < truth_likelihood_.size(); ++k)
+      if (estimate_likelihood_[k] > truth_likelihood_[k]) ++outscored;
+    ctx.report_metric("truth_likelihood", mean_sd(truth_likelihood_).mean);
+    ctx.report_metric("estimate_likelihood", mean_sd(estimate_likelihood_).mean);
+    ctx.report_metric("truth_outscored_movements", outscored);
+  }
   if (distribute_)  // 0 with one rank
     ctx.report_metric("filter_gather_ms", gather_ms_.empty() ? 0.0 : median(gather_ms_));
   std::vector<SizeRecord> records = {main_record_};

@@ -114,6 +114,11 @@ class BodySchemaFilter : public Plugin {
   void publish(NodeContext& ctx, const body_schema::FilterUpdate& update);
   void write_csv() const;
   void evaluate(const Eigen::VectorXd& q);
+  /// Scores the true offsets and the estimate on this frame's images (at evaluate_frame): is
+  /// the estimate's error the likelihood's (the truth explains the images less well) or the
+  /// filter's (the truth explains them better but was not found)?
+  void score_truth(const Eigen::VectorXd& q, const std::vector<render::Camera>& cameras,
+                   const std::vector<cv::Mat>& observations);
 
   std::shared_ptr<const robot::RobotModel> model_;
   std::vector<int> offset_dofs_;
@@ -141,6 +146,8 @@ class BodySchemaFilter : public Plugin {
   std::uint64_t frames_ = 0;
   std::int64_t lost_frames_ = 0;
   std::vector<double> render_ms_;
+  // At evaluate_frame of each movement: the likelihood of the true offsets and of the estimate.
+  std::vector<double> truth_likelihood_, estimate_likelihood_;
   std::string csv_name_;
   std::filesystem::path csv_path_;
   std::vector<std::vector<double>> rows_;

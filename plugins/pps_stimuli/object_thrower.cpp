@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
+#include <random>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -89,7 +91,9 @@ void ObjectThrower::Config::visit(V& v) {
           "object's way. The aimed link's own shapes beside the skin (a hand's thumb and "
           "fingers beside the palm's skin) move with the skin: the whole object keeps 2 mm from "
           "them until it touches the skin, along its path and along the part's normal "
-          "(paths_met_beside_skin counts the paths given up for them)");
+          "(paths_met_beside_skin counts the paths given up for them). Where no taxel is "
+          "reached with the object held as presented, the taxels are drawn again with the "
+          "object turned about the aimed normal by a random angle (presentations_turned)");
   v.field("distance_min", distance_min)
       .unit("m")
       .range(0.0, 5)
@@ -460,6 +464,8 @@ bool ObjectThrower::launch(NodeContext& ctx) {
   };
   std::optional<PlannedObject> planned;
   bool reduced = false;  // placed with the least clearance, the preferred one kept by no path
+  bool turned = false;   // turned about the aimed normal, no path clear as it is presented
+  std::uniform_real_distribution<double> turn(0.0, std::numbers::pi);
   for (int draw = 0; !planned; ++draw) {
     if (draw == kTaxelDraws && clearance > kLeastPathClearance) {
       // No taxel is reached keeping path_clearance: draw them again keeping the least one.
@@ -467,11 +473,18 @@ bool ObjectThrower::launch(NodeContext& ctx) {
       reduced = true;
       draw = 0;
     }
+    if (draw == kTaxelDraws && !turned && shape != ObjectShape::kSphere) {
+      // No taxel is reached with the object held as presented (a cylinder wider than the palm,
+      // across the thumb): draw them again, each with the object turned about the aimed normal
+      // by a random angle, as a person would turn it to bring it to the skin.
+      turned = true;
+      draw = 0;
+    }
     if (draw == kTaxelDraws) {
       unplaced_ = fmt::format(
           "no path clear of the robot for a {} (motion '{}') aimed at '{}': {} taxels drawn, {} "
           "paths each (start {}-{} m from the skin within {:.0f} deg of its normal, the object "
-          "{} clear of the other links{}{}); raise 'distance_min', lower 'cone_deg' or 'size', "
+          "{} clear of the other links{}{}{}); raise 'distance_min', lower 'cone_deg' or 'size', "
           "or change the posture",
           shape_name(shape), motion_name(motion), part, kTaxelDraws, kPathAttempts,
           motion == PresentationMotion::kReceding ? g.receding_start_min : g.distance_min,
@@ -484,6 +497,7 @@ bool ObjectThrower::launch(NodeContext& ctx) {
               : fmt::format(" and {:.3f} m of its own link's shapes beside the skin until it "
                             "touches the skin",
                             kBesideSkinClearance),
+          turned ? std::string(", as presented and then turned about the normal") : std::string(),
           out_of_view == 0
               ? std::string()
               : fmt::format(", seen coming by the cameras (view: require): {} clear paths were "
@@ -496,6 +510,9 @@ bool ObjectThrower::launch(NodeContext& ctx) {
     k = pick(rng);
     body = presented_body(shape, corner, sp->normals[k].normalized(), geometry_.size,
                           cylinder_half_height_, config_.cylinder_axis, long_axis);
+    if (turned)
+      body.rotation = Eigen::AngleAxisd(turn(rng), sp->normals[k].normalized()).toRotationMatrix() *
+                      body.rotation;
     cover = robot::sphere_cover(shape, body.size);
     planned = plan_presentation(motion, sp->positions[k], sp->normals[k].normalized(), g, rng,
                                 clear, kPathAttempts);
@@ -503,6 +520,7 @@ bool ObjectThrower::launch(NodeContext& ctx) {
   const PlannedObject& plan = *planned;
   paths_out_of_view_ += out_of_view;
   if (reduced) ++reduced_clearance_;
+  if (turned) ++turned_about_normal_;
   PresentationSight sight = PresentationSight::kNotChecked;
   if (view_ && link_poses_)
     sight = view_->unseen(link_poses_->poses, motion, path.first, path.second, reach)
@@ -695,6 +713,7 @@ void ObjectThrower::finish(NodeContext& ctx) {
   if (link_poses_ && config_.path_clearance > kLeastPathClearance)
     ctx.report_metric("presentations_reduced_clearance", reduced_clearance_);
   if (link_poses_) ctx.report_metric("paths_met_beside_skin", paths_met_beside_skin_);
+  if (link_poses_) ctx.report_metric("presentations_turned", turned_about_normal_);
   if (config_.withdraw_after_skin_contact >= 0 || config_.withdraw_after_robot_contact >= 0)
     ctx.report_metric("objects_withdrawn", withdrawn_);
   if (robot_contacts_) robot_contacts_->report(ctx);

@@ -147,6 +147,7 @@ class ObjectThrower : public Plugin {
   bool box_corner_ = false;
   int reduced_clearance_ = 0;      // presentations placed with the least clearance
   int paths_met_beside_skin_ = 0;  // paths that met the aimed link beside its skin
+  int turned_about_normal_ = 0;    // presentations placed only once turned about the normal
   double withdraw_at_s_ = 0.0;     // when the current object goes (inf: not yet)
   ObjectMotion object_motion_ = ObjectMotion::kGuided;
   double retry_at_s_ = 0.0;  // no launch before this time (first_after, then retries) [s]

@@ -42,7 +42,8 @@ double num(const nlohmann::json& m, const char* key) {
 }  // namespace
 
 TEST(BodySchemaReaching, AdaptationBeatsTheNominalModelAndTheClosedLoopTheOpenLoop) {
-  const auto run = run_config("body_schema_reaching", short_run(), "short");
+  const auto run = run_config("body_schema_reaching",
+                              short_run({{"nodes.filter.params.evaluate_frame", "39"}}), "short");
   const auto& m = run.flat;
   ASSERT_EQ(m["status"], "completed") << m["error"];
   EXPECT_EQ(m["reach_movements"], 2);
@@ -54,6 +55,13 @@ TEST(BodySchemaReaching, AdaptationBeatsTheNominalModelAndTheClosedLoopTheOpenLo
   EXPECT_LT(num(m, "reaching_error_closed_loop_mm"), 0.5 * num(m, "reaching_error_open_loop_mm"));
   EXPECT_GT(num(m, "filter_step_ms"), 0.0);
   EXPECT_EQ(m["filter_frames"], 2 * 56);  // frames 0 ... 55 of each movement
+  // At the evaluated frame the true offsets and the estimate are scored on the same images.
+  EXPECT_GT(num(m, "truth_likelihood"), 0.0);
+  EXPECT_LE(num(m, "truth_likelihood"), 1.0);
+  EXPECT_GT(num(m, "estimate_likelihood"), 0.0);
+  EXPECT_LE(num(m, "estimate_likelihood"), 1.0);
+  EXPECT_GE(num(m, "truth_outscored_movements"), 0);
+  EXPECT_LE(num(m, "truth_outscored_movements"), 2);
   for (const char* f :
        {"figures/body_schema_estimation.png", "figures/body_schema_reaching.png",
         "figures/body_schema_closed_loop.png", "reach_frames.csv", "body_schema_filter.csv"})

@@ -284,6 +284,50 @@ TEST(ObjectThrowerGeometry, ObjectsWiderThanThePalmReachItsSkinBeforeTheThumb) {
   EXPECT_GT(h.metric("t", "paths_met_beside_skin").get<int>(), 0);
 }
 
+// A cylinder wider than the palm, its axis fixed by the normal (cylinder_axis any), lies across
+// the thumb at some taxels: where no taxel drawn can be reached first as it is presented, the
+// taxels are drawn again with the cylinder turned about the aimed normal. Every presentation is
+// placed (none stops the run), each reaches the skin before the thumb, and exactly the turned
+// ones are counted.
+TEST(ObjectThrowerGeometry, AnObjectNoPathBringsToTheSkinAsPresentedIsTurnedAboutTheNormal) {
+  const PalmScene scene;
+  constexpr double kRadius = 0.06, kHalfHeight = 0.05;
+  Harness h(thrower(
+      "parts: right_palm, shapes: cylinder, size: 0.06, cylinder_half_height: 0.05, "
+      "cylinder_axis: any, cone_deg: 30, distance_min: 0.2, distance_max: 0.3, approaches: 24, "
+      "pause: 0, speed_min: 1, speed_max: 1",
+      "link_poses: harness.poses"));
+  feed_world(h);
+  h.input<SkinTaxels>("taxels").parts = {scene.part};
+  h.input<LinkPoses>("poses").poses = scene.data.link_poses;
+  const auto spawns = all_spawns(h, false);
+  ASSERT_EQ(spawns.size(), 24u);
+  const auto object = somasim::robot::object_geometry(somasim::ObjectShape::kCylinder,
+                                                      Eigen::Vector3d(kRadius, kHalfHeight, 0));
+  ASSERT_TRUE(object);
+  const Eigen::Vector3d normal = scene.part.normals.front();  // one normal over the flat palm
+  const Eigen::Vector3d as_presented = normal.unitOrthogonal();
+  int turned = 0;
+  for (const auto& s : spawns) {
+    const Eigen::Matrix3d r = s.pose.linear();
+    EXPECT_LT((r.col(0) - normal).norm(), 1e-9);  // its round side still faces the skin
+    if (std::abs(r.col(2).dot(as_presented)) < 1.0 - 1e-9) ++turned;
+    const Eigen::Vector3d start = s.pose.translation();
+    const Eigen::Vector3d dir = s.linear_velocity.normalized();
+    double best = std::numeric_limits<double>::infinity();
+    Eigen::Vector3d end = start;
+    for (std::size_t k = 0; k < scene.part.positions.size(); ++k) {
+      const Eigen::Vector3d target = scene.part.positions[k] + kRadius * scene.part.normals[k];
+      const double off = ((target - start) - (target - start).dot(dir) * dir).norm();
+      if (off < best) best = off, end = target;
+    }
+    EXPECT_LT(best, 1e-6);
+    EXPECT_GE(scene.beside_skin_distance(*object, r, start, end), 0.002 - 1e-4);
+  }
+  EXPECT_GT(turned, 0);
+  EXPECT_EQ(h.metric("t", "presentations_turned").get<int>(), turned);
+}
+
 // Links of 2-5 generated primitives apart from one another, taxels on the surface of one of
 // them: that one is the skin's own shape and every other is beside the skin.
 TEST(ObjectThrowerGeometry, TheSkinsOwnShapeIsTheOneItsTaxelsLieOn) {
