@@ -156,6 +156,15 @@ void ObjectTracker::Config::visit(V& v) {
           "Kalman filter predicts for the object (its velocity over the frame interval, "
           "projected): an object that moves farther in a frame than its window is wide (about "
           "1 m/s at 0.45 m and 20 Hz for a 1.2 cm ball) is met instead of lost");
+  v.field("max_velocity_sigma", max_velocity_sigma)
+      .unit("m/s")
+      .at_least(0.0)
+      .doc(
+          "a fix whose velocity the Kalman filter does not yet know to this σ (its first fixes "
+          "after an acquisition: about 0.15 m/s at the second, 0.1 m/s at the fifth with the "
+          "defaults) is reported with velocity 0, so that no time to contact is read from the "
+          "difference of two noisy positions (metric velocity_withheld_frames); 0 = the "
+          "velocity is always reported");
   v.block(kalman);
 }
 
@@ -275,6 +284,11 @@ void ObjectTracker::step(NodeContext& ctx) {
   stimulus_->present = fix.fixed;
   stimulus_->position = fix.position;
   stimulus_->velocity = fix.velocity;
+  if (fix.fixed && config_.max_velocity_sigma > 0.0 &&
+      fix.velocity_sigma > config_.max_velocity_sigma) {
+    stimulus_->velocity.setZero();
+    ++velocity_withheld_frames_;
+  }
   if (fix.fixed)
     stimulus_->radius = std::clamp(fix.radius_m, config_.radius_min, config_.radius_max);
   if (truth_) score_against_truth(cams);
@@ -320,6 +334,7 @@ void ObjectTracker::finish(NodeContext& ctx) {
   ctx.report_metric("refused_acquisitions", n.refused);
   ctx.report_metric("own_colour_refusals", n.own_colour_refused);
   ctx.report_metric("pose_time_offset_max_s", pose_time_offset_max_s_);
+  ctx.report_metric("velocity_withheld_frames", velocity_withheld_frames_);
   ctx.report_metric("reprojection_mean_px",
                     n.fixes ? n.reprojection_sum_px / static_cast<double>(n.fixes) : 0.0);
   if (!truth_) return;

@@ -61,6 +61,7 @@ class ObjectTracker : public Plugin {
     double radius_min = 0.005;  // [m]
     double radius_max = 0.2;    // [m]
     bool predict_windows = defaults().predict_windows;
+    double max_velocity_sigma = 0.0;  // [m/s]; 0: the velocity is always reported
     // the Kalman filter (motion_model, process_noise, measurement_sigma)
     vision::KalmanOptions kalman = defaults().kalman;
     static const vision::StereoTrackerOptions& defaults();
@@ -108,6 +109,7 @@ class ObjectTracker : public Plugin {
   // tracked among them; errors over tracked frames with the truth present.
   std::int64_t truth_frames_ = 0, truth_tracked_ = 0, in_view_ = 0, in_view_tracked_ = 0;
   std::int64_t false_fixes_ = 0, error_count_ = 0;
+  std::int64_t velocity_withheld_frames_ = 0;  // fixes reported without their velocity
   double position_sq_sum_ = 0.0, velocity_sq_sum_ = 0.0;
   LagEstimate lag_{0.01};  // latency; truth slower than 1 cm/s left out
 };

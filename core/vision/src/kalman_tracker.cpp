@@ -122,6 +122,13 @@ Eigen::Vector3d KalmanTracker::velocity() const {
   return {x.at<double>(3), x.at<double>(4), x.at<double>(5)};
 }
 
+Eigen::Vector3d KalmanTracker::velocity_sigma() const {
+  if (!initialised_) return Eigen::Vector3d::Zero();
+  const cv::Mat& p = filter_->errorCovPost;
+  return {std::sqrt(p.at<double>(3, 3)), std::sqrt(p.at<double>(4, 4)),
+          std::sqrt(p.at<double>(5, 5))};
+}
+
 Eigen::Vector3d KalmanTracker::position_sigma() const {
   if (!initialised_) return Eigen::Vector3d::Zero();
   const cv::Mat& p = filter_->errorCovPost;

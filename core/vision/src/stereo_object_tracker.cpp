@@ -174,6 +174,7 @@ StereoFix StereoObjectTracker::update(const cv::Mat& left, const cv::Mat& right,
   }
   out.position = kalman_.position();
   out.velocity = kalman_.velocity();
+  out.velocity_sigma = kalman_.velocity_sigma().maxCoeff();
   return out;
 }
 

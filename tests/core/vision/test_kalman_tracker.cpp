@@ -73,6 +73,34 @@ TEST(KalmanTracker, PredictsThroughFramesWithoutMeasurement) {
   EXPECT_EQ(kf.velocity(), Eigen::Vector3d::Zero());
 }
 
+// The velocity's σ starts at initial_velocity_sigma with the first fix, falls with every fix
+// toward a steady state (both models) and grows again through frames without one.
+TEST(KalmanTracker, TheVelocitysSigmaFallsWithEveryFix) {
+  for (const auto model :
+       {vision::MotionModel::kConstantVelocity, vision::MotionModel::kConstantAcceleration}) {
+    vision::KalmanOptions options;
+    options.model = model;
+    options.measurement_sigma_m = 0.005;
+    vision::KalmanTracker kf(options);
+    EXPECT_EQ(kf.velocity_sigma(), Eigen::Vector3d::Zero());
+    const double dt = 0.05;
+    kf.update(Eigen::Vector3d::Zero(), dt);
+    EXPECT_NEAR(kf.velocity_sigma().x(), options.initial_velocity_sigma, 1e-12);
+    double last = kf.velocity_sigma().maxCoeff();
+    for (int k = 1; k < 12; ++k) {
+      kf.update(Eigen::Vector3d(0.01 * k, 0, 0), dt);
+      const double now = kf.velocity_sigma().maxCoeff();
+      EXPECT_LT(now, last) << "fix " << k + 1;
+      last = now;
+    }
+    // Steady state with the default noise: about 0.05 m/s (jerk), 0.18 m/s (acceleration).
+    EXPECT_LT(last, model == vision::MotionModel::kConstantAcceleration ? 0.06 : 0.2);
+    kf.predict(dt);
+    kf.predict(dt);
+    EXPECT_GT(kf.velocity_sigma().maxCoeff(), last);
+  }
+}
+
 TEST(KalmanTracker, BadOptionsAreClearErrors) {
   vision::KalmanOptions bad;
   bad.measurement_sigma_m = 0;

@@ -78,6 +78,10 @@ class KalmanTracker {
   Eigen::Vector3d velocity() const;  ///< [m/s]; zero before the first fix
   /// Standard deviation of the position estimate along each axis [m].
   Eigen::Vector3d position_sigma() const;
+  /// Standard deviation of the velocity estimate along each axis [m/s] (the model's: it falls
+  /// with every fix from initial_velocity_sigma toward its steady state); zero before the first
+  /// fix.
+  Eigen::Vector3d velocity_sigma() const;
 
  private:
   void set_transition(double dt_s);

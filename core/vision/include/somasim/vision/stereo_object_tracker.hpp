@@ -84,6 +84,8 @@ struct StereoFix {
   /// reset) [m], [m/s].
   Eigen::Vector3d position = Eigen::Vector3d::Zero();
   Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
+  /// The filter's σ of the velocity, largest over the axes [m/s] (0 after a reset).
+  double velocity_sigma = 0.0;
   double radius_m = 0.0;              ///< from the tracked areas and the depth; 0 unfixed
   double reprojection_px = 0.0;       ///< RMS reprojection error of the fix [px]
   std::array<ColourTrack, 2> tracks;  ///< each eye's track this frame (left, right)
