@@ -244,6 +244,27 @@ struct PalmScene {
     }
     return least;
   }
+
+  // The least surface distance [m] between a presented cylinder (`spawn`, of `radius` and
+  // `half_height`) and the thumb and fingers along its path, which ends one radius above the
+  // taxel whose target lies on its line of flight.
+  double spawn_beside_skin_distance(const somasim::ObjectSpawn& spawn, double radius,
+                                    double half_height) const {
+    const auto object = somasim::robot::object_geometry(somasim::ObjectShape::kCylinder,
+                                                        Eigen::Vector3d(radius, half_height, 0));
+    EXPECT_TRUE(object);
+    const Eigen::Vector3d start = spawn.pose.translation();
+    const Eigen::Vector3d dir = spawn.linear_velocity.normalized();
+    double best = std::numeric_limits<double>::infinity();
+    Eigen::Vector3d end = start;
+    for (std::size_t k = 0; k < part.positions.size(); ++k) {
+      const Eigen::Vector3d target = part.positions[k] + radius * part.normals[k];
+      const double off = ((target - start) - (target - start).dot(dir) * dir).norm();
+      if (off < best) best = off, end = target;
+    }
+    EXPECT_LT(best, 1e-6);
+    return object ? beside_skin_distance(*object, spawn.pose.linear(), start, end) : 0.0;
+  }
 };
 
 }  // namespace
@@ -264,23 +285,8 @@ TEST(ObjectThrowerGeometry, ObjectsWiderThanThePalmReachItsSkinBeforeTheThumb) {
   h.input<LinkPoses>("poses").poses = scene.data.link_poses;
   const auto spawns = all_spawns(h, false);
   ASSERT_EQ(spawns.size(), 24u);
-  const auto object = somasim::robot::object_geometry(somasim::ObjectShape::kCylinder,
-                                                      Eigen::Vector3d(kRadius, kHalfHeight, 0));
-  ASSERT_TRUE(object);
-  for (const auto& s : spawns) {
-    // The path ends one radius above the aimed taxel (the cylinder's side faces it).
-    const Eigen::Vector3d start = s.pose.translation();
-    const Eigen::Vector3d dir = s.linear_velocity.normalized();
-    double best = std::numeric_limits<double>::infinity();
-    Eigen::Vector3d end = start;
-    for (std::size_t k = 0; k < scene.part.positions.size(); ++k) {
-      const Eigen::Vector3d target = scene.part.positions[k] + kRadius * scene.part.normals[k];
-      const double off = ((target - start) - (target - start).dot(dir) * dir).norm();
-      if (off < best) best = off, end = target;
-    }
-    EXPECT_LT(best, 1e-6);
-    EXPECT_GE(scene.beside_skin_distance(*object, s.pose.linear(), start, end), 0.002 - 1e-4);
-  }
+  for (const auto& s : spawns)
+    EXPECT_GE(scene.spawn_beside_skin_distance(s, kRadius, kHalfHeight), 0.002 - 1e-4);
   EXPECT_GT(h.metric("t", "paths_met_beside_skin").get<int>(), 0);
 }
 
@@ -302,9 +308,6 @@ TEST(ObjectThrowerGeometry, AnObjectNoPathBringsToTheSkinAsPresentedIsTurnedAbou
   h.input<LinkPoses>("poses").poses = scene.data.link_poses;
   const auto spawns = all_spawns(h, false);
   ASSERT_EQ(spawns.size(), 24u);
-  const auto object = somasim::robot::object_geometry(somasim::ObjectShape::kCylinder,
-                                                      Eigen::Vector3d(kRadius, kHalfHeight, 0));
-  ASSERT_TRUE(object);
   const Eigen::Vector3d normal = scene.part.normals.front();  // one normal over the flat palm
   const Eigen::Vector3d as_presented = normal.unitOrthogonal();
   int turned = 0;
@@ -312,17 +315,7 @@ TEST(ObjectThrowerGeometry, AnObjectNoPathBringsToTheSkinAsPresentedIsTurnedAbou
     const Eigen::Matrix3d r = s.pose.linear();
     EXPECT_LT((r.col(0) - normal).norm(), 1e-9);  // its round side still faces the skin
     if (std::abs(r.col(2).dot(as_presented)) < 1.0 - 1e-9) ++turned;
-    const Eigen::Vector3d start = s.pose.translation();
-    const Eigen::Vector3d dir = s.linear_velocity.normalized();
-    double best = std::numeric_limits<double>::infinity();
-    Eigen::Vector3d end = start;
-    for (std::size_t k = 0; k < scene.part.positions.size(); ++k) {
-      const Eigen::Vector3d target = scene.part.positions[k] + kRadius * scene.part.normals[k];
-      const double off = ((target - start) - (target - start).dot(dir) * dir).norm();
-      if (off < best) best = off, end = target;
-    }
-    EXPECT_LT(best, 1e-6);
-    EXPECT_GE(scene.beside_skin_distance(*object, r, start, end), 0.002 - 1e-4);
+    EXPECT_GE(scene.spawn_beside_skin_distance(s, kRadius, kHalfHeight), 0.002 - 1e-4);
   }
   EXPECT_GT(turned, 0);
   EXPECT_EQ(h.metric("t", "presentations_turned").get<int>(), turned);
