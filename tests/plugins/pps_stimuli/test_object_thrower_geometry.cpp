@@ -86,6 +86,23 @@ TEST(ObjectThrowerGeometry, CylinderAxisNeedsAKnownChoice) {
 
 namespace {
 
+// Where a presented object's path ends: one `radius` above the taxel of `part` whose target
+// lies on its line of flight (within 1 µm).
+Eigen::Vector3d aimed_path_end(const somasim::ObjectSpawn& spawn, const SkinPart& part,
+                               double radius) {
+  const Eigen::Vector3d start = spawn.pose.translation();
+  const Eigen::Vector3d dir = spawn.linear_velocity.normalized();
+  double best = std::numeric_limits<double>::infinity();
+  Eigen::Vector3d end = start;
+  for (std::size_t k = 0; k < part.positions.size(); ++k) {
+    const Eigen::Vector3d target = part.positions[k] + radius * part.normals[k];
+    const double off = ((target - start) - (target - start).dot(dir) * dir).norm();
+    if (off < best) best = off, end = target;
+  }
+  EXPECT_LT(best, 1e-6);
+  return end;
+}
+
 // The real left forearm, the arms raised in front (the visual configs' posture): three taxels
 // round it, 7 cm from the elbow.
 struct ArmScene {
@@ -142,19 +159,8 @@ struct ArmScene {
     const auto spawns = all_spawns(h, false);
     EXPECT_EQ(spawns.size(), 30u);
     for (const auto& s : spawns) {
-      // The path ends at the aimed taxel's target (one radius above it): the taxel whose
-      // target lies on the line of flight.
-      const Eigen::Vector3d start = s.pose.translation();
-      const Eigen::Vector3d dir = s.linear_velocity.normalized();
-      double best = std::numeric_limits<double>::infinity();
-      Eigen::Vector3d end = start;
-      for (std::size_t k = 0; k < part.positions.size(); ++k) {
-        const Eigen::Vector3d target = part.positions[k] + kRadius * part.normals[k];
-        const double off = ((target - start) - (target - start).dot(dir) * dir).norm();
-        if (off < best) best = off, end = target;
-      }
-      EXPECT_LT(best, 1e-6);
-      least = std::min(least, path_clearance(start, end, kRadius));
+      least = std::min(
+          least, path_clearance(s.pose.translation(), aimed_path_end(s, part, kRadius), kRadius));
     }
     const auto reduced = h.metric("t", "presentations_reduced_clearance");
     return {least, reduced.is_null() ? 0 : reduced.get<int>()};
@@ -246,24 +252,15 @@ struct PalmScene {
   }
 
   // The least surface distance [m] between a presented cylinder (`spawn`, of `radius` and
-  // `half_height`) and the thumb and fingers along its path, which ends one radius above the
-  // taxel whose target lies on its line of flight.
+  // `half_height`) and the thumb and fingers along its path.
   double spawn_beside_skin_distance(const somasim::ObjectSpawn& spawn, double radius,
                                     double half_height) const {
     const auto object = somasim::robot::object_geometry(somasim::ObjectShape::kCylinder,
                                                         Eigen::Vector3d(radius, half_height, 0));
     EXPECT_TRUE(object);
-    const Eigen::Vector3d start = spawn.pose.translation();
-    const Eigen::Vector3d dir = spawn.linear_velocity.normalized();
-    double best = std::numeric_limits<double>::infinity();
-    Eigen::Vector3d end = start;
-    for (std::size_t k = 0; k < part.positions.size(); ++k) {
-      const Eigen::Vector3d target = part.positions[k] + radius * part.normals[k];
-      const double off = ((target - start) - (target - start).dot(dir) * dir).norm();
-      if (off < best) best = off, end = target;
-    }
-    EXPECT_LT(best, 1e-6);
-    return object ? beside_skin_distance(*object, spawn.pose.linear(), start, end) : 0.0;
+    return object ? beside_skin_distance(*object, spawn.pose.linear(), spawn.pose.translation(),
+                                         aimed_path_end(spawn, part, radius))
+                  : 0.0;
   }
 };
 
