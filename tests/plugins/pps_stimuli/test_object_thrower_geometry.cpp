@@ -251,6 +251,14 @@ struct PalmScene {
     return least;
   }
 
+  // Every object the thrower of `h` presents to this palm (the arm held still).
+  std::vector<somasim::ObjectSpawn> present(Harness& h) const {
+    feed_world(h);
+    h.input<SkinTaxels>("taxels").parts = {part};
+    h.input<LinkPoses>("poses").poses = data.link_poses;
+    return all_spawns(h, false);
+  }
+
   // The least surface distance [m] between a presented cylinder (`spawn`, of `radius` and
   // `half_height`) and the thumb and fingers along its path.
   double spawn_beside_skin_distance(const somasim::ObjectSpawn& spawn, double radius,
@@ -277,10 +285,7 @@ TEST(ObjectThrowerGeometry, ObjectsWiderThanThePalmReachItsSkinBeforeTheThumb) {
               "cylinder_axis: across_part, cone_deg: 45, distance_min: 0.15, distance_max: 0.2, "
               "approaches: 24, pause: 0, speed_min: 1, speed_max: 1",
               "link_poses: harness.poses"));
-  feed_world(h);
-  h.input<SkinTaxels>("taxels").parts = {scene.part};
-  h.input<LinkPoses>("poses").poses = scene.data.link_poses;
-  const auto spawns = all_spawns(h, false);
+  const auto spawns = scene.present(h);
   ASSERT_EQ(spawns.size(), 24u);
   for (const auto& s : spawns)
     EXPECT_GE(scene.spawn_beside_skin_distance(s, kRadius, kHalfHeight), 0.002 - 1e-4);
@@ -300,10 +305,7 @@ TEST(ObjectThrowerGeometry, AnObjectNoPathBringsToTheSkinAsPresentedIsTurnedAbou
       "cylinder_axis: any, cone_deg: 30, distance_min: 0.2, distance_max: 0.3, approaches: 24, "
       "pause: 0, speed_min: 1, speed_max: 1",
       "link_poses: harness.poses"));
-  feed_world(h);
-  h.input<SkinTaxels>("taxels").parts = {scene.part};
-  h.input<LinkPoses>("poses").poses = scene.data.link_poses;
-  const auto spawns = all_spawns(h, false);
+  const auto spawns = scene.present(h);
   ASSERT_EQ(spawns.size(), 24u);
   const Eigen::Vector3d normal = scene.part.normals.front();  // one normal over the flat palm
   const Eigen::Vector3d as_presented = normal.unitOrthogonal();
