@@ -31,6 +31,12 @@ void BodySchemaFilter::Config::visit(V& v) {
       .doc("joints whose offsets are estimated (all in `chain`), one particle row each");
   v.field("links", links)
       .doc("links drawn as hypotheses (their collision geometry: the internal model)");
+  v.field("occluder_links", occluder_links)
+      .doc(
+          "links of another body part (the other hand) drawn in front of every hypothesis as "
+          "occluders: the hypothesis' contour they hide is not charged, posed by the encoders "
+          "and the offsets of the input occluder_estimate (unwired: the nominal model); "
+          "[] = none; needs rasterizer: software");
   v.field("palm_frame", palm_frame).doc("frame whose pose is estimated");
   v.field("cameras", cameras)
       .doc(
@@ -117,6 +123,11 @@ void BodySchemaFilter::Config::validate(ConfigChecks& checks) const {
                  scorer.inner_contours, "needs rasterizer: software");
   checks.require(!scorer.crease_contours || scorer.inner_contours, scorer.crease_contours,
                  "needs edge_inner_contours: true");
+  checks.require(occluder_links.empty() || scorer.rasterizer == render::Rasterizer::kSoftware,
+                 occluder_links, "needs rasterizer: software");
+  for (const std::string& link : occluder_links)
+    checks.require(std::find(links.begin(), links.end(), link) == links.end(), occluder_links,
+                   "link '" + link + "' is also a hypothesis link (links)");
   for (double m : compare_particles)
     checks.require(
         m >= 1.0 && m == std::floor(m) && m <= kMaxParticles, compare_particles,
@@ -132,6 +143,8 @@ void BodySchemaFilter::Ports::visit(V& v) {
          "the reach_controller's phase: observe in the open and closed loop, restart "
          "with every movement; unwired = observe every step");
   v.port("true_link_poses", true_link_poses, "the world's link poses, for the CSV's pose errors");
+  v.port("occluder_estimate", occluder_estimate,
+         "the other arm's filter estimate (delayed): its offsets pose the occluder_links");
   v.port("estimate", estimate, "β̂ and the estimated palm pose (left-eye frame)");
 }
 
@@ -190,8 +203,17 @@ void BodySchemaFilter::configure_scorer(NodeContext& ctx) {
     config_error(ctx, config_, config_.links, e.what());
   }
 
+  body_schema::ArmHypothesisModel occluder;
+  if (!config_.occluder_links.empty()) {
+    try {
+      occluder = body_schema::arm_hypothesis_model(*model_, config_.occluder_links,
+                                                   config_.proxy_resolution);
+    } catch (const InputError& e) {
+      config_error(ctx, config_, config_.occluder_links, e.what());
+    }
+  }
   scorer_ = std::make_unique<body_schema::HypothesisScorer>(
-      model_, arm, offset_dofs_, config_.render_threads, config_.scorer, config_.backend);
+      model_, arm, offset_dofs_, config_.render_threads, config_.scorer, config_.backend, occluder);
 }
 
 void BodySchemaFilter::configure(NodeContext& ctx) {
@@ -250,6 +272,10 @@ void BodySchemaFilter::configure(NodeContext& ctx) {
   if (config_.cameras.size() == 2) images_.push_back(ports_.right_eye_rgb.get());
   phase_ = ports_.phase.get();
   true_poses_ = ports_.true_link_poses.get();
+  occluder_estimate_ = ports_.occluder_estimate.get();
+  if (occluder_estimate_ != nullptr && config_.occluder_links.empty())
+    config_error(ctx, config_, config_.occluder_links,
+                 "the input occluder_estimate is wired but no occluder_links are drawn");
   estimate_ = &ports_.estimate.get();
   estimate_->offsets = Eigen::VectorXd::Zero(model_->num_dofs());
 
@@ -366,6 +392,8 @@ void BodySchemaFilter::step(NodeContext& ctx) {
   for (const std::string& c : config_.cameras)
     cameras.push_back(render::camera_for(*model_, c, data.link_poses));
 
+  if (occluder_estimate_ != nullptr && occluder_estimate_->offsets.size() == model_->num_dofs())
+    scorer_->set_occluder_offsets(occluder_estimate_->offsets);
   filter_->predict();
   std::vector<double> likelihoods;
   try {

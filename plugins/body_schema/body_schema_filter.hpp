@@ -55,6 +55,7 @@ class BodySchemaFilter : public Plugin {
                                     "r_elbow",          "r_wrist_prosup",  "r_wrist_pitch",
                                     "r_wrist_yaw"};
     std::vector<std::string> links{"r_hand"};
+    std::vector<std::string> occluder_links;
     std::string palm_frame = "r_palm";
     std::vector<std::string> cameras{"left_eye", "right_eye"};
     int particles = 200;
@@ -90,6 +91,7 @@ class BodySchemaFilter : public Plugin {
     OptionalIn<RgbImage> right_eye_rgb;
     OptionalIn<ReachPhase> phase;
     OptionalIn<LinkPoses> true_link_poses;
+    OptionalIn<BodySchemaEstimate> occluder_estimate;
     Out<BodySchemaEstimate> estimate;
     template <class V>
     void visit(V& v);
@@ -140,6 +142,7 @@ class BodySchemaFilter : public Plugin {
   std::vector<const Image*> images_;
   const ReachPhase* phase_ = nullptr;
   const LinkPoses* true_poses_ = nullptr;
+  const BodySchemaEstimate* occluder_estimate_ = nullptr;
   BodySchemaEstimate* estimate_ = nullptr;
 
   int movement_ = -1;

@@ -30,6 +30,14 @@ void append(render::TriangleMesh& mesh, const render::TriangleMesh& part,
   for (std::uint32_t index : part.indices) mesh.indices.push_back(base + index);
 }
 
+// The renderer's meshes: the arm's, then the occluder's.
+std::vector<render::TriangleMesh> all_meshes(const ArmHypothesisModel& arm,
+                                             const ArmHypothesisModel& occluder) {
+  std::vector<render::TriangleMesh> meshes = arm.meshes;
+  meshes.insert(meshes.end(), occluder.meshes.begin(), occluder.meshes.end());
+  return meshes;
+}
+
 }  // namespace
 
 ArmHypothesisModel arm_hypothesis_model(const robot::RobotModel& model,
@@ -74,15 +82,24 @@ LikelihoodKind likelihood_kind_from_name(const std::string& name) {
 HypothesisScorer::HypothesisScorer(std::shared_ptr<const robot::RobotModel> model,
                                    const ArmHypothesisModel& arm, std::vector<int> offset_dofs,
                                    int workers, const ScorerOptions& options,
-                                   render::RenderBackend backend)
+                                   render::RenderBackend backend,
+                                   const ArmHypothesisModel& occluder)
     : model_(std::move(model)),
       links_(arm.links),
       mesh_link_(arm.mesh_link),
       offset_dofs_(std::move(offset_dofs)),
+      occluder_links_(occluder.links),
+      occluder_mesh_link_(occluder.mesh_link),
+      occluder_offsets_rad_(Eigen::VectorXd::Zero(model_->num_dofs())),
       options_(options),
-      renderer_(arm.meshes, workers, backend, options.rasterizer),
+      renderer_(all_meshes(arm, occluder), workers, backend, options.rasterizer),
       data_(*model_),
       offsets_rad_(Eigen::VectorXd::Zero(model_->num_dofs())) {
+  if (!occluder.meshes.empty() && options.rasterizer != render::Rasterizer::kSoftware)
+    throw InputError("occluders need rasterizer: software");
+  if (occluder_mesh_link_.size() != occluder.meshes.size())
+    throw InputError(fmt::format("hypothesis scorer: {} occluder meshes but {} mesh links",
+                                 occluder.meshes.size(), occluder_mesh_link_.size()));
   if (options.inner_contours && options.kind != LikelihoodKind::kEdges)
     throw InputError("edge_inner_contours needs likelihood: edges");
   if (options.inner_contours && options.rasterizer != render::Rasterizer::kSoftware)
@@ -93,6 +110,24 @@ HypothesisScorer::HypothesisScorer(std::shared_ptr<const robot::RobotModel> mode
     throw InputError(fmt::format("hypothesis scorer: {} meshes but {} mesh links",
                                  arm.meshes.size(), mesh_link_.size()));
   for (std::size_t m = 0; m < arm.meshes.size(); ++m) batch_.meshes.push_back(m);
+  batch_.occluders.resize(occluder.meshes.size());
+  for (std::size_t o = 0; o < occluder.meshes.size(); ++o)
+    batch_.occluders[o].mesh = arm.meshes.size() + o;
+}
+
+void HypothesisScorer::set_occluder_offsets(const Eigen::VectorXd& offsets_rad) {
+  if (offsets_rad.size() != model_->num_dofs() || !offsets_rad.allFinite())
+    throw InputError(fmt::format(
+        "hypothesis scorer: occluder offsets: expected {} finite values (one per dof), got {}",
+        model_->num_dofs(), offsets_rad.size()));
+  occluder_offsets_rad_ = offsets_rad;
+}
+
+void HypothesisScorer::pose_occluders(const Eigen::VectorXd& q) {
+  if (batch_.occluders.empty()) return;
+  robot::forward_kinematics(*model_, data_, q, occluder_offsets_rad_);
+  for (std::size_t o = 0; o < batch_.occluders.size(); ++o)
+    batch_.occluders[o].pose = data_.link_poses[occluder_links_[occluder_mesh_link_[o]]];
 }
 
 std::vector<Eigen::Isometry3d> HypothesisScorer::link_poses(const Eigen::VectorXd& q,
@@ -115,6 +150,7 @@ std::vector<double> HypothesisScorer::score(const Eigen::VectorXd& q,
     throw InputError(fmt::format("hypothesis scorer: {} cameras but {} observations",
                                  cameras.size(), observations.size()));
   auto t0 = Clock::now();
+  pose_occluders(q);
   const auto m_count = static_cast<std::size_t>(particles_deg.cols());
   batch_.hypotheses.resize(m_count);
   for (std::size_t m = 0; m < m_count; ++m) {

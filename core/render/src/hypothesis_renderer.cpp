@@ -153,6 +153,23 @@ Rasterizer HypothesisRenderer::rasterizer() const {
   return pool_->rasterizer;
 }
 
+void HypothesisRenderer::validate_occluders(const std::vector<Occluder>& occluders) const {
+  if (occluders.empty()) return;
+  if (pool_->rasterizer != Rasterizer::kSoftware)
+    throw InputError("hypothesis batch: occluders need the software rasterizer");
+  if (occluders.size() > kMaxMeshesPerHypothesis)
+    throw InputError(fmt::format("hypothesis batch: at most {} occluders, got {}",
+                                 kMaxMeshesPerHypothesis, occluders.size()));
+  for (std::size_t o = 0; o < occluders.size(); ++o) {
+    if (occluders[o].mesh >= bounds_.size())
+      throw InputError(
+          fmt::format("hypothesis batch: occluder {} is mesh {}, but {} meshes were uploaded", o,
+                      occluders[o].mesh, bounds_.size()));
+    if (!occluders[o].pose.matrix().allFinite())
+      throw InputError(fmt::format("hypothesis batch: occluder {} has a non-finite pose", o));
+  }
+}
+
 HypothesisBatchResult HypothesisRenderer::render(const HypothesisBatch& batch,
                                                  const HypothesisBatchOptions& options) {
   if (batch.hypotheses.empty()) throw InputError("hypothesis batch: no hypotheses");
@@ -191,6 +208,7 @@ HypothesisBatchResult HypothesisRenderer::render(const HypothesisBatch& batch,
         throw InputError(
             fmt::format("hypothesis batch: hypothesis {} has a non-finite pose of mesh {}", h, m));
   }
+  validate_occluders(batch.occluders);
   HypothesisBatchResult result;
   result.cameras.resize(batch.cameras.size());
   std::vector<cv::Rect> rois(batch.cameras.size());

@@ -204,26 +204,86 @@ void SoftwareTiler::draw_labelled(const std::array<Eigen::Vector3d, 3>& triangle
   });
 }
 
+template <class Draw>
+void SoftwareTiler::for_each_triangle_in_front(const TriangleMesh& mesh,
+                                               const Eigen::Isometry3d& to_camera, double near,
+                                               Draw&& draw) {
+  camera_points_.resize(mesh.positions.size());
+  for (std::size_t v = 0; v < mesh.positions.size(); ++v)
+    camera_points_[v] = to_camera * mesh.positions[v].cast<double>();
+  for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+    const std::array<Eigen::Vector3d, 3> tri = {camera_points_[mesh.indices[t]],
+                                                camera_points_[mesh.indices[t + 1]],
+                                                camera_points_[mesh.indices[t + 2]]};
+    int in_front = 0;
+    for (const auto& p : tri) in_front += p.z() >= near;
+    if (in_front == 0) continue;
+    if (in_front == 3) {
+      draw(tri, t);
+      continue;
+    }
+    // Crossing the near plane: clip the polygon at z = near, then fan it.
+    std::vector<Eigen::Vector3d> polygon;
+    for (int i = 0; i < 3; ++i) {
+      const Eigen::Vector3d& p = tri[static_cast<std::size_t>(i)];
+      const Eigen::Vector3d& q = tri[static_cast<std::size_t>((i + 1) % 3)];
+      const bool p_in = p.z() >= near, q_in = q.z() >= near;
+      if (p_in) polygon.push_back(p);
+      if (p_in != q_in) polygon.push_back(p + (q - p) * ((near - p.z()) / (q.z() - p.z())));
+    }
+    for (std::size_t i = 1; i + 1 < polygon.size(); ++i)
+      draw(std::array<Eigen::Vector3d, 3>{polygon[0], polygon[i], polygon[i + 1]}, t);
+  }
+}
+
+void SoftwareTiler::draw_occluders(const HypothesisBatch& batch, const Camera& camera,
+                                   const cv::Rect& roi) {
+  labels_.create(roi.height, roi.width, CV_8U);
+  labels_.setTo(0);
+  inverse_depth_.create(roi.height, roi.width, CV_32F);
+  inverse_depth_.setTo(0.0F);
+  const Eigen::Isometry3d root_to_camera = camera.pose_root.inverse();
+  for (const Occluder& occluder : batch.occluders)
+    for_each_triangle_in_front(meshes_[occluder.mesh], root_to_camera * occluder.pose,
+                               camera.intrinsics.near,
+                               [&](const std::array<Eigen::Vector3d, 3>& tri, std::size_t) {
+                                 draw_labelled(tri, camera.intrinsics, roi, kOccluderLabel, 0);
+                               });
+}
+
 void SoftwareTiler::render(const HypothesisBatch& batch, const std::vector<cv::Rect>& rois,
                            std::size_t begin, std::size_t end,
                            const HypothesisBatchOptions& options, std::vector<CameraTiles>& out) {
+  const bool occluded = !batch.occluders.empty();
   if (options.crease_contours) {
     int patches = 0;
     for (const std::size_t mesh : batch.meshes) patches += patch_count_[mesh];
-    if (patches > 255)
+    const int most = occluded ? kOccluderLabel - 1 : 255;
+    if (patches > most)
       throw InputError(fmt::format(
-          "hypothesis batch: crease_contours: the meshes have {} smooth patches, at most 255",
-          patches));
+          "hypothesis batch: crease_contours: the meshes have {} smooth patches, at most {}",
+          patches, most));
   }
+  // The occluders are the same in every hypothesis: drawn once per camera, copied per tile.
+  std::vector<cv::Mat> occluder_labels(batch.cameras.size()), occluder_depth(batch.cameras.size());
+  if (occluded)
+    for (std::size_t cam = 0; cam < batch.cameras.size(); ++cam) {
+      draw_occluders(batch, batch.cameras[cam], rois[cam]);
+      occluder_labels[cam] = labels_.clone();
+      occluder_depth[cam] = inverse_depth_.clone();
+    }
   for (std::size_t h = begin; h < end; ++h)
     for (std::size_t cam = 0; cam < batch.cameras.size(); ++cam) {
       const Camera& camera = batch.cameras[cam];
       const PinholeIntrinsics& k = camera.intrinsics;
       const cv::Rect& roi = rois[cam];
-      const bool labelled = options.inner_contours;
+      const bool labelled = options.inner_contours || occluded;
       tile_.create(roi.height, roi.width, CV_8U);
       tile_.setTo(0);
-      if (labelled) {
+      if (occluded) {
+        occluder_labels[cam].copyTo(labels_);
+        occluder_depth[cam].copyTo(inverse_depth_);
+      } else if (labelled) {
         labels_.create(roi.height, roi.width, CV_8U);
         labels_.setTo(0);
         inverse_depth_.create(roi.height, roi.width, CV_32F);
@@ -247,65 +307,36 @@ void SoftwareTiler::render(const HypothesisBatch& batch, const std::vector<cv::R
         const int skip_back = !(options.crease_contours && cull) ? 0
                               : outward_[batch.meshes[m]]        ? 1
                                                                  : -1;
-        auto fill = [&](const std::array<long long, 3>& x, const std::array<long long, 3>& y) {
-          for_each_span(x, y, cull ? -1 : 0, roi, [&](int r, int lo, int hi) {
-            std::uint8_t* row = tile_.ptr<std::uint8_t>(r - roi.y);
-            std::fill(row + (lo - roi.x), row + (hi - roi.x) + 1, std::uint8_t{255});
-          });
-        };
-        const Eigen::Isometry3d to_camera = root_to_camera * batch.hypotheses[h][m];
-        camera_points_.resize(mesh.positions.size());
-        for (std::size_t v = 0; v < mesh.positions.size(); ++v)
-          camera_points_[v] = to_camera * mesh.positions[v].cast<double>();
-        auto window = [&](const Eigen::Vector3d& p, long long& wx, long long& wy) {
-          wx = snapped(k.fx * p.x() / p.z() + k.cx);
-          wy = snapped(k.fy * p.y() / p.z() + k.cy);
-        };
-        for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
-          std::array<Eigen::Vector3d, 3> tri = {camera_points_[mesh.indices[t]],
-                                                camera_points_[mesh.indices[t + 1]],
-                                                camera_points_[mesh.indices[t + 2]]};
-          int in_front = 0;
-          for (const auto& p : tri) in_front += p.z() >= k.near;
-          if (in_front == 0) continue;
-          if (in_front == 3) {
-            if (labelled) {
-              draw_labelled(tri, k, roi, label_of(t), skip_back);
-              continue;
-            }
-            std::array<long long, 3> x{}, y{};
-            for (int i = 0; i < 3; ++i) window(tri[static_cast<std::size_t>(i)], x[i], y[i]);
-            fill(x, y);
-            continue;
-          }
-          // Crossing the near plane: clip the polygon at z = near, then fan it.
-          std::vector<Eigen::Vector3d> polygon;
-          for (int i = 0; i < 3; ++i) {
-            const Eigen::Vector3d& p = tri[static_cast<std::size_t>(i)];
-            const Eigen::Vector3d& q = tri[static_cast<std::size_t>((i + 1) % 3)];
-            const bool p_in = p.z() >= k.near, q_in = q.z() >= k.near;
-            if (p_in) polygon.push_back(p);
-            if (p_in != q_in) polygon.push_back(p + (q - p) * ((k.near - p.z()) / (q.z() - p.z())));
-          }
-          for (std::size_t i = 1; i + 1 < polygon.size(); ++i) {
-            if (labelled) {
-              draw_labelled({polygon[0], polygon[i], polygon[i + 1]}, k, roi, label_of(t),
-                            skip_back);
-              continue;
-            }
-            std::array<long long, 3> x{}, y{};
-            window(polygon[0], x[0], y[0]);
-            window(polygon[i], x[1], y[1]);
-            window(polygon[i + 1], x[2], y[2]);
-            fill(x, y);
-          }
-        }
+        for_each_triangle_in_front(
+            mesh, root_to_camera * batch.hypotheses[h][m], k.near,
+            [&](const std::array<Eigen::Vector3d, 3>& tri, std::size_t t) {
+              if (labelled) {
+                draw_labelled(tri, k, roi, label_of(t), skip_back);
+                return;
+              }
+              std::array<long long, 3> x{}, y{};
+              for (std::size_t i = 0; i < 3; ++i) {
+                x[i] = snapped(k.fx * tri[i].x() / tri[i].z() + k.cx);
+                y[i] = snapped(k.fy * tri[i].y() / tri[i].z() + k.cy);
+              }
+              for_each_span(x, y, cull ? -1 : 0, roi, [&](int r, int lo, int hi) {
+                std::uint8_t* row = tile_.ptr<std::uint8_t>(r - roi.y);
+                std::fill(row + (lo - roi.x), row + (hi - roi.x) + 1, std::uint8_t{255});
+              });
+            });
       }
-      if (labelled) cv::compare(labels_, 0, tile_, cv::CMP_GT);
+      if (labelled) {
+        cv::compare(labels_, 0, tile_, cv::CMP_GT);
+        if (occluded) tile_ &= labels_ != kOccluderLabel;
+      }
       if (!options.extract) continue;
       cv::Mat tile =
           options.contour ? silhouette_contour(tile_, options.contour_width) : tile_.clone();
-      if (labelled && options.contour) tile |= inner_contour(labels_, inverse_depth_);
+      if (options.inner_contours && options.contour) {
+        cv::Mat inner = inner_contour(labels_, inverse_depth_);
+        if (occluded) inner &= tile_;  // the occluder's own boundaries are not the hypothesis'
+        tile |= inner;
+      }
       out[cam].tiles[h] = tile;
     }
 }

@@ -22,6 +22,9 @@ namespace somasim::render {
 /// (the box's and the cylinders' cap edges at 90°; an 8-sided cylinder's sides, 45°, do not).
 inline constexpr double kCreaseAngleDeg = 60.0;
 
+/// Label of an occluder's pixels in the label tile (hypothesis labels stay below it).
+inline constexpr int kOccluderLabel = 255;
+
 class SoftwareTiler {
  public:
   explicit SoftwareTiler(const std::vector<TriangleMesh>& meshes);
@@ -47,6 +50,17 @@ class SoftwareTiler {
   void draw_labelled(const std::array<Eigen::Vector3d, 3>& triangle,
                      const PinholeIntrinsics& intrinsics, const cv::Rect& roi, std::uint8_t label,
                      int skip_sign);
+
+  /// Calls draw(triangle, first index of the mesh triangle) for every triangle of `mesh` posed
+  /// by `to_camera` (camera <- mesh) in front of the near plane: whole, or clipped at z = near
+  /// and fanned.
+  template <class Draw>
+  void for_each_triangle_in_front(const TriangleMesh& mesh, const Eigen::Isometry3d& to_camera,
+                                  double near, Draw&& draw);
+
+  /// labels_ / inverse_depth_ of `roi` cleared and the batch's occluders drawn into them with
+  /// kOccluderLabel.
+  void draw_occluders(const HypothesisBatch& batch, const Camera& camera, const cv::Rect& roi);
 
   std::vector<TriangleMesh> meshes_;
   std::vector<bool> closed_;   // per mesh: closed and consistently wound (back faces culled)

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <limits>
 #include <numbers>
 
 #include "real_arm_views.hpp"
@@ -143,6 +144,30 @@ TEST(HypothesisScorer, InnerContoursOutlineThePrimitivesInsideTheHand) {
   ScorerOptions silhouettes = options;
   silhouettes.kind = LikelihoodKind::kSilhouette;
   EXPECT_THROW(HypothesisScorer(icub(), per_primitive, arm_dofs(), 1, silhouettes), InputError);
+}
+
+// The other hand as an occluder: drawn by the CPU rasterizer only, posed by offsets of every
+// model dof.
+TEST(HypothesisScorer, OccludersAreRefusedWhereTheyCannotBeDrawn) {
+  const ArmHypothesisModel hand = arm_hypothesis_model(*icub(), {"r_hand"}, 8);
+  const ArmHypothesisModel other_hand = arm_hypothesis_model(*icub(), {"l_hand"}, 8);
+  ScorerOptions options = edge_options();
+  EXPECT_THROW(HypothesisScorer(icub(), hand, arm_dofs(), 1, options,
+                                render::RenderBackend::kOsmesa, other_hand),
+               InputError);
+  options.rasterizer = render::Rasterizer::kSoftware;
+  HypothesisScorer scorer(icub(), hand, arm_dofs(), 1, options, render::RenderBackend::kOsmesa,
+                          other_hand);
+  try {
+    scorer.set_occluder_offsets(Eigen::VectorXd::Zero(7));
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("occluder offsets: expected"), std::string::npos)
+        << e.what();
+  }
+  Eigen::VectorXd offsets = Eigen::VectorXd::Zero(icub()->num_dofs());
+  offsets[0] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(scorer.set_occluder_offsets(offsets), InputError);
 }
 
 TEST(HypothesisScorer, Errors) {

@@ -66,6 +66,23 @@ TEST(BodySchemaFilterConfig, CrossFieldChecksAreLocated) {
             std::string::npos);
 }
 
+// Occluders: drawn by the CPU rasterizer only, never the hand under estimation itself, links of
+// the robot, and an occluder estimate wired with nothing to pose.
+TEST(BodySchemaFilterConfig, OccludersAreChecked) {
+  EXPECT_NE(error_of(filter_graph("occluder_links: [l_hand]"))
+                .find("key 'params.occluder_links': needs rasterizer: software"),
+            std::string::npos);
+  EXPECT_NE(error_of(filter_graph("rasterizer: software, occluder_links: [l_hand, r_hand]"))
+                .find("key 'params.occluder_links': link 'r_hand' is also a hypothesis link "
+                      "(links)"),
+            std::string::npos);
+  EXPECT_EQ(error_of(filter_graph("rasterizer: software, occluder_links: [l_hnd]")),
+            "<inline>:7:52: node 'filter', key 'params.occluder_links': robot 'icub_v1': unknown "
+            "link 'l_hnd' (did you mean 'l_hand'?)");
+  EXPECT_EQ(error_of(filter_graph("rasterizer: software, occluder_links: [l_hand, l_forearm]")),
+            "");
+}
+
 TEST(BodySchemaFilterConfig, EmbeddedBlocksAreCheckedByTheirOwnFields) {
   EXPECT_NE(error_of(filter_graph("kde_sigma_deg: 0"))
                 .find("key 'params.kde_sigma_deg': value 0 "

@@ -128,17 +128,27 @@ struct ScoreTiming {
 
 class HypothesisScorer {
  public:
-  /// `offset_dofs`: model dof index of each particle row. `workers` render threads. Throws
-  /// InputError for inner contours without the edge likelihood or the software rasterizer.
+  /// `offset_dofs`: model dof index of each particle row. `workers` render threads.
+  /// `occluder`: links of another body part (the other hand) drawn in every hypothesis' tiles
+  /// as occluders (render::Occluder), posed by the encoder values and set_occluder_offsets();
+  /// empty: none. Throws InputError for inner contours without the edge likelihood or the
+  /// software rasterizer, and for occluders without the software rasterizer.
   HypothesisScorer(std::shared_ptr<const robot::RobotModel> model, const ArmHypothesisModel& arm,
                    std::vector<int> offset_dofs, int workers, const ScorerOptions& options,
-                   render::RenderBackend backend = render::RenderBackend::kOsmesa);
+                   render::RenderBackend backend = render::RenderBackend::kOsmesa,
+                   const ArmHypothesisModel& occluder = {});
+
+  /// The offsets [rad] per model dof (the other arm's estimate) under which the occluder links
+  /// are posed from now on; zero (the nominal model) until set. Throws InputError for a vector
+  /// of the wrong size or with a non-finite entry.
+  void set_occluder_offsets(const Eigen::VectorXd& offsets_rad);
 
   /// The pose (root <- link) of every hypothesis link for encoder values q plus `offsets_deg`.
   std::vector<Eigen::Isometry3d> link_poses(const Eigen::VectorXd& q,
                                             const Eigen::VectorXd& offsets_deg);
 
-  /// Likelihood of every particle (columns of `particles_deg`). `observations[c]` is camera c's
+  /// Likelihood of every particle (columns of `particles_deg`), the occluders posed by q and
+  /// the occluder offsets. `observations[c]` is camera c's
   /// observed silhouette (CV_8U 0 / 255) or edge distance map (CV_8U [px]; CV_8UC2
   /// oriented_edge_map with an edge_orientation_weight), full image.
   /// Throws RunError (from the renderer) naming a camera none of whose hypotheses projects
@@ -153,10 +163,15 @@ class HypothesisScorer {
   const ScorerOptions& options() const { return options_; }
 
  private:
+  void pose_occluders(const Eigen::VectorXd& q);
+
   std::shared_ptr<const robot::RobotModel> model_;
   std::vector<int> links_;
   std::vector<std::size_t> mesh_link_;
   std::vector<int> offset_dofs_;
+  std::vector<int> occluder_links_;
+  std::vector<std::size_t> occluder_mesh_link_;  // per occluder mesh: its index in occluder_links_
+  Eigen::VectorXd occluder_offsets_rad_;         // per model dof
   ScorerOptions options_;
   render::HypothesisRenderer renderer_;
   robot::RobotData data_;

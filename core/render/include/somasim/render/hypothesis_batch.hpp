@@ -51,12 +51,25 @@ inline constexpr std::size_t kMaxMeshesPerHypothesis = 16;
 /// Poses root <- mesh [m], one per entry of HypothesisBatch::meshes, in the same order.
 using Hypothesis = std::vector<Eigen::Isometry3d>;
 
+/// A mesh posed once for the whole batch (another body part in front of the hypotheses, e.g.
+/// the other hand): drawn into every tile's depth test only, it hides the parts of a hypothesis
+/// behind it and is itself never part of a silhouette or contour. Where it hides a hypothesis,
+/// the hypothesis' contour runs along the occluder's outline (an edge the camera sees too).
+/// Software rasterizer only.
+struct Occluder {
+  std::size_t mesh = 0;                                    ///< index of the renderer's meshes
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< root <- mesh [m]
+};
+
 struct HypothesisBatch {
   /// Indices of the renderer's meshes to draw (e.g. forearm and hand proxies); 1 to
   /// kMaxMeshesPerHypothesis of them.
   std::vector<std::size_t> meshes;
   std::vector<Hypothesis> hypotheses;  ///< N >= 1
   std::vector<Camera> cameras;         ///< >= 1 (left and right eye)
+  /// Drawn in every hypothesis' tiles as occluders (at most kMaxMeshesPerHypothesis; they do not
+  /// widen the ROI). Empty: none.
+  std::vector<Occluder> occluders{};
 };
 
 struct HypothesisBatchOptions {
@@ -140,10 +153,11 @@ class HypothesisRenderer {
   HypothesisRenderer& operator=(HypothesisRenderer&&) = delete;
 
   /// Renders the batch. Throws somasim::InputError for an empty batch, an unknown mesh index,
-  /// a hypothesis with the wrong number of poses or a non-finite pose, invalid options or
-  /// intrinsics; somasim::RunError naming the camera when its ROI is empty (nothing projects
-  /// into its image) and for GL errors. One call at a time (not to be called concurrently on
-  /// the same renderer); the calling thread needs no GL context.
+  /// a hypothesis with the wrong number of poses or a non-finite pose, occluders on the GL
+  /// rasterizer or with a non-finite pose, invalid options or intrinsics; somasim::RunError naming
+  /// the camera when its ROI is empty (nothing projects into its image) and for GL errors. One call
+  /// at a time (not to be called concurrently on the same renderer); the calling thread needs no GL
+  /// context.
   HypothesisBatchResult render(const HypothesisBatch& batch,
                                const HypothesisBatchOptions& options = {});
 
@@ -153,6 +167,8 @@ class HypothesisRenderer {
   std::size_t mesh_count() const { return bounds_.size(); }
 
  private:
+  void validate_occluders(const std::vector<Occluder>& occluders) const;
+
   struct Pool;
   std::vector<Bounds> bounds_;
   std::unique_ptr<Pool> pool_;
