@@ -12,31 +12,15 @@
 
 #include "somasim/error.hpp"
 #include "somasim/render/hypothesis_batch.hpp"
+#include "tile_scenes.hpp"
 
 using namespace somasim;
 using namespace somasim::render;
+using somasim::render::testing::error_of;
+using somasim::render::testing::eye;
+using somasim::render::testing::pose;
 
 namespace {
-
-// Looks along root +x from the origin (root z up), 320 × 240.
-Camera eye() {
-  Camera c;
-  c.name = "eye";
-  c.intrinsics = {320, 240, 257.34, 257.34, 159.5, 119.5, 0.02, 5.0};
-  c.pose_root.linear().col(0) = -Eigen::Vector3d::UnitY();
-  c.pose_root.linear().col(1) = -Eigen::Vector3d::UnitZ();
-  c.pose_root.linear().col(2) = Eigen::Vector3d::UnitX();
-  return c;
-}
-
-Eigen::Isometry3d pose(const Eigen::Vector3d& position, const Eigen::Vector3d& rotation_vector) {
-  Eigen::Isometry3d p = Eigen::Isometry3d::Identity();
-  p.translation() = position;
-  if (rotation_vector.norm() > 0)
-    p.linear() =
-        Eigen::AngleAxisd(rotation_vector.norm(), rotation_vector.normalized()).toRotationMatrix();
-  return p;
-}
 
 HypothesisBatchOptions contours(bool inner) {
   HypothesisBatchOptions o;
@@ -91,15 +75,6 @@ Scene generated_scene(std::mt19937& rng, double depth_shift) {
   s.small = pose(at + depth_shift * at.normalized(),
                  Eigen::Vector3d(0.6 * u(rng), 0.6 * u(rng), 0.6 * u(rng)));
   return s;
-}
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "no error";
 }
 
 }  // namespace
