@@ -57,24 +57,13 @@ bool set_at(const CameraTiles& t, cv::Point p) {
 // intersect (an intersection curve is an inner boundary of neither outline).
 constexpr double kApart = 0.06;  // [m]
 
-struct Scene {
-  Eigen::Isometry3d big, small;
-};
+using Scene = somasim::render::testing::TwoBoxes;
 
 // A 6 × 5 × 2 cm box 0.25-0.4 m ahead, turned up to ~25°, and a 1.2 × 1.2 × 3 cm box whose
 // centre projects well inside it, `depth_shift` [m] along the line of sight from the big box's
 // centre (negative: nearer the camera).
 Scene generated_scene(std::mt19937& rng, double depth_shift) {
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  const Eigen::Vector3d centre(0.32 + 0.07 * u(rng), 0.05 * u(rng), 0.04 * u(rng));
-  Scene s;
-  s.big = pose(centre, Eigen::Vector3d(0.4 * u(rng), 0.4 * u(rng), 0.4 * u(rng)));
-  const Eigen::Vector3d lateral =
-      s.big.linear() * Eigen::Vector3d(0.0, 0.012 * u(rng), 0.01 * u(rng));
-  const Eigen::Vector3d at = centre + lateral;
-  s.small = pose(at + depth_shift * at.normalized(),
-                 Eigen::Vector3d(0.6 * u(rng), 0.6 * u(rng), 0.6 * u(rng)));
-  return s;
+  return somasim::render::testing::two_boxes(rng, depth_shift, 0.012, 0.01);
 }
 
 }  // namespace

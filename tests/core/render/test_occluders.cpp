@@ -35,23 +35,13 @@ cv::Mat whole_image(const CameraTiles& t, std::size_t hypothesis = 0) {
   return image;
 }
 
-// The hypothesis: a 6 × 5 × 2 cm box 0.25-0.4 m ahead, turned up to ~25°. The occluder: a
-// 2 × 2 × 3 cm box whose centre projects inside the big box's outline or over its border,
-// `depth_shift` [m] along the line of sight from the big box's centre (negative: nearer).
-struct Scene {
-  Eigen::Isometry3d hypothesis, occluder;
-};
+// The hypothesis (big): a 6 × 5 × 2 cm box 0.25-0.4 m ahead, turned up to ~25°. The occluder
+// (small): a 2 × 2 × 3 cm box whose centre projects inside the big box's outline or over its
+// border, `depth_shift` [m] along the line of sight from the big box's centre (negative: nearer).
+using Scene = somasim::render::testing::TwoBoxes;
 
 Scene generated_scene(std::mt19937& rng, double depth_shift) {
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  const Eigen::Vector3d centre(0.32 + 0.07 * u(rng), 0.05 * u(rng), 0.04 * u(rng));
-  Scene s;
-  s.hypothesis = pose(centre, Eigen::Vector3d(0.4 * u(rng), 0.4 * u(rng), 0.4 * u(rng)));
-  const Eigen::Vector3d at =
-      centre + s.hypothesis.linear() * Eigen::Vector3d(0.0, 0.03 * u(rng), 0.025 * u(rng));
-  s.occluder = pose(at + depth_shift * at.normalized(),
-                    Eigen::Vector3d(0.6 * u(rng), 0.6 * u(rng), 0.6 * u(rng)));
-  return s;
+  return somasim::render::testing::two_boxes(rng, depth_shift, 0.03, 0.025);
 }
 
 // Farther apart along the line of sight than the boxes' half-diagonals together.
@@ -75,10 +65,10 @@ TEST(Occluders, AnOccluderInFrontHidesExactlyItsOwnSilhouette) {
   int partly_hidden = 0;
   for (int k = 0; k < 40; ++k) {
     const Scene s = generated_scene(rng, -kApart);
-    const HypothesisBatch alone{{0}, {{s.hypothesis}}, {eye()}};
-    const HypothesisBatch occluder_alone{{1}, {{s.occluder}}, {eye()}};
+    const HypothesisBatch alone{{0}, {{s.big}}, {eye()}};
+    const HypothesisBatch occluder_alone{{1}, {{s.small}}, {eye()}};
     HypothesisBatch occluded = alone;
-    occluded.occluders = {{1, s.occluder}};
+    occluded.occluders = {{1, s.small}};
     const cv::Mat own = whole_image(renderer.render(alone, drawn(false, false)).cameras[0]);
     const cv::Mat occluder =
         whole_image(renderer.render(occluder_alone, drawn(false, false)).cameras[0]);
@@ -106,11 +96,11 @@ TEST(Occluders, AnOccluderBehindChangesNothingAndEveryHypothesisSeesTheSame) {
   for (int k = 0; k < 20; ++k) {
     const Scene behind = generated_scene(rng, kApart);
     const Scene in_front = generated_scene(rng, -kApart);
-    HypothesisBatch batch{{0}, {{behind.hypothesis}, {in_front.hypothesis}}, {eye()}};
+    HypothesisBatch batch{{0}, {{behind.big}, {in_front.big}}, {eye()}};
     for (const bool inner : {false, true}) {
       const CameraTiles plain = one.render(batch, drawn(true, inner)).cameras[0];
       HypothesisBatch occluded = batch;
-      occluded.occluders = {{1, behind.occluder}};
+      occluded.occluders = {{1, behind.small}};
       const CameraTiles with_behind = one.render(occluded, drawn(true, inner)).cameras[0];
       EXPECT_EQ(cv::countNonZero(whole_image(plain, 0) != whole_image(with_behind, 0)), 0)
           << "case " << k;
@@ -127,21 +117,21 @@ TEST(Occluders, OccludersTheRendererCannotDrawAreRefused) {
     std::mt19937 rng(1);
     return generated_scene(rng, -kApart);
   }();
-  HypothesisBatch batch{{0}, {{s.hypothesis}}, {eye()}};
+  HypothesisBatch batch{{0}, {{s.big}}, {eye()}};
   HypothesisRenderer software(boxes(), 1, RenderBackend::kOsmesa, Rasterizer::kSoftware);
-  batch.occluders = {{2, s.occluder}};
+  batch.occluders = {{2, s.small}};
   EXPECT_EQ(error_of([&] { software.render(batch); }),
             "hypothesis batch: occluder 0 is mesh 2, but 2 meshes were uploaded");
-  Eigen::Isometry3d broken = s.occluder;
+  Eigen::Isometry3d broken = s.small;
   broken.translation().x() = std::numeric_limits<double>::quiet_NaN();
-  batch.occluders = {{1, s.occluder}, {1, broken}};
+  batch.occluders = {{1, s.small}, {1, broken}};
   EXPECT_EQ(error_of([&] { software.render(batch); }),
             "hypothesis batch: occluder 1 has a non-finite pose");
-  batch.occluders.assign(kMaxMeshesPerHypothesis + 1, Occluder{1, s.occluder});
+  batch.occluders.assign(kMaxMeshesPerHypothesis + 1, Occluder{1, s.small});
   EXPECT_EQ(error_of([&] { software.render(batch); }),
             "hypothesis batch: at most 16 occluders, got 17");
   HypothesisRenderer gl(boxes(), 1, RenderBackend::kOsmesa, Rasterizer::kGl);
-  batch.occluders = {{1, s.occluder}};
+  batch.occluders = {{1, s.small}};
   EXPECT_EQ(error_of([&] { gl.render(batch); }),
             "hypothesis batch: occluders need the software rasterizer");
 }
