@@ -251,6 +251,18 @@ void SoftwareTiler::draw_occluders(const HypothesisBatch& batch, const Camera& c
                                });
 }
 
+cv::Mat SoftwareTiler::contour_beside_occluders(int width) const {
+  // Along the background as without occluders; where an occluder hides the hypothesis, its
+  // outline is not the hypothesis'; where the hypothesis is in front of one, the hypothesis'
+  // outline (1 px, as inner contours): the depth test between the two, all the hypothesis'
+  // meshes as one label.
+  cv::Mat contour = silhouette_contour(labels_ > 0, width) & tile_;
+  cv::Mat two_labels(labels_.size(), CV_8U, cv::Scalar(0));
+  two_labels.setTo(1, tile_);
+  two_labels.setTo(2, labels_ == kOccluderLabel);
+  return contour | (inner_contour(two_labels, inverse_depth_) & tile_);
+}
+
 void SoftwareTiler::render(const HypothesisBatch& batch, const std::vector<cv::Rect>& rois,
                            std::size_t begin, std::size_t end,
                            const HypothesisBatchOptions& options, std::vector<CameraTiles>& out) {
@@ -330,8 +342,13 @@ void SoftwareTiler::render(const HypothesisBatch& batch, const std::vector<cv::R
         if (occluded) tile_ &= labels_ != kOccluderLabel;
       }
       if (!options.extract) continue;
-      cv::Mat tile =
-          options.contour ? silhouette_contour(tile_, options.contour_width) : tile_.clone();
+      cv::Mat tile;
+      if (!options.contour)
+        tile = tile_.clone();
+      else if (occluded)
+        tile = contour_beside_occluders(options.contour_width);
+      else
+        tile = silhouette_contour(tile_, options.contour_width);
       if (options.inner_contours && options.contour) {
         cv::Mat inner = inner_contour(labels_, inverse_depth_);
         if (occluded) inner &= tile_;  // the occluder's own boundaries are not the hypothesis'

@@ -62,6 +62,11 @@ class SoftwareTiler {
   /// kOccluderLabel.
   void draw_occluders(const HypothesisBatch& batch, const Camera& camera, const cv::Rect& roi);
 
+  /// The contour of the hypothesis in tile_ among the occluders in labels_ / inverse_depth_:
+  /// its boundary with the background (`width` px) and, 1 px, where it lies in front of an
+  /// occluder; not where an occluder hides it.
+  cv::Mat contour_beside_occluders(int width) const;
+
   std::vector<TriangleMesh> meshes_;
   std::vector<bool> closed_;   // per mesh: closed and consistently wound (back faces culled)
   std::vector<bool> outward_;  // per mesh: wound counter-clockwise seen from outside

@@ -53,8 +53,9 @@ using Hypothesis = std::vector<Eigen::Isometry3d>;
 
 /// A mesh posed once for the whole batch (another body part in front of the hypotheses, e.g.
 /// the other hand): drawn into every tile's depth test only, it hides the parts of a hypothesis
-/// behind it and is itself never part of a silhouette or contour. Where it hides a hypothesis,
-/// the hypothesis' contour runs along the occluder's outline (an edge the camera sees too).
+/// behind it and is itself never part of a silhouette or contour. Nor is the line where it
+/// hides a hypothesis (the occluder's outline, not the hypothesis'), as the image border is not;
+/// where a hypothesis lies in front of it, its outline there is part of the contour (1 px wide).
 /// Software rasterizer only.
 struct Occluder {
   std::size_t mesh = 0;                                    ///< index of the renderer's meshes
