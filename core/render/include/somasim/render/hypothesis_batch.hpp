@@ -19,7 +19,8 @@
 /// Exception: triangles crossing the near plane (the ROI is then the whole image) get vertices
 /// from llvmpipe's clipper, whose rounding still depends on the tile's place: measured 8 of
 /// 118,026 silhouette-boundary pixels differ (an edge through a pixel centre). Results do not
-/// depend on the worker count. No depth test: a silhouette is the union of all meshes.
+/// depend on the worker count. No depth test on GL: a silhouette is the union of all meshes (the
+/// software rasterizer tests depth for inner contours and occluders).
 ///
 /// Cost: one draw call per tile (the batch's meshes are concatenated into one vertex buffer,
 /// posed by an array of at most kMaxMeshesPerHypothesis matrices).
