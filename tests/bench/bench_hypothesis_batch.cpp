@@ -1,6 +1,6 @@
 // One batch of 200 forearm + hand hypotheses in both eyes (320 x 240, iCub intrinsics) through
 // HypothesisRenderer with W = 1 and 2 workers, beside baselines in the same run (and the
-// software rasterizer beside GL, BM_SoftwareOverGl):
+// software rasterizer beside GL, BM_SoftwareOverGl; occluders beside none, BM_OccludersOverPlain):
 //   - the bare floor: the same geometry, tiles and single read-back per worker with no
 //     silhouette or contour extraction (HypothesisBatchOptions::extract = false); the issue's
 //     target is a batch <= 1.3 x this floor and <= 50 ms;
@@ -189,6 +189,52 @@ BENCHMARK(BM_SoftwareOverGl)
     ->Args({1, 0})
     ->Args({2, 0})
     ->Args({2, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->UseManualTime();
+
+// Occluders against none (the baseline) in alternation on the software rasterizer with inner
+// contours (as body_schema_edges.yaml draws): the same batch with the other hand (a palm box
+// and a forearm cylinder, 2 occluder meshes) posed across the hypotheses' forearms, nearer the
+// eyes. Counters plain_ms, occluded_ms and ratio = occluded / plain (sums over all iterations).
+void BM_OccludersOverPlain(benchmark::State& state) {
+  std::vector<TriangleMesh> meshes = arm_meshes();
+  meshes.push_back(tessellate_box(Eigen::Vector3d(0.07, 0.025, 0.08)));
+  meshes.push_back(tessellate_cylinder(0.025, 0.16, 16));
+  HypothesisRenderer software(meshes, static_cast<int>(state.range(0)), RenderBackend::kOsmesa,
+                              Rasterizer::kSoftware);
+  const HypothesisBatch plain = arm_batch();
+  HypothesisBatch occluded = plain;
+  Eigen::Isometry3d other_hand = Eigen::Isometry3d::Identity();
+  other_hand.translation() = Eigen::Vector3d(0.28, -0.02, -0.04);
+  other_hand.linear() = Eigen::AngleAxisd(0.6, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  Eigen::Isometry3d other_forearm = other_hand;
+  other_forearm.translate(Eigen::Vector3d(0.0, 0.0, -0.12));
+  occluded.occluders = {{5, other_hand}, {6, other_forearm}};
+  HypothesisBatchOptions options;
+  options.contour = true;
+  options.inner_contours = true;
+  using Clock = std::chrono::steady_clock;
+  double plain_s = 0.0, occluded_s = 0.0;
+  for (auto _ : state) {
+    const Clock::time_point t0 = Clock::now();
+    benchmark::DoNotOptimize(software.render(plain, options));
+    const Clock::time_point t1 = Clock::now();
+    benchmark::DoNotOptimize(software.render(occluded, options));
+    const Clock::time_point t2 = Clock::now();
+    plain_s += std::chrono::duration<double>(t1 - t0).count();
+    const double s = std::chrono::duration<double>(t2 - t1).count();
+    occluded_s += s;
+    state.SetIterationTime(s);
+  }
+  const double n = static_cast<double>(state.iterations());
+  state.counters["plain_ms"] = 1e3 * plain_s / n;
+  state.counters["occluded_ms"] = 1e3 * occluded_s / n;
+  state.counters["ratio"] = plain_s > 0.0 ? occluded_s / plain_s : 0.0;
+}
+BENCHMARK(BM_OccludersOverPlain)
+    ->ArgNames({"workers"})
+    ->Arg(1)
+    ->Arg(2)
     ->Unit(benchmark::kMillisecond)
     ->UseManualTime();
 
