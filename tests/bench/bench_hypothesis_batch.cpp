@@ -13,6 +13,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <string>
 
 #include "somasim/render/context.hpp"
 #include "somasim/render/hypothesis_batch.hpp"
@@ -156,6 +157,31 @@ BENCHMARK(BM_HypothesisBatchOverFloor)
     ->Unit(benchmark::kMillisecond)
     ->UseManualTime();
 
+// Times `baseline()` then `measured()` in every iteration, `measured` being the benchmark's
+// (manual) time; counters <baseline_name>_ms, <measured_name>_ms and ratio = measured / baseline
+// (sums over all iterations).
+template <class Baseline, class Measured>
+void in_alternation(benchmark::State& state, const std::string& baseline_name, Baseline&& baseline,
+                    const std::string& measured_name, Measured&& measured) {
+  using Clock = std::chrono::steady_clock;
+  double baseline_s = 0.0, measured_s = 0.0;
+  for (auto _ : state) {
+    const Clock::time_point t0 = Clock::now();
+    benchmark::DoNotOptimize(baseline());
+    const Clock::time_point t1 = Clock::now();
+    benchmark::DoNotOptimize(measured());
+    const Clock::time_point t2 = Clock::now();
+    baseline_s += std::chrono::duration<double>(t1 - t0).count();
+    const double s = std::chrono::duration<double>(t2 - t1).count();
+    measured_s += s;
+    state.SetIterationTime(s);
+  }
+  const double n = static_cast<double>(state.iterations());
+  state.counters[baseline_name + "_ms"] = 1e3 * baseline_s / n;
+  state.counters[measured_name + "_ms"] = 1e3 * measured_s / n;
+  state.counters["ratio"] = baseline_s > 0.0 ? measured_s / baseline_s : 0.0;
+}
+
 // The software rasterizer against GL (the baseline) in alternation, same batch and worker count:
 // each iteration times one GL batch and one software batch (the benchmark's time); counters
 // gl_ms, software_ms and ratio = software / GL (sums over all iterations).
@@ -166,23 +192,9 @@ void BM_SoftwareOverGl(benchmark::State& state) {
   const HypothesisBatch batch = arm_batch();
   HypothesisBatchOptions options;
   options.contour = state.range(1) != 0;
-  using Clock = std::chrono::steady_clock;
-  double gl_s = 0.0, software_s = 0.0;
-  for (auto _ : state) {
-    const Clock::time_point t0 = Clock::now();
-    benchmark::DoNotOptimize(gl.render(batch, options));
-    const Clock::time_point t1 = Clock::now();
-    benchmark::DoNotOptimize(software.render(batch, options));
-    const Clock::time_point t2 = Clock::now();
-    gl_s += std::chrono::duration<double>(t1 - t0).count();
-    const double s = std::chrono::duration<double>(t2 - t1).count();
-    software_s += s;
-    state.SetIterationTime(s);
-  }
-  const double n = static_cast<double>(state.iterations());
-  state.counters["gl_ms"] = 1e3 * gl_s / n;
-  state.counters["software_ms"] = 1e3 * software_s / n;
-  state.counters["ratio"] = gl_s > 0.0 ? software_s / gl_s : 0.0;
+  in_alternation(
+      state, "gl", [&] { return gl.render(batch, options); }, "software",
+      [&] { return software.render(batch, options); });
 }
 BENCHMARK(BM_SoftwareOverGl)
     ->ArgNames({"workers", "contour"})
@@ -213,23 +225,9 @@ void BM_OccludersOverPlain(benchmark::State& state) {
   HypothesisBatchOptions options;
   options.contour = true;
   options.inner_contours = true;
-  using Clock = std::chrono::steady_clock;
-  double plain_s = 0.0, occluded_s = 0.0;
-  for (auto _ : state) {
-    const Clock::time_point t0 = Clock::now();
-    benchmark::DoNotOptimize(software.render(plain, options));
-    const Clock::time_point t1 = Clock::now();
-    benchmark::DoNotOptimize(software.render(occluded, options));
-    const Clock::time_point t2 = Clock::now();
-    plain_s += std::chrono::duration<double>(t1 - t0).count();
-    const double s = std::chrono::duration<double>(t2 - t1).count();
-    occluded_s += s;
-    state.SetIterationTime(s);
-  }
-  const double n = static_cast<double>(state.iterations());
-  state.counters["plain_ms"] = 1e3 * plain_s / n;
-  state.counters["occluded_ms"] = 1e3 * occluded_s / n;
-  state.counters["ratio"] = plain_s > 0.0 ? occluded_s / plain_s : 0.0;
+  in_alternation(
+      state, "plain", [&] { return software.render(plain, options); }, "occluded",
+      [&] { return software.render(occluded, options); });
 }
 BENCHMARK(BM_OccludersOverPlain)
     ->ArgNames({"workers"})
