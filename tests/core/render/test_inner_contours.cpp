@@ -6,9 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <random>
-#include <string>
 
 #include "somasim/error.hpp"
 #include "somasim/render/hypothesis_batch.hpp"

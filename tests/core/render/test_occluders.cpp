@@ -3,11 +3,8 @@
 // against the boxes rendered alone; the errors for occluders the renderer cannot draw.
 #include <gtest/gtest.h>
 
-#include <cmath>
-#include <functional>
 #include <limits>
 #include <random>
-#include <string>
 
 #include "somasim/error.hpp"
 #include "somasim/render/hypothesis_batch.hpp"
