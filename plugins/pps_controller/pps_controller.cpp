@@ -36,6 +36,14 @@ void PpsController::Config::visit(V& v) {
       .doc("the skin part whose taxels vote (its link must be in the chain), e.g. left_forearm");
   v.field("threshold", threshold).range(0, 1).doc("taxels with an activation above this vote");
   v.field("speed", speed).unit("m/s").range(0, 10).doc("speed of the controlled point");
+  v.field("trigger_hold_s", trigger_hold_s)
+      .unit("s")
+      .range(0, 10)
+      .doc(
+          "taxels vote only once some taxel of the part has stayed above the threshold this "
+          "long without a break: a transient of the perceived stimulus shorter than this (one "
+          "camera frame: 0.05 s at 20 Hz) moves nothing; 0 = at the first tick above (the "
+          "paper's rule)");
   v.field("persistence", persistence)
       .unit("s")
       .range(0, 1000)
@@ -118,6 +126,7 @@ void PpsController::configure(NodeContext& ctx) {
   }
   reach_ = config_.mode == PpsMode::kReach;
   threshold_ = config_.threshold;
+  trigger_ = pps::HeldTrigger(config_.trigger_hold_s);
   speed_ = config_.speed;
   persistence_ = config_.persistence;
   return_after_ = config_.return_after;
@@ -294,7 +303,7 @@ void PpsController::step(NodeContext& ctx) {
     p += a[i] * part.positions[i];
     nrm += a[i] * part.normals[i];
   }
-  const bool triggered = sum > 0.0 && nrm.norm() > 1e-12;
+  const bool triggered = trigger_.update(now, sum > 0.0 && nrm.norm() > 1e-12);
   if (triggered) {
     p /= sum;
     *point_ = p;

@@ -20,6 +20,7 @@
 #include "somasim/plugin.hpp"
 #include "somasim/plugin_ports.hpp"
 #include "somasim/port_types.hpp"
+#include "somasim/pps/held_trigger.hpp"
 #include "somasim/pps/part_activations.hpp"
 #include "somasim/pps/ports.hpp"
 #include "somasim/robot/experiment_robot.hpp"
@@ -59,6 +60,7 @@ class PpsController : public Plugin {
     std::string body_part;
     double threshold = 0.4;
     double speed = 0.10;                               // [m/s]
+    double trigger_hold_s = 0.0;                       // [s]
     double persistence = 0.3;                          // [s]
     double return_after = 1.0;                         // [s]
     double workspace_radius = 0.2;                     // [m]
@@ -130,6 +132,7 @@ class PpsController : public Plugin {
   bool have_target_ = false;  ///< a voted point/direction to move (until persistence ends)
   Eigen::Vector3d point_link_ = Eigen::Vector3d::Zero(), direction_ = Eigen::Vector3d::Zero();
   double last_trigger_s_ = 0.0;
+  pps::HeldTrigger trigger_;  ///< the vote held for trigger_hold_s
   bool was_triggered_ = false;
   bool away_from_home_ = false;  ///< moved since the last return home
 

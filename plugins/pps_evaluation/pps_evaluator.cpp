@@ -38,6 +38,12 @@ void PpsEvaluator::Config::visit(V& v) {
   v.field("threshold", threshold)
       .range(0, 1)
       .doc("activation threshold of a trigger (the controllers' threshold)");
+  v.field("trigger_hold_s", trigger_hold_s)
+      .unit("s")
+      .range(0, 10)
+      .doc(
+          "a trigger counts once the activation has stayed above the threshold this long (the "
+          "controllers' trigger_hold_s)");
   v.field("velocity_parts", velocity_parts)
       .doc(
           "space-separated skin parts, the i-th is the part whose controller's velocity is "
@@ -154,6 +160,8 @@ void PpsEvaluator::follow_presentation(NodeContext& ctx) {
   r.sight = p.sight;
   r.start_s = p.start_time_s;
   record_of_object_[r.object] = records_.size();
+  aimed_trigger_ = pps::HeldTrigger(config_.trigger_hold_s);
+  other_trigger_ = pps::HeldTrigger(config_.trigger_hold_s);
   records_.push_back(std::move(r));
   if (std::find(config_.figure_presentations.begin(), config_.figure_presentations.end(),
                 static_cast<double>(p.id)) != config_.figure_presentations.end())
@@ -200,16 +208,18 @@ void PpsEvaluator::observe(NodeContext& ctx, PresentationRecord& r) {
       peak_at = k;
     }
   r.max_activation = std::max(r.max_activation, peak);
-  if (present && peak > config_.threshold && !r.triggered) {
+  if (aimed_trigger_.update(ctx.time_s(), present && peak > config_.threshold) && !r.triggered) {
     r.triggered = true;
     r.trigger_time_s = ctx.time_s();
     r.trigger_distance_m = nearest;
     r.trigger_taxel_id = part->taxel_ids[peak_at];
   }
   const std::string prefix = r.body_part + "/";
+  bool other_above = false;
   for (std::size_t i = 0; present && i < activations_->labels.size(); ++i)
     if (activations_->values[i] > config_.threshold && !activations_->labels[i].starts_with(prefix))
-      r.triggered_other_part = true;
+      other_above = true;
+  if (other_trigger_.update(ctx.time_s(), other_above)) r.triggered_other_part = true;
 
   double speed = PresentationRecord::kNaN;
   for (std::size_t i = 0; i < velocities_.size(); ++i)

@@ -24,6 +24,7 @@
 #include "somasim/plugin.hpp"
 #include "somasim/plugin_ports.hpp"
 #include "somasim/port_types.hpp"
+#include "somasim/pps/held_trigger.hpp"
 #include "somasim/pps/part_activations.hpp"
 #include "somasim/pps/ports.hpp"
 #include "somasim/robot/ports.hpp"
@@ -37,6 +38,7 @@ class PpsEvaluator : public Plugin {
   static constexpr int kVelocityInputs = 4;  ///< velocity_1 .. velocity_4
   struct Config {
     double threshold = 0.4;
+    double trigger_hold_s = 0.0;  // [s]
     std::vector<std::string> velocity_parts;
     std::vector<double> figure_presentations{1, 2, 3, 4};
     int figure_taxels = 3;
@@ -88,6 +90,8 @@ class PpsEvaluator : public Plugin {
   std::map<std::string, std::size_t> record_of_object_;
   std::map<std::string, robot::ObjectGeometry> geometries_;  ///< by object name, from `spawns`
   std::map<std::uint64_t, PresentationTrace> traces_;
+  // The open presentation's crossings: of the aimed part, of any other part.
+  pps::HeldTrigger aimed_trigger_, other_trigger_;
   std::map<std::string, pps::PartActivations> part_activations_;  ///< by aimed part
   std::uint64_t last_event_id_ = 0;
   double last_world_contact_s_ = -1.0;

@@ -165,6 +165,19 @@ void ObjectTracker::Config::visit(V& v) {
           "defaults) is reported with velocity 0, so that no time to contact is read from the "
           "difference of two noisy positions (metric velocity_withheld_frames); 0 = the "
           "velocity is always reported");
+  v.field("velocity_window_fixes", velocity_window_fixes)
+      .at_least(2)
+      .doc("the track's last fixes a straight line is fitted to, for max_velocity_disagreement");
+  v.field("max_velocity_disagreement", max_velocity_disagreement)
+      .unit("m/s")
+      .at_least(0.0)
+      .doc(
+          "a fix whose filtered velocity differs by more than this from the slope of the "
+          "least-squares line through the track's last velocity_window_fixes fixes (or whose "
+          "track has fewer fixes) is reported with velocity 0: the filter's velocity is read "
+          "only where the track's own positions show it, not from a transient of its "
+          "acceleration state (metrics velocity_withheld_frames, velocity_disputed_frames); 0 = "
+          "no check");
   v.block(kalman);
 }
 
@@ -226,6 +239,7 @@ void ObjectTracker::configure(NodeContext& ctx) {
   options.unfixed_frames_lost = config_.unfixed_frames_lost;
   options.reset_after_lost = config_.reset_after_lost;
   options.predict_windows = config_.predict_windows;
+  options.velocity_window_fixes = config_.velocity_window_fixes;
   options.kalman = config_.kalman;
   tracker_ = vision::StereoObjectTracker(options);
 
@@ -284,14 +298,24 @@ void ObjectTracker::step(NodeContext& ctx) {
   stimulus_->present = fix.fixed;
   stimulus_->position = fix.position;
   stimulus_->velocity = fix.velocity;
-  if (fix.fixed && config_.max_velocity_sigma > 0.0 &&
-      fix.velocity_sigma > config_.max_velocity_sigma) {
+  if (fix.fixed && !velocity_is_known(fix)) {
     stimulus_->velocity.setZero();
     ++velocity_withheld_frames_;
   }
   if (fix.fixed)
     stimulus_->radius = std::clamp(fix.radius_m, config_.radius_min, config_.radius_max);
   if (truth_) score_against_truth(cams);
+}
+
+bool ObjectTracker::velocity_is_known(const vision::StereoFix& fix) {
+  if (config_.max_velocity_sigma > 0.0 && fix.velocity_sigma > config_.max_velocity_sigma)
+    return false;
+  if (config_.max_velocity_disagreement <= 0.0) return true;
+  if (fix.window_fixes >= config_.velocity_window_fixes &&
+      (fix.velocity - fix.window_velocity).norm() <= config_.max_velocity_disagreement)
+    return true;
+  ++velocity_disputed_frames_;
+  return false;
 }
 
 void ObjectTracker::score_against_truth(const std::array<render::Camera, 2>& cameras) {
@@ -335,6 +359,7 @@ void ObjectTracker::finish(NodeContext& ctx) {
   ctx.report_metric("own_colour_refusals", n.own_colour_refused);
   ctx.report_metric("pose_time_offset_max_s", pose_time_offset_max_s_);
   ctx.report_metric("velocity_withheld_frames", velocity_withheld_frames_);
+  ctx.report_metric("velocity_disputed_frames", velocity_disputed_frames_);
   ctx.report_metric("reprojection_mean_px",
                     n.fixes ? n.reprojection_sum_px / static_cast<double>(n.fixes) : 0.0);
   if (!truth_) return;

@@ -62,6 +62,8 @@ class ObjectTracker : public Plugin {
     double radius_max = 0.2;    // [m]
     bool predict_windows = defaults().predict_windows;
     double max_velocity_sigma = 0.0;  // [m/s]; 0: the velocity is always reported
+    int velocity_window_fixes = defaults().velocity_window_fixes;
+    double max_velocity_disagreement = 0.0;  // [m/s]; 0: no check against the track's fixes
     // the Kalman filter (motion_model, process_noise, measurement_sigma)
     vision::KalmanOptions kalman = defaults().kalman;
     static const vision::StereoTrackerOptions& defaults();
@@ -86,6 +88,9 @@ class ObjectTracker : public Plugin {
   Config config_;
   Ports ports_;
   void score_against_truth(const std::array<render::Camera, 2>& cameras);
+  /// Whether `fix`'s velocity is known well enough to report (max_velocity_sigma,
+  /// max_velocity_disagreement); counts the disputed ones.
+  bool velocity_is_known(const vision::StereoFix& fix);
   /// The encoder values at the sim time closest to `time_s` among the recent steps [rad, m].
   const Eigen::VectorXd& joints_at(double time_s);
 
@@ -110,6 +115,7 @@ class ObjectTracker : public Plugin {
   std::int64_t truth_frames_ = 0, truth_tracked_ = 0, in_view_ = 0, in_view_tracked_ = 0;
   std::int64_t false_fixes_ = 0, error_count_ = 0;
   std::int64_t velocity_withheld_frames_ = 0;  // fixes reported without their velocity
+  std::int64_t velocity_disputed_frames_ = 0;  // of those: the track's fixes disagreed
   double position_sq_sum_ = 0.0, velocity_sq_sum_ = 0.0;
   LagEstimate lag_{0.01};  // latency; truth slower than 1 cm/s left out
 };

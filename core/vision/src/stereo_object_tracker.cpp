@@ -20,7 +20,7 @@ bool at_border(const ColourTrack& t, const cv::Mat& image) {
 }  // namespace
 
 StereoObjectTracker::StereoObjectTracker(const StereoTrackerOptions& options)
-    : options_(options), kalman_(options.kalman) {
+    : options_(options), kalman_(options.kalman), window_(options.velocity_window_fixes) {
   for (Eye& eye : eyes_) eye.tracker = ColourTracker(options_.colour);
 }
 
@@ -101,6 +101,7 @@ StereoFix StereoObjectTracker::update(const cv::Mat& left, const cv::Mat& right,
                                       const std::array<render::Camera, 2>& cameras, double dt_s,
                                       double first_dt_s) {
   ++counts_.frames;
+  clock_s_ += std::max(dt_s, 0.0);
   track_eye(eyes_[0], left, cameras[0], dt_s);
   track_eye(eyes_[1], right, cameras[1], dt_s);
   StereoFix out;
@@ -158,13 +159,18 @@ StereoFix StereoObjectTracker::update(const cv::Mat& left, const cv::Mat& right,
   drop_unfixed(object.centre.valid);
   if (!object.centre.valid) {
     ++lost_;
-    if (lost_ >= options_.reset_after_lost)
+    if (lost_ >= options_.reset_after_lost) {
       kalman_.reset();
-    else if (dt_s > 0)
+      window_.clear();
+    } else if (dt_s > 0)
       kalman_.predict(dt_s);
   } else {
-    if (dt_s <= 0.0 || lost_ >= options_.reset_after_lost) kalman_.reset();
+    if (dt_s <= 0.0 || lost_ >= options_.reset_after_lost) {
+      kalman_.reset();
+      window_.clear();
+    }
     kalman_.update(object.centre.point, dt_s > 0.0 ? dt_s : first_dt_s);
+    window_.add(clock_s_, object.centre.point);
     lost_ = 0;
     ++counts_.fixes;
     counts_.reprojection_sum_px += object.centre.reprojection_error_px;
@@ -175,6 +181,9 @@ StereoFix StereoObjectTracker::update(const cv::Mat& left, const cv::Mat& right,
   out.position = kalman_.position();
   out.velocity = kalman_.velocity();
   out.velocity_sigma = kalman_.velocity_sigma().maxCoeff();
+  out.window_velocity = window_.velocity();
+  out.window_fixes = window_.size();
+  out.window_residual_m = window_.residual_rms();
   return out;
 }
 

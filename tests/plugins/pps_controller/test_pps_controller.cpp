@@ -179,6 +179,26 @@ TEST(PpsController, BelowTheThresholdNothingMoves) {
   EXPECT_EQ(h.metric("pc", "max_distance_from_home_m").get<double>(), 0.0);
 }
 
+// With trigger_hold_s 0.05 an activation of one camera frame (5 ticks) moves nothing; one of
+// two frames triggers at its sixth tick.
+TEST(PpsController, ACrossingShorterThanTheHoldTimeMovesNothing) {
+  KinematicWorld world(kDt);
+  Skin skin;
+  Harness h(graph("trigger_hold_s: 0.05, persistence: 0.0, return_after: 100"));
+  const Eigen::VectorXd q0 = world.state.position;
+  const std::vector<double> on = {0.8, 0.8, 0.8, 0.8}, off = {0, 0, 0, 0};
+  for (int k = 0; k < 5; ++k) tick(h, world, skin, on);
+  for (int k = 0; k < 10; ++k) tick(h, world, skin, off);
+  EXPECT_EQ((world.state.position - q0).norm(), 0.0);
+  for (int k = 0; k < 10; ++k) {
+    tick(h, world, skin, on);
+    EXPECT_EQ(h.output<double>("pc.triggered"), k >= 5 ? 1.0 : 0.0) << k;
+  }
+  EXPECT_GT((world.state.position - q0).norm(), 0.0);
+  EXPECT_EQ(h.finish(), "");
+  EXPECT_EQ(h.metric("pc", "triggers").get<long>(), 1);
+}
+
 TEST(PpsController, KeepsMovingForThePersistenceThenReturnsHome) {
   KinematicWorld world(kDt);
   Skin skin;

@@ -124,6 +124,30 @@ TEST(ObjectTracker, AFixWhoseVelocityIsNotYetKnownIsReportedWithoutIt) {
             tracked);
 }
 
+// With max_velocity_disagreement a fix's velocity is reported only where the track's last
+// velocity_window_fixes fixes show it: with a tolerance no noise meets, every fix is withheld and
+// counted as disputed; with a loose one only a new track's first fixes (too few for the window);
+// without the option none.
+TEST(ObjectTracker, AVelocityTheTracksFixesDoNotShowIsReportedWithoutIt) {
+  const std::string keep = "unfixed_frames_lost: 1000";
+  constexpr int kDisparity = 40;  // [px]
+  const std::int64_t tracked = squares_metric(keep, "frames_tracked", 30, 30, 30, kDisparity);
+  ASSERT_GT(tracked, 10);
+  EXPECT_EQ(squares_metric(keep, "velocity_disputed_frames", 30, 30, 30, kDisparity), 0);
+  EXPECT_EQ(squares_metric(keep + ", max_velocity_disagreement: 1e-9", "velocity_disputed_frames",
+                           30, 30, 30, kDisparity),
+            tracked);
+  for (const int fixes : {3, 6}) {
+    const std::string loose =
+        keep + ", max_velocity_disagreement: 10, velocity_window_fixes: " + std::to_string(fixes);
+    const std::int64_t first =
+        squares_metric(loose, "velocity_disputed_frames", 30, 30, 30, kDisparity);
+    EXPECT_GE(first, fixes - 1) << fixes;
+    EXPECT_LE(first, 2 * (fixes - 1)) << fixes;  // at most one reset
+    EXPECT_EQ(squares_metric(loose, "velocity_withheld_frames", 30, 30, 30, kDisparity), first);
+  }
+}
+
 // Two tracks of unlike areas (over 3 : 1) are not one object: the smaller is dropped at once and
 // its eye re-acquires by motion. Like areas are kept.
 TEST(ObjectTracker, OfTwoTracksOfUnlikeAreasTheSmallerIsDropped) {

@@ -30,6 +30,7 @@
 
 #include "somasim/render/camera.hpp"
 #include "somasim/vision/colour_tracker.hpp"
+#include "somasim/vision/fix_window.hpp"
 #include "somasim/vision/kalman_tracker.hpp"
 #include "somasim/vision/motion_detection.hpp"
 
@@ -54,6 +55,8 @@ struct StereoTrackerOptions {
   int reset_after_lost = 3;          ///< frames without a fix before the filter starts afresh
   /// Move each search window by the image motion the filter predicts before CamShift.
   bool predict_windows = false;
+  /// The fixes a straight line is fitted to (StereoFix::window_velocity), at least 2.
+  int velocity_window_fixes = 5;
   KalmanOptions kalman{.model = MotionModel::kConstantAcceleration, .measurement_sigma_m = 0.005};
 };
 
@@ -86,6 +89,11 @@ struct StereoFix {
   Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
   /// The filter's σ of the velocity, largest over the axes [m/s] (0 after a reset).
   double velocity_sigma = 0.0;
+  /// The slope of the least-squares line through the last fixes of this track (since the
+  /// filter's last reset, at most velocity_window_fixes) [m/s], and how many it went through.
+  Eigen::Vector3d window_velocity = Eigen::Vector3d::Zero();
+  int window_fixes = 0;
+  double window_residual_m = 0.0;     ///< RMS distance of those fixes from that line [m]
   double radius_m = 0.0;              ///< from the tracked areas and the depth; 0 unfixed
   double reprojection_px = 0.0;       ///< RMS reprojection error of the fix [px]
   std::array<ColourTrack, 2> tracks;  ///< each eye's track this frame (left, right)
@@ -124,6 +132,8 @@ class StereoObjectTracker {
 
   StereoTrackerOptions options_;
   KalmanTracker kalman_;
+  FixWindow window_;      // this track's last fixes
+  double clock_s_ = 0.0;  // the sum of the frames' dt_s [s]
   std::array<Eye, 2> eyes_;
   int lost_ = 0;          // consecutive frames without a fix
   int inconsistent_ = 0;  // consecutive frames of two tracks that did not triangulate

@@ -1,0 +1,58 @@
+#include "somasim/vision/fix_window.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "somasim/error.hpp"
+
+namespace somasim::vision {
+
+FixWindow::FixWindow(int capacity) : capacity_(capacity) {
+  if (capacity < 2)
+    throw InputError(fmt::format("a fix window holds at least 2 fixes, got {}", capacity));
+}
+
+void FixWindow::add(double time_s, const Eigen::Vector3d& position_m) {
+  if (!fixes_.empty() && time_s < fixes_.back().time_s)
+    throw std::logic_error("FixWindow::add: fixes must come in time order");
+  fixes_.push_back({time_s, position_m});
+  if (size() > capacity_) fixes_.pop_front();
+}
+
+FixWindow::Line FixWindow::fit() const {
+  Line line;
+  if (fixes_.empty()) return line;
+  for (const Fix& f : fixes_) {
+    line.mean_t += f.time_s;
+    line.mean_p += f.position_m;
+  }
+  line.mean_t /= static_cast<double>(fixes_.size());
+  line.mean_p /= static_cast<double>(fixes_.size());
+  double var_t = 0.0;
+  Eigen::Vector3d cov = Eigen::Vector3d::Zero();
+  for (const Fix& f : fixes_) {
+    const double dt = f.time_s - line.mean_t;
+    var_t += dt * dt;
+    cov += dt * (f.position_m - line.mean_p);
+  }
+  if (var_t > 0.0) line.slope = cov / var_t;
+  return line;
+}
+
+Eigen::Vector3d FixWindow::velocity() const {
+  if (fixes_.size() < 2) return Eigen::Vector3d::Zero();
+  return fit().slope;
+}
+
+double FixWindow::residual_rms() const {
+  if (fixes_.size() < 3) return 0.0;
+  const Line line = fit();
+  double sum_sq = 0.0;
+  for (const Fix& f : fixes_)
+    sum_sq += (f.position_m - line.mean_p - (f.time_s - line.mean_t) * line.slope).squaredNorm();
+  return std::sqrt(sum_sq / static_cast<double>(fixes_.size()));
+}
+
+}  // namespace somasim::vision

@@ -1,0 +1,99 @@
+// The fix window: the slope of the least-squares line through a track's last fixes, over
+// generated straight and turning tracks, and the inputs it refuses.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <stdexcept>
+
+#include "somasim/error.hpp"
+#include "somasim/vision/fix_window.hpp"
+
+using somasim::vision::FixWindow;
+
+namespace {
+
+Eigen::Vector3d random_vector(std::mt19937& rng, double scale) {
+  std::uniform_real_distribution<double> u(-scale, scale);
+  return {u(rng), u(rng), u(rng)};
+}
+
+}  // namespace
+
+// Fixes on a straight line at uneven times (frames dropped) give its velocity exactly, whatever
+// the capacity; fewer than two fixes give zero.
+TEST(FixWindow, AStraightTracksVelocityIsItsSlope) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> gap(0.02, 0.15);
+  for (int trial = 0; trial < 50; ++trial) {
+    const int capacity = 2 + trial % 7;
+    FixWindow window(capacity);
+    EXPECT_EQ(window.velocity(), Eigen::Vector3d::Zero());
+    const Eigen::Vector3d start = random_vector(rng, 0.5), velocity = random_vector(rng, 0.4);
+    double t = gap(rng);
+    for (int k = 0; k < capacity + 3; ++k, t += gap(rng)) {
+      window.add(t, start + t * velocity);
+      const double error =
+          window.size() == 1 ? window.velocity().norm() : (window.velocity() - velocity).norm();
+      EXPECT_LT(error, 1e-9) << trial;
+      EXPECT_LT(window.residual_rms(), 1e-9) << trial;
+    }
+    EXPECT_TRUE(window.full());
+    EXPECT_EQ(window.size(), capacity);
+    window.clear();
+    EXPECT_EQ(window.size(), 0);
+  }
+}
+
+// A track that turns: once the window holds only fixes after the turn, its slope is the new
+// velocity; while it straddles the turn, it lies between the two.
+TEST(FixWindow, OnlyTheLastFixesCount) {
+  std::mt19937 rng(5);
+  for (int trial = 0; trial < 30; ++trial) {
+    FixWindow window(5);
+    const Eigen::Vector3d before = random_vector(rng, 0.3), after = -before;
+    Eigen::Vector3d p = random_vector(rng, 0.5);
+    for (int k = 0; k < 10; ++k) window.add(0.05 * k, p += 0.05 * before);
+    EXPECT_LT((window.velocity() - before).norm(), 1e-9);
+    window.add(0.5, p += 0.05 * after);
+    const double along = window.velocity().dot(before) / before.squaredNorm();
+    EXPECT_GT(along, -1.0);
+    EXPECT_LT(along, 1.0);
+    EXPECT_GT(window.residual_rms(), 0.001 * before.norm());  // the turn is off any line
+    for (int k = 11; k < 16; ++k) window.add(0.05 * k, p += 0.05 * after);
+    EXPECT_LT((window.velocity() - after).norm(), 1e-9) << trial;
+    EXPECT_LT(window.residual_rms(), 1e-9) << trial;
+  }
+}
+
+// Noisy fixes of a still object: the slope's spread falls as the window grows (the least-squares
+// slope's σ is the position σ √(12 / (n (n² − 1))) / frame interval); the residual's mean square
+// is the noise's over the 2 of n degrees of freedom the line takes (per axis).
+TEST(FixWindow, TheSlopeOfNoisyFixesHasTheLeastSquaresSpread) {
+  std::mt19937 rng(11);
+  std::normal_distribution<double> noise(0.0, 0.005);
+  for (const int n : {3, 5, 9}) {
+    double sum_sq = 0.0, residual_sq = 0.0;
+    constexpr int kTrials = 4000;
+    for (int trial = 0; trial < kTrials; ++trial) {
+      FixWindow window(n);
+      for (int k = 0; k < n; ++k) window.add(0.05 * k, Eigen::Vector3d(noise(rng), 0.0, 0.0));
+      sum_sq += window.velocity().x() * window.velocity().x();
+      residual_sq += window.residual_rms() * window.residual_rms();
+    }
+    EXPECT_NEAR(std::sqrt(residual_sq / kTrials), 0.005 * std::sqrt((n - 2.0) / n), 0.05 * 0.005)
+        << n;
+    const double expected = 0.005 * std::sqrt(12.0 / (n * (n * n - 1.0))) / 0.05;
+    EXPECT_NEAR(std::sqrt(sum_sq / kTrials), expected, 0.05 * expected) << n;
+  }
+}
+
+TEST(FixWindow, RefusesWhatCannotBeAWindow) {
+  EXPECT_THROW(FixWindow(1), somasim::InputError);
+  EXPECT_THROW(FixWindow(-3), somasim::InputError);
+  FixWindow window(3);
+  window.add(1.0, Eigen::Vector3d::Zero());
+  EXPECT_THROW(window.add(0.5, Eigen::Vector3d::Zero()), std::logic_error);
+  window.add(1.0, Eigen::Vector3d::Ones());  // two fixes at one time: no slope
+  EXPECT_EQ(window.velocity(), Eigen::Vector3d::Zero());
+}
