@@ -92,6 +92,13 @@ void BodySchemaFilter::Config::visit(V& v) {
           "when every particle's likelihood is 0: keep the particles and multiply σ_s by "
           "reinflate_factor, or stop the run");
   v.field("reinflate_factor", reinflate_factor).at_least(1.0).doc("see on_no_match");
+  v.field("ensemble", ensemble)
+      .range(1, 8)
+      .doc(
+          "independent filters of `particles` particles each (own random streams) on the same "
+          "images; the estimate published each frame is the one whose likelihood on that "
+          "frame's images is highest (metric ensemble_switches). Where the images leave two "
+          "modes, each filter settles in one and the frame decides between them; 1 = one filter");
   v.field("compare_particles", compare_particles)
       .max_size(16)
       .doc(
@@ -242,6 +249,11 @@ void BodySchemaFilter::configure(NodeContext& ctx) {
   filter_ = std::make_unique<body_schema::OffsetParticleFilter>(
       static_cast<int>(offset_dofs_.size()), config_.particles, schedule, ctx.rng()(), kde);
   filter_->set_estimate_threads(config_.render_threads);
+  for (int k = 1; k < config_.ensemble; ++k) {
+    others_.push_back(std::make_unique<body_schema::OffsetParticleFilter>(
+        static_cast<int>(offset_dofs_.size()), config_.particles, schedule, ctx.rng()(), kde));
+    others_.back()->set_estimate_threads(config_.render_threads);
+  }
 
   const auto low = config_.hand_hsv_low;
   const auto high = config_.hand_hsv_high;
@@ -381,6 +393,7 @@ void BodySchemaFilter::step(NodeContext& ctx) {
     if (phase_->movement != movement_) {
       movement_ = phase_->movement;
       filter_->reset();
+      for (auto& other : others_) other->reset();
       if (comparison_) comparison_->reset();
     }
   }
@@ -404,8 +417,22 @@ void BodySchemaFilter::step(NodeContext& ctx) {
                     "not visible: {}",
                     movement_, fmt::join(config_.links, " "), e.what()));
   }
-  const body_schema::FilterUpdate update = filter_->update(likelihoods);
+  body_schema::FilterUpdate update = filter_->update(likelihoods);
   if (!(update.best_likelihood > 0.0)) on_no_match(ctx, update);
+  std::vector<body_schema::FilterUpdate> other_updates;
+  for (auto& other : others_) {
+    other->predict();
+    other_updates.push_back(
+        other->update(score(joint_state_->position, other->particles(), cameras, observations)));
+    if (!(other_updates.back().best_likelihood > 0.0))
+      other->inflate_sigma(config_.reinflate_factor);
+  }
+  if (!others_.empty()) {
+    const std::size_t best = best_member(joint_state_->position, cameras, observations);
+    if (best != published_ && frames_ > 0) ++member_switches_;
+    published_ = best;
+    if (best > 0) update = other_updates[best - 1];
+  }
   const double step_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   main_record_.step_ms.push_back(step_ms);
@@ -421,6 +448,22 @@ void BodySchemaFilter::step(NodeContext& ctx) {
   }
 }
 
+std::size_t BodySchemaFilter::best_member(const Eigen::VectorXd& q,
+                                          const std::vector<render::Camera>& cameras,
+                                          const std::vector<cv::Mat>& observations) {
+  Eigen::MatrixXd estimates(filter_->dims(), static_cast<Eigen::Index>(others_.size() + 1));
+  estimates.col(0) = filter_->estimate();
+  for (std::size_t k = 0; k < others_.size(); ++k)
+    estimates.col(static_cast<Eigen::Index>(k + 1)) = others_[k]->estimate();
+  // Every rank scores these few alike (no share to gather).
+  const std::vector<double> l = scorer_->score(q, estimates, cameras, observations);
+  return static_cast<std::size_t>(std::max_element(l.begin(), l.end()) - l.begin());
+}
+
+const body_schema::OffsetParticleFilter& BodySchemaFilter::published() const {
+  return published_ == 0 ? *filter_ : *others_[published_ - 1];
+}
+
 void BodySchemaFilter::score_truth(const Eigen::VectorXd& q,
                                    const std::vector<render::Camera>& cameras,
                                    const std::vector<cv::Mat>& observations) {
@@ -428,7 +471,7 @@ void BodySchemaFilter::score_truth(const Eigen::VectorXd& q,
   for (std::size_t j = 0; j < offset_dofs_.size(); ++j)
     truth_and_estimate(static_cast<Eigen::Index>(j), 0) =
         true_offsets_[offset_dofs_[j]] * kRadToDeg;
-  truth_and_estimate.col(1) = filter_->estimate();
+  truth_and_estimate.col(1) = published().estimate();
   const std::vector<double> l = score(q, truth_and_estimate, cameras, observations);
   truth_likelihood_.push_back(l[0]);
   estimate_likelihood_.push_back(l[1]);
@@ -453,7 +496,7 @@ void BodySchemaFilter::on_no_match(NodeContext& ctx, const body_schema::FilterUp
 
 void BodySchemaFilter::publish(NodeContext& ctx, const body_schema::FilterUpdate& u) {
   ++frames_;
-  const Eigen::VectorXd& beta_deg = filter_->estimate();
+  const Eigen::VectorXd& beta_deg = published().estimate();
   BodySchemaEstimate& e = *estimate_;
   e.frame = frames_;
   e.movement = movement_;
@@ -502,7 +545,7 @@ void BodySchemaFilter::evaluate(const Eigen::VectorXd& q) {
     return std::pair{body_schema::position_error_mm(real, estimated),
                      body_schema::orientation_error_deg(real.linear(), estimated.linear())};
   };
-  const auto [mm, deg] = error_of(filter_->estimate());
+  const auto [mm, deg] = error_of(published().estimate());
   main_record_.error_mm.push_back(mm);
   main_record_.error_deg.push_back(deg);
   if (!comparison_) return;
@@ -529,6 +572,7 @@ void BodySchemaFilter::finish(NodeContext& ctx) {
                     main_record_.step_ms.empty() ? 0.0 : median(main_record_.step_ms));
   ctx.report_metric("filter_render_ms", render_ms_.empty() ? 0.0 : median(render_ms_));
   ctx.report_metric("filter_frames_without_match", lost_frames_);
+  if (!others_.empty()) ctx.report_metric("ensemble_switches", member_switches_);
   if (!truth_likelihood_.empty()) {
     std::int64_t outscored = 0;
     for (std::size_t k = 0; k < truth_likelihood_.size(); ++k)

@@ -59,6 +59,7 @@ class BodySchemaFilter : public Plugin {
     std::string palm_frame = "r_palm";
     std::vector<std::string> cameras{"left_eye", "right_eye"};
     int particles = 200;
+    int ensemble = 1;
     std::string schedule = "paper";
     double sigma_floor_deg = 0.0;  // [deg]
     double jump_fraction = 0.0;
@@ -113,6 +114,11 @@ class BodySchemaFilter : public Plugin {
                             const std::vector<cv::Mat>& observations);
   std::vector<cv::Mat> observe(NodeContext& ctx);
   void on_no_match(NodeContext& ctx, const body_schema::FilterUpdate& update);
+  /// Of the ensemble's members, the one whose estimate explains this frame's images best.
+  std::size_t best_member(const Eigen::VectorXd& q, const std::vector<render::Camera>& cameras,
+                          const std::vector<cv::Mat>& observations);
+  /// The ensemble member whose estimate is published (the main filter without an ensemble).
+  const body_schema::OffsetParticleFilter& published() const;
   void publish(NodeContext& ctx, const body_schema::FilterUpdate& update);
   void write_csv() const;
   void evaluate(const Eigen::VectorXd& q);
@@ -125,6 +131,11 @@ class BodySchemaFilter : public Plugin {
   std::shared_ptr<const robot::RobotModel> model_;
   std::vector<int> offset_dofs_;
   std::unique_ptr<body_schema::OffsetParticleFilter> filter_;
+  // The ensemble's further members (ensemble − 1 filters of as many particles) and the one
+  // published: 0 the main filter, k others_[k − 1].
+  std::vector<std::unique_ptr<body_schema::OffsetParticleFilter>> others_;
+  std::size_t published_ = 0;
+  std::int64_t member_switches_ = 0;  // frames on which the published member changed
   std::unique_ptr<body_schema::HypothesisScorer> scorer_;
   std::unique_ptr<body_schema::EyeHand> eye_hand_;
   std::unique_ptr<ParticleComparison> comparison_;

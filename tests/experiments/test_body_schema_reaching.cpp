@@ -97,6 +97,32 @@ TEST(BodySchemaReaching, SameSeedSameOutputsWhateverTheRenderThreads) {
   }
 }
 
+// An ensemble's first member is the single filter (its stream is drawn first) and the estimate
+// published is the member's that explains the frame best: at the evaluated frame of the one
+// movement (in the open loop, so the images are the same) it explains the images at least as
+// well as the single filter's estimate. The outputs do not depend on the render thread count.
+TEST(BodySchemaReaching, AnEnsemblePublishesTheMemberThatExplainsTheFrameBest) {
+  const auto with = [](const char* members, const char* threads) {
+    return short_run({{"nodes.reach.params.starts_per_target", "1"},
+                      {"nodes.filter.params.evaluate_frame", "39"},
+                      {"nodes.filter.params.particles", "60"},
+                      {"nodes.filter.params.ensemble", members},
+                      {"nodes.filter.params.render_threads", threads}});
+  };
+  const auto single = run_config("body_schema_reaching", with("1", "2"), "single");
+  const auto three = run_config("body_schema_reaching", with("3", "1"), "ensemble");
+  const auto three_again = run_config("body_schema_reaching", with("3", "3"), "ensemble3");
+  for (const auto* run : {&single, &three, &three_again})
+    ASSERT_EQ(run->metrics["status"], "completed") << run->metrics["error"];
+  EXPECT_GE(num(three.flat, "estimate_likelihood"), num(single.flat, "estimate_likelihood"));
+  EXPECT_FALSE(single.flat.contains("ensemble_switches"));
+  EXPECT_GE(num(three.flat, "ensemble_switches"), 0.0);
+  EXPECT_EQ(three.flat["filter_frames"], single.flat["filter_frames"]);
+  EXPECT_LT(num(three.flat, "estimation_error_mm"), num(three.flat, "estimation_error_nominal_mm"));
+  EXPECT_EQ(read_file(three.dir / "body_schema_filter.csv"),
+            read_file(three_again.dir / "body_schema_filter.csv"));
+}
+
 // A configuration error ends the run before it starts: status bad_input, the located message.
 TEST(BodySchemaReaching, AJointOutsideTheArmChainIsALocatedError) {
   const auto run = run_config(
