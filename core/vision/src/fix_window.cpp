@@ -1,6 +1,5 @@
 #include "somasim/vision/fix_window.hpp"
 
-#include <cmath>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -44,15 +43,6 @@ FixWindow::Line FixWindow::fit() const {
 Eigen::Vector3d FixWindow::velocity() const {
   if (fixes_.size() < 2) return Eigen::Vector3d::Zero();
   return fit().slope;
-}
-
-double FixWindow::residual_rms() const {
-  if (fixes_.size() < 3) return 0.0;
-  const Line line = fit();
-  double sum_sq = 0.0;
-  for (const Fix& f : fixes_)
-    sum_sq += (f.position_m - line.mean_p - (f.time_s - line.mean_t) * line.slope).squaredNorm();
-  return std::sqrt(sum_sq / static_cast<double>(fixes_.size()));
 }
 
 }  // namespace somasim::vision

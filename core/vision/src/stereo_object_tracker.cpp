@@ -183,7 +183,6 @@ StereoFix StereoObjectTracker::update(const cv::Mat& left, const cv::Mat& right,
   out.velocity_sigma = kalman_.velocity_sigma().maxCoeff();
   out.window_velocity = window_.velocity();
   out.window_fixes = window_.size();
-  out.window_residual_m = window_.residual_rms();
   return out;
 }
 

@@ -28,9 +28,6 @@ class FixWindow {
   /// The slope of the least-squares line through the fixes held, per axis [m/s]; zero with fewer
   /// than two fixes or all at one time.
   Eigen::Vector3d velocity() const;
-  /// The RMS distance of the fixes held from that line [m] (how far the track is from moving
-  /// uniformly); zero with fewer than three fixes.
-  double residual_rms() const;
 
  private:
   struct Fix {

@@ -93,7 +93,6 @@ struct StereoFix {
   /// filter's last reset, at most velocity_window_fixes) [m/s], and how many it went through.
   Eigen::Vector3d window_velocity = Eigen::Vector3d::Zero();
   int window_fixes = 0;
-  double window_residual_m = 0.0;     ///< RMS distance of those fixes from that line [m]
   double radius_m = 0.0;              ///< from the tracked areas and the depth; 0 unfixed
   double reprojection_px = 0.0;       ///< RMS reprojection error of the fix [px]
   std::array<ColourTrack, 2> tracks;  ///< each eye's track this frame (left, right)
