@@ -417,6 +417,7 @@ void BodySchemaFilter::step(NodeContext& ctx) {
                     "not visible: {}",
                     movement_, fmt::join(config_.links, " "), e.what()));
   }
+  render_ms_.push_back(scorer_->timing().render_ms);  // the main filter's batch
   body_schema::FilterUpdate update = filter_->update(likelihoods);
   if (!(update.best_likelihood > 0.0)) on_no_match(ctx, update);
   std::vector<body_schema::FilterUpdate> other_updates;
@@ -436,7 +437,6 @@ void BodySchemaFilter::step(NodeContext& ctx) {
   const double step_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   main_record_.step_ms.push_back(step_ms);
-  render_ms_.push_back(scorer_->timing().render_ms);
   if (comparison_)
     comparison_->step([&](const Eigen::MatrixXd& particles) {
       return score(joint_state_->position, particles, cameras, observations);
