@@ -87,6 +87,8 @@ PluginSpec PpsEvaluator::spec() {
 
 void PpsEvaluator::configure(NodeContext& ctx) {
   config_ = read_config<Config>(ctx);
+  aimed_trigger_ = pps::HeldTrigger(config_.trigger_hold_s);
+  other_trigger_ = pps::HeldTrigger(config_.trigger_hold_s);
   bind_ports(ctx, ports_);
   csv_name_ = config_.csv.name;
   if (!csv_name_.empty()) csv_path_ = config_.csv.path;
@@ -160,8 +162,8 @@ void PpsEvaluator::follow_presentation(NodeContext& ctx) {
   r.sight = p.sight;
   r.start_s = p.start_time_s;
   record_of_object_[r.object] = records_.size();
-  aimed_trigger_ = pps::HeldTrigger(config_.trigger_hold_s);
-  other_trigger_ = pps::HeldTrigger(config_.trigger_hold_s);
+  aimed_trigger_.reset();
+  other_trigger_.reset();
   records_.push_back(std::move(r));
   if (std::find(config_.figure_presentations.begin(), config_.figure_presentations.end(),
                 static_cast<double>(p.id)) != config_.figure_presentations.end())
