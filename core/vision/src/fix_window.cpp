@@ -20,29 +20,24 @@ void FixWindow::add(double time_s, const Eigen::Vector3d& position_m) {
   if (size() > capacity_) fixes_.pop_front();
 }
 
-FixWindow::Line FixWindow::fit() const {
-  Line line;
-  if (fixes_.empty()) return line;
+Eigen::Vector3d FixWindow::velocity() const {
+  if (fixes_.size() < 2) return Eigen::Vector3d::Zero();
+  double mean_t = 0.0;
+  Eigen::Vector3d mean_p = Eigen::Vector3d::Zero();
   for (const Fix& f : fixes_) {
-    line.mean_t += f.time_s;
-    line.mean_p += f.position_m;
+    mean_t += f.time_s;
+    mean_p += f.position_m;
   }
-  line.mean_t /= static_cast<double>(fixes_.size());
-  line.mean_p /= static_cast<double>(fixes_.size());
+  mean_t /= static_cast<double>(fixes_.size());
+  mean_p /= static_cast<double>(fixes_.size());
   double var_t = 0.0;
   Eigen::Vector3d cov = Eigen::Vector3d::Zero();
   for (const Fix& f : fixes_) {
-    const double dt = f.time_s - line.mean_t;
+    const double dt = f.time_s - mean_t;
     var_t += dt * dt;
-    cov += dt * (f.position_m - line.mean_p);
+    cov += dt * (f.position_m - mean_p);
   }
-  if (var_t > 0.0) line.slope = cov / var_t;
-  return line;
-}
-
-Eigen::Vector3d FixWindow::velocity() const {
-  if (fixes_.size() < 2) return Eigen::Vector3d::Zero();
-  return fit().slope;
+  return var_t > 0.0 ? Eigen::Vector3d(cov / var_t) : Eigen::Vector3d::Zero();
 }
 
 }  // namespace somasim::vision

@@ -34,13 +34,6 @@ class FixWindow {
     double time_s;
     Eigen::Vector3d position_m;
   };
-  /// The least-squares line: the fixes' mean time [s] and position [m], and the slope [m/s].
-  struct Line {
-    double mean_t = 0.0;
-    Eigen::Vector3d mean_p = Eigen::Vector3d::Zero();
-    Eigen::Vector3d slope = Eigen::Vector3d::Zero();
-  };
-  Line fit() const;
   int capacity_;
   std::deque<Fix> fixes_;
 };
