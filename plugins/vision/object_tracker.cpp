@@ -113,6 +113,13 @@ void ObjectTracker::Config::visit(V& v) {
           "a fix farther than this from where the Kalman filter predicts the object tracked in "
           "the previous frame is something else the colour trackers slid onto (the object was "
           "removed or hidden): both are dropped and re-acquired by motion (metric jump_drops)");
+  v.field("jump_check_after_missed", jump_check_after_missed)
+      .doc(
+          "apply max_jump_m also to the first fix after frames without one, against the "
+          "filter's prediction carried through them (while it still predicts: fewer than "
+          "reset_after_lost frames): the fix of something else the eyes found in the gap is not "
+          "joined to the track of the object they lost; false = only consecutive fixes are "
+          "checked");
   v.field("max_distance_m", max_distance_m)
       .unit("m")
       .range(0.05, 100.0)
@@ -167,7 +174,9 @@ void ObjectTracker::Config::visit(V& v) {
           "velocity is always reported");
   v.field("velocity_window_fixes", velocity_window_fixes)
       .at_least(2)
-      .doc("the track's last fixes a straight line is fitted to, for max_velocity_disagreement");
+      .doc(
+          "the track's last fixes a straight line is fitted to, for max_velocity_disagreement "
+          "and max_radius_rate");
   v.field("max_velocity_disagreement", max_velocity_disagreement)
       .unit("m/s")
       .at_least(0.0)
@@ -178,6 +187,17 @@ void ObjectTracker::Config::visit(V& v) {
           "only where the track's own positions show it, not from a transient of its "
           "acceleration state (metrics velocity_withheld_frames, velocity_disputed_frames); 0 = "
           "no check");
+  v.field("max_radius_rate", max_radius_rate)
+      .unit("1/s")
+      .at_least(0.0)
+      .doc(
+          "a fix whose track's radius (from area and depth) changes faster than this fraction of "
+          "itself per second over the last velocity_window_fixes fixes (the least-squares slope; "
+          "or whose track has fewer fixes) is reported with velocity 0: a rigid object keeps "
+          "its size, so a radius still growing or shrinking is a track still settling onto its "
+          "object or two eyes whose windows hold different things, and the motion its fixes "
+          "show is the windows', not the object's (metrics velocity_withheld_frames, "
+          "radius_unsettled_frames); 0 = no check");
   v.block(kalman);
 }
 
@@ -233,6 +253,7 @@ void ObjectTracker::configure(NodeContext& ctx) {
   options.still_px = config_.still_px;
   options.max_reprojection_px = config_.max_reprojection_px;
   options.max_jump_m = config_.max_jump_m;
+  options.jump_check_after_missed = config_.jump_check_after_missed;
   options.max_distance_m = config_.max_distance_m;
   options.max_colour_distance = config_.max_colour_distance;
   options.inconsistent_frames_lost = config_.inconsistent_frames_lost;
@@ -310,8 +331,14 @@ void ObjectTracker::step(NodeContext& ctx) {
 bool ObjectTracker::velocity_is_known(const vision::StereoFix& fix) {
   if (config_.max_velocity_sigma > 0.0 && fix.velocity_sigma > config_.max_velocity_sigma)
     return false;
+  const bool window_full = fix.window_fixes >= config_.velocity_window_fixes;
+  if (config_.max_radius_rate > 0.0 &&
+      (!window_full || fix.window_radius_rate > config_.max_radius_rate)) {
+    ++radius_unsettled_frames_;
+    return false;
+  }
   if (config_.max_velocity_disagreement <= 0.0) return true;
-  if (fix.window_fixes >= config_.velocity_window_fixes &&
+  if (window_full &&
       (fix.velocity - fix.window_velocity).norm() <= config_.max_velocity_disagreement)
     return true;
   ++velocity_disputed_frames_;
@@ -360,6 +387,7 @@ void ObjectTracker::finish(NodeContext& ctx) {
   ctx.report_metric("pose_time_offset_max_s", pose_time_offset_max_s_);
   ctx.report_metric("velocity_withheld_frames", velocity_withheld_frames_);
   ctx.report_metric("velocity_disputed_frames", velocity_disputed_frames_);
+  ctx.report_metric("radius_unsettled_frames", radius_unsettled_frames_);
   ctx.report_metric("reprojection_mean_px",
                     n.fixes ? n.reprojection_sum_px / static_cast<double>(n.fixes) : 0.0);
   if (!truth_) return;

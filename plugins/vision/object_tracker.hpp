@@ -53,7 +53,8 @@ class ObjectTracker : public Plugin {
     double lost_fraction = defaults().colour.lost_fraction;
     double max_reprojection_px = defaults().max_reprojection_px;  // [px]
     double max_jump_m = defaults().max_jump_m;                    // [m]
-    double max_distance_m = defaults().max_distance_m;            // [m]
+    bool jump_check_after_missed = defaults().jump_check_after_missed;
+    double max_distance_m = defaults().max_distance_m;  // [m]
     double max_colour_distance = defaults().max_colour_distance;
     int inconsistent_frames_lost = defaults().inconsistent_frames_lost;
     int unfixed_frames_lost = defaults().unfixed_frames_lost;
@@ -64,6 +65,7 @@ class ObjectTracker : public Plugin {
     double max_velocity_sigma = 0.0;  // [m/s]; 0: the velocity is always reported
     int velocity_window_fixes = defaults().velocity_window_fixes;
     double max_velocity_disagreement = 0.0;  // [m/s]; 0: no check against the track's fixes
+    double max_radius_rate = 0.0;            // [1/s]; 0: no check of the track's radius
     // the Kalman filter (motion_model, process_noise, measurement_sigma)
     vision::KalmanOptions kalman = defaults().kalman;
     static const vision::StereoTrackerOptions& defaults();
@@ -89,7 +91,7 @@ class ObjectTracker : public Plugin {
   Ports ports_;
   void score_against_truth(const std::array<render::Camera, 2>& cameras);
   /// Whether `fix`'s velocity is known well enough to report (max_velocity_sigma,
-  /// max_velocity_disagreement); counts the disputed ones.
+  /// max_radius_rate, max_velocity_disagreement); counts the unsettled and disputed ones.
   bool velocity_is_known(const vision::StereoFix& fix);
   /// The encoder values at the sim time closest to `time_s` among the recent steps [rad, m].
   const Eigen::VectorXd& joints_at(double time_s);
@@ -116,6 +118,7 @@ class ObjectTracker : public Plugin {
   std::int64_t false_fixes_ = 0, error_count_ = 0;
   std::int64_t velocity_withheld_frames_ = 0;  // fixes reported without their velocity
   std::int64_t velocity_disputed_frames_ = 0;  // of those: the track's fixes disagreed
+  std::int64_t radius_unsettled_frames_ = 0;   // of those: the track's radius was changing
   double position_sq_sum_ = 0.0, velocity_sq_sum_ = 0.0;
   LagEstimate lag_{0.01};  // latency; truth slower than 1 cm/s left out
 };

@@ -145,7 +145,8 @@ StereoFix StereoObjectTracker::update(const cv::Mat& left, const cv::Mat& right,
       drop_both();
       ++counts_.far_drops;
       inconsistent_ = 0;
-    } else if (lost_ == 0 && kalman_.initialised() && dt_s > 0.0 &&
+    } else if ((lost_ == 0 || options_.jump_check_after_missed) &&
+               lost_ < options_.reset_after_lost && kalman_.initialised() && dt_s > 0.0 &&
                (object.centre.point - (kalman_.position() + dt_s * kalman_.velocity())).norm() >
                    options_.max_jump_m) {
       object.centre.valid = false;  // not the object of the previous frame
@@ -170,7 +171,7 @@ StereoFix StereoObjectTracker::update(const cv::Mat& left, const cv::Mat& right,
       window_.clear();
     }
     kalman_.update(object.centre.point, dt_s > 0.0 ? dt_s : first_dt_s);
-    window_.add(clock_s_, object.centre.point);
+    window_.add(clock_s_, object.centre.point, object.radius_m);
     lost_ = 0;
     ++counts_.fixes;
     counts_.reprojection_sum_px += object.centre.reprojection_error_px;
@@ -183,6 +184,7 @@ StereoFix StereoObjectTracker::update(const cv::Mat& left, const cv::Mat& right,
   out.velocity_sigma = kalman_.velocity_sigma().maxCoeff();
   out.window_velocity = window_.velocity();
   out.window_fixes = window_.size();
+  out.window_radius_rate = window_.radius_rate();
   return out;
 }
 

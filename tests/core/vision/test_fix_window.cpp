@@ -1,8 +1,10 @@
-// The fix window: the slope of the least-squares line through a track's last fixes, over
-// generated straight and turning tracks, and the inputs it refuses.
+// The fix window: the slope of the least-squares line through a track's last fixes and the rate
+// its radius changes at, over generated straight and turning tracks, and the inputs it refuses.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <deque>
 #include <random>
 #include <stdexcept>
 
@@ -78,6 +80,36 @@ TEST(FixWindow, TheSlopeOfNoisyFixesHasTheLeastSquaresSpread) {
     }
     const double expected = 0.005 * std::sqrt(12.0 / (n * (n * n - 1.0))) / 0.05;
     EXPECT_NEAR(std::sqrt(sum_sq / kTrials), expected, 0.05 * expected) << n;
+  }
+}
+
+// Radii on a straight line at uneven times: the rate is the line's slope over the held fixes'
+// mean radius, whatever the capacity and sign; a constant radius, an unknown one (0) and a
+// single fix read 0.
+TEST(FixWindow, TheRadiusRateIsTheSlopeOverTheMeanRadius) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> gap(0.02, 0.15), radius(0.005, 0.1), rate(-2.0, 2.0);
+  for (int trial = 0; trial < 50; ++trial) {
+    const int capacity = 2 + trial % 7;
+    const double r0 = radius(rng), slope = rate(rng) * r0;
+    FixWindow window(capacity), constant(capacity), unknown(capacity);
+    double t = 0.0;
+    std::deque<double> held;
+    for (int k = 0; k < capacity + 3; ++k, t += gap(rng)) {
+      const double r = std::max(r0 + slope * t, 1e-4);
+      if (r != r0 + slope * t) break;  // a shrinking radius stays positive
+      window.add(t, random_vector(rng, 0.5), r);
+      constant.add(t, random_vector(rng, 0.5), r0);
+      unknown.add(t, random_vector(rng, 0.5));
+      held.push_back(r);
+      if (static_cast<int>(held.size()) > capacity) held.pop_front();
+      double mean = 0.0;
+      for (const double h : held) mean += h / static_cast<double>(held.size());
+      const double expected = held.size() < 2 ? 0.0 : std::abs(slope) / mean;
+      EXPECT_NEAR(window.radius_rate(), expected, 1e-9 * (1.0 + expected)) << trial;
+      EXPECT_NEAR(constant.radius_rate(), 0.0, 1e-9) << trial;
+      EXPECT_EQ(unknown.radius_rate(), 0.0) << trial;
+    }
   }
 }
 

@@ -26,10 +26,12 @@ constexpr double kDt = 0.05;  // 20 Hz
 constexpr double kRadius = 0.02;
 const std::array<somasim::render::Camera, 2> kCameras{kLeftEye, kRightEye};
 
-// Where the sphere is in frame k (none: std::nullopt); which eyes see it.
+// Where the sphere is in frame k (none: std::nullopt) and its radius [m]; which eyes see it.
 struct Scene {
   std::function<std::optional<Eigen::Vector3d>(int)> sphere;
   bool left_sees = true, right_sees = true;
+  std::function<double(int)> radius = [](int) { return kRadius; };
+  std::function<bool(int)> right_hidden = [](int) { return false; };  // in frame k
 };
 
 // A sphere crossing the view at 0.1 m/s along -y, 0.45 m ahead.
@@ -44,8 +46,10 @@ std::vector<vision::StereoFix> run(vision::StereoObjectTracker& tracker, const S
   std::vector<vision::StereoFix> out;
   for (int k = first; k < first + frames; ++k) {
     const auto p = scene.sphere(k);
-    const cv::Mat left = p && scene.left_sees ? view(bg, kLeftEye, *p, kRadius) : bg.clone();
-    const cv::Mat right = p && scene.right_sees ? view(bg, kRightEye, *p, kRadius) : bg.clone();
+    const double r = scene.radius(k);
+    const cv::Mat left = p && scene.left_sees ? view(bg, kLeftEye, *p, r) : bg.clone();
+    const cv::Mat right =
+        p && scene.right_sees && !scene.right_hidden(k) ? view(bg, kRightEye, *p, r) : bg.clone();
     out.push_back(tracker.update(left, right, kCameras, k == 0 ? 0.0 : kDt, kDt));
   }
   return out;
@@ -146,6 +150,64 @@ TEST(StereoObjectTracker, JumpBeyondMaxJumpIsDroppedAndReacquired) {
   EXPECT_EQ(tracker.counts().jump_drops, 1);
   EXPECT_TRUE(frames.back().fixed);
   EXPECT_LT((frames.back().position - *scene.sphere(29)).norm(), 0.005);
+}
+
+// The sphere hidden from the right eye for one frame (no fix) and seen again 3 cm from where it
+// was going: with jump_check_after_missed the first fix after the gap is checked against the
+// filter's prediction and refused (both tracks dropped), so the filter starts afresh on the
+// sphere at its new place and every later fix is within 3 mm of it; without, the fix is joined
+// to the old track and the filter's positions after the gap are pulled toward where the sphere
+// was going (6 mm here).
+TEST(StereoObjectTracker, AFixAfterMissedFramesFarFromThePredictionIsNotJoinedToTheTrack) {
+  const Scene scene{.sphere =
+                        [](int k) {
+                          Eigen::Vector3d p = crossing(k);
+                          if (k > 12) p.z() -= 0.03;
+                          return p;
+                        },
+                    .right_hidden = [](int k) { return k == 12; }};
+  for (const bool check : {false, true}) {
+    vision::StereoTrackerOptions options;
+    options.max_jump_m = 0.02;
+    options.jump_check_after_missed = check;
+    vision::StereoObjectTracker tracker(options);
+    const auto frames = run(tracker, scene, 30);
+    EXPECT_TRUE(frames[11].fixed);
+    double worst_after = 0.0;
+    for (int k = 13; k < 30; ++k)
+      if (frames[k].fixed)
+        worst_after = std::max(worst_after, (frames[k].position - *scene.sphere(k)).norm());
+    EXPECT_GT(fixes(frames, 13), 8) << check;
+    if (check) {
+      EXPECT_GE(tracker.counts().jump_drops, 1);
+      EXPECT_LT(worst_after, 0.003);
+    } else {
+      EXPECT_EQ(tracker.counts().jump_drops, 0);
+      EXPECT_GT(worst_after, 0.0045);
+    }
+  }
+}
+
+// A sphere that grows 2 % a frame (0.4 of its radius a second) at one depth: the fix window's
+// radius rate reads its growth; a sphere of constant size reads near 0.
+TEST(StereoObjectTracker, TheRadiusRateReadsASphereThatGrows) {
+  constexpr double kGrowthPerFrame = 0.02;
+  for (const double growth : {0.0, kGrowthPerFrame}) {
+    vision::StereoObjectTracker tracker;
+    const Scene scene{.sphere = crossing,
+                      .radius = [growth](int k) { return kRadius * (1.0 + growth * k); }};
+    const auto frames = run(tracker, scene, 25);
+    ASSERT_TRUE(frames.back().fixed);
+    ASSERT_EQ(frames.back().window_fixes, tracker.options().velocity_window_fixes);
+    const double expected = growth / kDt / (1.0 + growth * 22);  // over the window's mean radius
+    const double rate = frames.back().window_radius_rate;
+    std::printf("stereo tracker: growth %.2f/frame, radius rate %.3f/s (expected %.3f/s)\n", growth,
+                rate, expected);
+    if (growth == 0.0)
+      EXPECT_LT(rate, 0.1);
+    else
+      EXPECT_NEAR(rate, expected, 0.3 * expected);
+  }
 }
 
 // The robot's own colour is refused at acquisition: never tracked.

@@ -63,11 +63,11 @@ TEST(ObjectTracker, ImagesOfAnotherSizeThanTheCalibrationAreARunError) {
 namespace {
 
 // Feeds `frames` frames of 320 x 240 to both eyes: a green chequered square (texture for the
-// optical flow) of `left_px` / `right_px` side (0: none, grey) moving right 3 px a frame; the
-// robot at rest; the right eye's square `disparity_px` left of the left eye's. Returns the
-// tracker's metric `name`.
+// optical flow) of `left_px` / `right_px` side (0: none, grey) moving right 3 px a frame and
+// growing by `growth_px` a frame; the robot at rest; the right eye's square `disparity_px` left
+// of the left eye's. Returns the tracker's metric `name`.
 std::int64_t squares_metric(const std::string& params, const std::string& name, int frames,
-                            int left_px, int right_px, int disparity_px = 0) {
+                            int left_px, int right_px, int disparity_px = 0, int growth_px = 0) {
   // (The squares' green is one of the robot's own colours: not refused here.)
   Harness h(graph("refuse_own_colours: false" + (params.empty() ? "" : ", " + params)));
   const auto model = somasim::robot::load_robot_model_shared(kRobot);
@@ -77,7 +77,7 @@ std::int64_t squares_metric(const std::string& params, const std::string& name, 
       Image& image = h.input<RgbImage>(eye);
       image.data = cv::Mat(240, 320, CV_8UC3, cv::Scalar(110, 110, 110));
       const bool left = std::string(eye) == "left";
-      const int side = left ? left_px : right_px;
+      const int side = (left ? left_px : right_px) + (f - 1) * growth_px;
       const int column = 60 + 3 * f - (left ? 0 : disparity_px);
       for (int r = 0; r < side; ++r)
         for (int c = 0; c < side; ++c)
@@ -145,6 +145,32 @@ TEST(ObjectTracker, AVelocityTheTracksFixesDoNotShowIsReportedWithoutIt) {
     EXPECT_GE(first, fixes - 1) << fixes;
     EXPECT_LE(first, 2 * (fixes - 1)) << fixes;  // at most one reset
     EXPECT_EQ(squares_metric(loose, "velocity_withheld_frames", 30, 30, 30, kDisparity), first);
+  }
+}
+
+// With max_radius_rate a fix whose track's radius (from area and depth) is still changing is
+// reported without velocity and counted: every fix of a square that grows 1 px a frame (its
+// radius 0.4-0.7 of itself a second), only a new track's first fixes (too few for the window) of
+// one that keeps its size, none without the option.
+TEST(ObjectTracker, AVelocityOfATrackWhoseRadiusIsStillChangingIsReportedWithoutIt) {
+  const std::string keep = "unfixed_frames_lost: 1000";
+  constexpr int kDisparity = 40;  // [px]
+  for (const int growth : {0, 1}) {
+    const std::int64_t tracked =
+        squares_metric(keep, "frames_tracked", 30, 30, 30, kDisparity, growth);
+    ASSERT_GT(tracked, 10) << growth;
+    EXPECT_EQ(squares_metric(keep, "radius_unsettled_frames", 30, 30, 30, kDisparity, growth), 0);
+    const std::string gated = keep + ", max_radius_rate: 0.3";
+    const std::int64_t unsettled =
+        squares_metric(gated, "radius_unsettled_frames", 30, 30, 30, kDisparity, growth);
+    if (growth == 0) {
+      EXPECT_GE(unsettled, 4);
+      EXPECT_LE(unsettled, 8);  // at most one reset
+    } else {
+      EXPECT_EQ(unsettled, tracked);
+    }
+    EXPECT_EQ(squares_metric(gated, "velocity_withheld_frames", 30, 30, 30, kDisparity, growth),
+              unsettled);
   }
 }
 

@@ -15,7 +15,9 @@
 /// - two tracks whose rays do not meet (reprojection error) or whose colour models differ:
 ///   after inconsistent_frames_lost such frames both are dropped;
 /// - a fix beyond max_distance_m of the middle of the eyes (the backdrop) or beyond max_jump_m
-///   of the filter's prediction (the trackers slid onto something else): both dropped;
+///   of the filter's prediction (the trackers slid onto something else): both dropped; with
+///   jump_check_after_missed also the first fix after frames without one, against the prediction
+///   carried through them (else the filter would join fixes of two objects into one track);
 /// - an eye's track that gave no fix for unfixed_frames_lost frames.
 /// A dropped track is re-acquired by motion. Without a fix the filter predicts; after
 /// reset_after_lost frames without one it starts afresh.
@@ -48,6 +50,9 @@ struct StereoTrackerOptions {
   double still_px = 1.5;             ///< how far a track must move to count as moving [px]
   double max_reprojection_px = 4.0;  ///< RMS reprojection error above which no fix [px]
   double max_jump_m = 0.08;          ///< from the filter's prediction [m]
+  /// Check max_jump_m also on the first fix after frames without one (while the filter still
+  /// predicts the track, fewer than reset_after_lost frames), not only on consecutive fixes.
+  bool jump_check_after_missed = false;
   double max_distance_m = 0.8;       ///< from the middle of the two eyes [m]
   double max_colour_distance = 0.6;  ///< Bhattacharyya distance of the eyes' colour models
   int inconsistent_frames_lost = 2;  ///< frames of two tracks that do not triangulate
@@ -93,6 +98,9 @@ struct StereoFix {
   /// filter's last reset, at most velocity_window_fixes) [m/s], and how many it went through.
   Eigen::Vector3d window_velocity = Eigen::Vector3d::Zero();
   int window_fixes = 0;
+  /// How fast the radius of those fixes changes, over its mean [1/s] (FixWindow::radius_rate): a
+  /// rigid object's is 0; a track still settling onto its object grows or shrinks.
+  double window_radius_rate = 0.0;
   double radius_m = 0.0;              ///< from the tracked areas and the depth; 0 unfixed
   double reprojection_px = 0.0;       ///< RMS reprojection error of the fix [px]
   std::array<ColourTrack, 2> tracks;  ///< each eye's track this frame (left, right)
