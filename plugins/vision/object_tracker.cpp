@@ -191,13 +191,14 @@ void ObjectTracker::Config::visit(V& v) {
       .unit("1/s")
       .at_least(0.0)
       .doc(
-          "a fix whose track's radius (from area and depth) changes faster than this fraction of "
-          "itself per second over the last velocity_window_fixes fixes (the least-squares slope; "
-          "or whose track has fewer fixes) is reported with velocity 0: a rigid object keeps "
-          "its size, so a radius still growing or shrinking is a track still settling onto its "
-          "object or two eyes whose windows hold different things, and the motion its fixes "
-          "show is the windows', not the object's (metrics velocity_withheld_frames, "
-          "radius_unsettled_frames); 0 = no check");
+          "a track's radius (from area and depth) that changes faster than this fraction of "
+          "itself per second over its last velocity_window_fixes fixes (the least-squares slope, "
+          "from three fixes on) is still settling: that fix and the next velocity_window_fixes - "
+          "1 are reported with velocity 0 (so are a new track's first, too few for the window). "
+          "A rigid object keeps its size: a radius growing or shrinking is a window still "
+          "settling onto its object, or two eyes whose windows hold different things, and the "
+          "motion its fixes show is the windows', which the filter's velocity remembers for a "
+          "while (metrics velocity_withheld_frames, radius_unsettled_frames); 0 = no check");
   v.block(kalman);
 }
 
@@ -263,6 +264,8 @@ void ObjectTracker::configure(NodeContext& ctx) {
   options.velocity_window_fixes = config_.velocity_window_fixes;
   options.kalman = config_.kalman;
   tracker_ = vision::StereoObjectTracker(options);
+  if (config_.max_radius_rate > 0.0)
+    settling_.emplace(config_.max_radius_rate, config_.velocity_window_fixes);
 
   left_ = &ports_.eyes.left_eye_rgb.get();
   right_ = &ports_.eyes.right_eye_rgb.get();
@@ -329,14 +332,15 @@ void ObjectTracker::step(NodeContext& ctx) {
 }
 
 bool ObjectTracker::velocity_is_known(const vision::StereoFix& fix) {
+  // The settling gate sees every fix of a track, whatever the checks before it decide.
+  const bool settled = !settling_ || settling_->update(fix.window_fixes, fix.window_radius_rate);
   if (config_.max_velocity_sigma > 0.0 && fix.velocity_sigma > config_.max_velocity_sigma)
     return false;
-  const bool window_full = fix.window_fixes >= config_.velocity_window_fixes;
-  if (config_.max_radius_rate > 0.0 &&
-      (!window_full || fix.window_radius_rate > config_.max_radius_rate)) {
+  if (!settled) {
     ++radius_unsettled_frames_;
     return false;
   }
+  const bool window_full = fix.window_fixes >= config_.velocity_window_fixes;
   if (config_.max_velocity_disagreement <= 0.0) return true;
   if (window_full &&
       (fix.velocity - fix.window_velocity).norm() <= config_.max_velocity_disagreement)

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <deque>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -29,6 +30,7 @@
 #include "somasim/robot/robot_model.hpp"
 #include "somasim/vision/kalman_tracker.hpp"
 #include "somasim/vision/ports.hpp"
+#include "somasim/vision/settling_gate.hpp"
 #include "somasim/vision/stereo_object_tracker.hpp"
 
 namespace somasim::plugins {
@@ -91,7 +93,8 @@ class ObjectTracker : public Plugin {
   Ports ports_;
   void score_against_truth(const std::array<render::Camera, 2>& cameras);
   /// Whether `fix`'s velocity is known well enough to report (max_velocity_sigma,
-  /// max_radius_rate, max_velocity_disagreement); counts the unsettled and disputed ones.
+  /// max_radius_rate, max_velocity_disagreement); counts the unsettled and disputed ones. Called
+  /// on every fix.
   bool velocity_is_known(const vision::StereoFix& fix);
   /// The encoder values at the sim time closest to `time_s` among the recent steps [rad, m].
   const Eigen::VectorXd& joints_at(double time_s);
@@ -99,6 +102,7 @@ class ObjectTracker : public Plugin {
   std::shared_ptr<const robot::RobotModel> model_;
   BelievedEyes eyes_believed_;  // cameras and the believed head/eye kinematics
   vision::StereoObjectTracker tracker_;
+  std::optional<vision::SettlingGate> settling_;  // with max_radius_rate
 
   const Image* left_ = nullptr;
   const Image* right_ = nullptr;
