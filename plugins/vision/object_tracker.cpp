@@ -340,9 +340,8 @@ bool ObjectTracker::velocity_is_known(const vision::StereoFix& fix) {
     ++radius_unsettled_frames_;
     return false;
   }
-  const bool window_full = fix.window_fixes >= config_.velocity_window_fixes;
   if (config_.max_velocity_disagreement <= 0.0) return true;
-  if (window_full &&
+  if (fix.window_fixes >= config_.velocity_window_fixes &&
       (fix.velocity - fix.window_velocity).norm() <= config_.max_velocity_disagreement)
     return true;
   ++velocity_disputed_frames_;
