@@ -2,6 +2,7 @@
 // new tracks among them) against a direct reading of its rule, and the settings it refuses.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 #include <vector>
 
