@@ -44,6 +44,12 @@ void PpsController::Config::visit(V& v) {
           "long without a break: a transient of the perceived stimulus shorter than this (one "
           "camera frame: 0.05 s at 20 Hz) moves nothing; 0 = at the first tick above (the "
           "paper's rule)");
+  v.field("trigger_at_once_above", trigger_at_once_above)
+      .range(0, 1)
+      .doc(
+          "an activation above this votes at once, without waiting trigger_hold_s: an object "
+          "seen late and close is not held back, a marginal transient still is; 1 = every "
+          "crossing waits the hold");
   v.field("persistence", persistence)
       .unit("s")
       .range(0, 1000)
@@ -127,6 +133,7 @@ void PpsController::configure(NodeContext& ctx) {
   reach_ = config_.mode == PpsMode::kReach;
   threshold_ = config_.threshold;
   trigger_ = pps::HeldTrigger(config_.trigger_hold_s);
+  at_once_above_ = config_.trigger_at_once_above;
   speed_ = config_.speed;
   persistence_ = config_.persistence;
   return_after_ = config_.return_after;
@@ -295,15 +302,17 @@ void PpsController::step(NodeContext& ctx) {
   const double now = ctx.time_s();
 
   // Vote.
-  double sum = 0.0;
+  double sum = 0.0, peak = 0.0;
   Eigen::Vector3d p = Eigen::Vector3d::Zero(), nrm = Eigen::Vector3d::Zero();
   for (std::size_t i = 0; i < a.size(); ++i) {
     if (!(a[i] > threshold_)) continue;
     sum += a[i];
+    peak = std::max(peak, a[i]);
     p += a[i] * part.positions[i];
     nrm += a[i] * part.normals[i];
   }
-  const bool triggered = trigger_.update(now, sum > 0.0 && nrm.norm() > 1e-12);
+  const bool above = sum > 0.0 && nrm.norm() > 1e-12;
+  const bool triggered = trigger_.update(now, above, above && peak > at_once_above_);
   if (triggered) {
     p /= sum;
     *point_ = p;

@@ -59,8 +59,9 @@ class PpsController : public Plugin {
     ReachDirection reach_direction = ReachDirection::kNormal;
     std::string body_part;
     double threshold = 0.4;
-    double speed = 0.10;                               // [m/s]
-    double trigger_hold_s = 0.0;                       // [s]
+    double speed = 0.10;          // [m/s]
+    double trigger_hold_s = 0.0;  // [s]
+    double trigger_at_once_above = 1.0;
     double persistence = 0.3;                          // [s]
     double return_after = 1.0;                         // [s]
     double workspace_radius = 0.2;                     // [m]
@@ -132,7 +133,8 @@ class PpsController : public Plugin {
   bool have_target_ = false;  ///< a voted point/direction to move (until persistence ends)
   Eigen::Vector3d point_link_ = Eigen::Vector3d::Zero(), direction_ = Eigen::Vector3d::Zero();
   double last_trigger_s_ = 0.0;
-  pps::HeldTrigger trigger_;  ///< the vote held for trigger_hold_s
+  pps::HeldTrigger trigger_;    ///< the vote held for trigger_hold_s
+  double at_once_above_ = 1.0;  ///< an activation above this votes without the hold
   bool was_triggered_ = false;
   bool away_from_home_ = false;  ///< moved since the last return home
 

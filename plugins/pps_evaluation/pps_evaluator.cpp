@@ -44,6 +44,11 @@ void PpsEvaluator::Config::visit(V& v) {
       .doc(
           "a trigger counts once the activation has stayed above the threshold this long (the "
           "controllers' trigger_hold_s)");
+  v.field("trigger_at_once_above", trigger_at_once_above)
+      .range(0, 1)
+      .doc(
+          "an activation above this counts at once, without the hold (the controllers' "
+          "trigger_at_once_above)");
   v.field("velocity_parts", velocity_parts)
       .doc(
           "space-separated skin parts, the i-th is the part whose controller's velocity is "
@@ -210,18 +215,24 @@ void PpsEvaluator::observe(NodeContext& ctx, PresentationRecord& r) {
       peak_at = k;
     }
   r.max_activation = std::max(r.max_activation, peak);
-  if (aimed_trigger_.update(ctx.time_s(), present && peak > config_.threshold) && !r.triggered) {
+  const bool aimed_above = present && peak > config_.threshold;
+  if (aimed_trigger_.update(ctx.time_s(), aimed_above,
+                            aimed_above && peak > config_.trigger_at_once_above) &&
+      !r.triggered) {
     r.triggered = true;
     r.trigger_time_s = ctx.time_s();
     r.trigger_distance_m = nearest;
     r.trigger_taxel_id = part->taxel_ids[peak_at];
   }
   const std::string prefix = r.body_part + "/";
-  bool other_above = false;
+  double other_peak = 0.0;
   for (std::size_t i = 0; present && i < activations_->labels.size(); ++i)
-    if (activations_->values[i] > config_.threshold && !activations_->labels[i].starts_with(prefix))
-      other_above = true;
-  if (other_trigger_.update(ctx.time_s(), other_above)) r.triggered_other_part = true;
+    if (!activations_->labels[i].starts_with(prefix))
+      other_peak = std::max(other_peak, activations_->values[i]);
+  const bool other_above = other_peak > config_.threshold;
+  if (other_trigger_.update(ctx.time_s(), other_above,
+                            other_above && other_peak > config_.trigger_at_once_above))
+    r.triggered_other_part = true;
 
   double speed = PresentationRecord::kNaN;
   for (std::size_t i = 0; i < velocities_.size(); ++i)

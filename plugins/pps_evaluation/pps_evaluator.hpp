@@ -39,6 +39,7 @@ class PpsEvaluator : public Plugin {
   struct Config {
     double threshold = 0.4;
     double trigger_hold_s = 0.0;  // [s]
+    double trigger_at_once_above = 1.0;
     std::vector<std::string> velocity_parts;
     std::vector<double> figure_presentations{1, 2, 3, 4};
     int figure_taxels = 3;

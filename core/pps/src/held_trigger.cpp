@@ -18,13 +18,13 @@ HeldTrigger::HeldTrigger(double hold_s) : hold_s_(hold_s) {
         fmt::format("a trigger's hold time must be finite and >= 0 s, got {}", hold_s));
 }
 
-bool HeldTrigger::update(double time_s, bool above) {
+bool HeldTrigger::update(double time_s, bool above, bool sure) {
   if (!above) {
     above_since_s_ = kNever;
     return false;
   }
   if (std::isnan(above_since_s_)) above_since_s_ = time_s;
-  return time_s - above_since_s_ >= hold_s_ - kTimeEps;
+  return sure || time_s - above_since_s_ >= hold_s_ - kTimeEps;
 }
 
 }  // namespace somasim::pps

@@ -1,6 +1,6 @@
 // The held trigger: over generated above/below sequences at a controller's tick, it holds
 // exactly where the activation has been above the threshold without a break for hold_s; a
-// crossing shorter than hold_s never triggers.
+// crossing shorter than hold_s never triggers; a tick whose activation is sure triggers at once.
 #include <gtest/gtest.h>
 
 #include <limits>
@@ -59,6 +59,27 @@ TEST(HeldTrigger, AOneFrameTransientMovesNothing) {
     }
     EXPECT_EQ(first_at_once, 10) << frames;
     EXPECT_EQ(first_held, frames == 1 ? -1 : 15) << frames;
+  }
+}
+
+// Generated crossings whose ticks are now and then sure (far above the threshold): a sure tick
+// triggers at once, whatever the crossing's age; the others wait the hold as before, and a sure
+// tick does not shorten the hold of the ticks after it.
+TEST(HeldTrigger, ASureCrossingTriggersWithoutTheHold) {
+  std::mt19937 rng(29);
+  std::bernoulli_distribution sure_draw(0.2);
+  for (int trial = 0; trial < 200; ++trial) {
+    const int hold_ticks = 1 + trial % 10;
+    HeldTrigger trigger(hold_ticks * kTick);
+    const std::vector<bool> above = random_crossings(rng, 400);
+    int run = 0;
+    for (std::size_t k = 0; k < above.size(); ++k) {
+      run = above[k] ? run + 1 : 0;
+      const bool sure = above[k] && sure_draw(rng);
+      const bool expected = sure || (above[k] && run - 1 >= hold_ticks);
+      ASSERT_EQ(trigger.update(static_cast<double>(k) * kTick, above[k], sure), expected)
+          << "trial " << trial << ", tick " << k << ", hold " << hold_ticks;
+    }
   }
 }
 

@@ -199,6 +199,32 @@ TEST(PpsController, ACrossingShorterThanTheHoldTimeMovesNothing) {
   EXPECT_EQ(h.metric("pc", "triggers").get<long>(), 1);
 }
 
+// With trigger_at_once_above 0.6 the hold applies to marginal crossings only: one frame at 0.5
+// moves nothing, one frame at 0.8 triggers at its first tick.
+TEST(PpsController, ACrossingFarAboveTheThresholdDoesNotWaitTheHold) {
+  KinematicWorld world(kDt);
+  Skin skin;
+  Harness h(
+      graph("trigger_hold_s: 0.05, trigger_at_once_above: 0.6, persistence: 0.0, "
+            "return_after: 100"));
+  const Eigen::VectorXd q0 = world.state.position;
+  const std::vector<double> marginal = {0.5, 0.45, 0.0, 0.0}, sure = {0.5, 0.8, 0.0, 0.0},
+                            off = {0, 0, 0, 0};
+  for (int k = 0; k < 5; ++k) {
+    tick(h, world, skin, marginal);
+    EXPECT_EQ(h.output<double>("pc.triggered"), 0.0) << k;
+  }
+  for (int k = 0; k < 10; ++k) tick(h, world, skin, off);
+  EXPECT_EQ((world.state.position - q0).norm(), 0.0);
+  for (int k = 0; k < 5; ++k) {
+    tick(h, world, skin, sure);
+    EXPECT_EQ(h.output<double>("pc.triggered"), 1.0) << k;
+  }
+  EXPECT_GT((world.state.position - q0).norm(), 0.0);
+  EXPECT_EQ(h.finish(), "");
+  EXPECT_EQ(h.metric("pc", "triggers").get<long>(), 1);
+}
+
 TEST(PpsController, KeepsMovingForThePersistenceThenReturnsHome) {
   KinematicWorld world(kDt);
   Skin skin;

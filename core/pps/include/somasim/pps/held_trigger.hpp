@@ -2,7 +2,8 @@
 /// @file
 /// A threshold crossing that counts once it has held: the trigger of the PPS controllers and of
 /// their evaluation, so that a transient of the perceived stimulus as short as one camera frame
-/// moves nothing. Times [s].
+/// moves nothing, while a crossing far above the threshold (an object seen late and close) need
+/// not wait. Times [s].
 #include <limits>
 
 namespace somasim::pps {
@@ -14,10 +15,11 @@ class HeldTrigger {
 
   /// Forget the current crossing (a new presentation).
   void reset() { above_since_s_ = kNever; }
-  /// Whether the activation is `above` the threshold at `time_s` (non-decreasing across calls);
-  /// returns whether the trigger holds now: above, and above without a break for at least
-  /// hold_s (to 1 ns).
-  bool update(double time_s, bool above);
+  /// Whether the activation is `above` the threshold at `time_s` (non-decreasing across calls),
+  /// and whether it is `sure` (above the level that needs no hold; implies above); returns
+  /// whether the trigger holds now: above, and either sure or above without a break for at
+  /// least hold_s (to 1 ns).
+  bool update(double time_s, bool above, bool sure = false);
   double hold_s() const { return hold_s_; }
 
  private:
