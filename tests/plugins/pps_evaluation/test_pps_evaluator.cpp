@@ -221,6 +221,39 @@ TEST(PpsEvaluator, StaticAndRecedingTriggersAreFalseOnesOtherPartsDoNotCount) {
   EXPECT_EQ(per_motion["static"]["presentations"], 1);
 }
 
+// With the controllers' hold (0.05 s) and at-once level (0.6): a static object whose activation
+// is 0.5 for 3 ticks is no trigger, one at 0.9 for a single tick is; an approach triggers where
+// its 0.5 crossing has held 5 ticks.
+TEST(PpsEvaluator, CountsTriggersAsTheHeldControllersDo) {
+  Bench b(graph("threshold: 0.3, trigger_hold_s: 0.05, trigger_at_once_above: 0.6"));
+  const auto flash_static = [&](std::uint64_t id, double a, int ticks) {
+    b.present(id, PresentationMotion::kStatic, ObjectShape::kSphere, {0.02, 0, 0});
+    b.place({0, 0, 0.2});
+    for (int k = 0; k < 50; ++k) {
+      b.activations(k >= 10 && k < 10 + ticks ? a : 0.0, 0.0, 0.0);
+      b.step();
+    }
+    b.remove();
+    b.activations(0, 0, 0);
+    b.step(10);
+  };
+  flash_static(1, 0.5, 3);
+  flash_static(2, 0.9, 1);
+  b.present(3, PresentationMotion::kApproach, ObjectShape::kSphere, {0.02, 0, 0});
+  for (int k = 0; k <= 100; ++k) {
+    b.place({0, 0, 0.02 + 0.20 - 0.001 * k});
+    b.activations(k >= 50 ? 0.5 : 0.0, 0.0, 0.0);
+    b.step();
+  }
+  b.remove();
+  b.step(10);
+  EXPECT_EQ(b.h.finish(), "");
+  EXPECT_EQ(b.metric("static_trigger_rate"), 0.5);
+  EXPECT_EQ(b.metric("triggered_rate"), 1.0);
+  // Above from k = 50 (gap 0.150 m); held at k = 55 (gap 0.145 m).
+  EXPECT_NEAR(b.metric("trigger_distance_m")["median"].get<double>(), 0.145, 1e-9);
+}
+
 TEST(PpsEvaluator, BoxAndCylinderDistancesAreExactSideways) {
   Bench b;
   // A box rotated 90 deg about z, half extents (0.01, 0.03, 0.01): its long side along x now.
