@@ -5,10 +5,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <fstream>
 #include <numbers>
 
 #include "sample_stats.hpp"
+#include "somasim/atomic_file.hpp"
 #include "somasim/body_schema/pose_error.hpp"
 #include "somasim/error.hpp"
 #include "somasim/render/robot_scene.hpp"
@@ -558,11 +558,13 @@ void BodySchemaFilter::evaluate(const Eigen::VectorXd& q) {
 
 void BodySchemaFilter::write_csv() const {
   if (csv_name_.empty()) return;
-  std::ofstream out(csv_path_);
-  if (!out)
-    throw RunError(fmt::format("body_schema_filter: cannot write '{}'", csv_path_.string()));
-  out << fmt::format("{}\n", fmt::join(columns_, ","));
-  for (const auto& row : rows_) out << fmt::format("{}\n", fmt::join(row, ","));
+  std::string text = fmt::format("{}\n", fmt::join(columns_, ","));
+  for (const auto& row : rows_) text += fmt::format("{}\n", fmt::join(row, ","));
+  try {
+    write_file_atomically(csv_path_, text);
+  } catch (const std::runtime_error& e) {
+    throw RunError(fmt::format("body_schema_filter: {}", e.what()));
+  }
 }
 
 void BodySchemaFilter::finish(NodeContext& ctx) {

@@ -4,10 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <map>
+#include <sstream>
 
 #include "sample_stats.hpp"
+#include "somasim/atomic_file.hpp"
 #include "somasim/error.hpp"
 #include "somasim/figures/compose.hpp"
 #include "somasim/figures/figure.hpp"
@@ -71,8 +72,7 @@ nlohmann::json ReachReport::metrics() const {
 }
 
 void ReachReport::write_csv(const std::filesystem::path& file) const {
-  std::ofstream out(file);
-  if (!out) throw RunError(fmt::format("reach_controller: cannot write '{}'", file.string()));
+  std::ostringstream out;
   out << "movement,target,start,repetition,frame,estimation error [mm],estimation error [deg],"
          "nominal error [mm],nominal error [deg],reaching error [mm],reaching error [deg],"
          "estimated reaching error [mm],estimated reaching error [deg]\n";
@@ -81,6 +81,11 @@ void ReachReport::write_csv(const std::filesystem::path& file) const {
                        r.id.start, r.id.repetition, r.frame, r.e.estimation_mm, r.e.estimation_deg,
                        r.e.nominal_mm, r.e.nominal_deg, r.e.reaching_mm, r.e.reaching_deg,
                        r.e.reaching_est_mm, r.e.reaching_est_deg);
+  try {
+    write_file_atomically(file, out.str());
+  } catch (const std::runtime_error& e) {
+    throw RunError(fmt::format("reach_controller: {}", e.what()));
+  }
 }
 
 namespace {

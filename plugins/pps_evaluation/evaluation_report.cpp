@@ -2,11 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <map>
+#include <sstream>
 
 #include <fmt/format.h>
 
+#include "somasim/atomic_file.hpp"
 #include "somasim/error.hpp"
 
 namespace somasim::plugins {
@@ -146,8 +147,7 @@ nlohmann::json evaluation_metrics(const std::vector<PresentationRecord>& records
 
 void write_presentations_csv(const std::filesystem::path& file,
                              const std::vector<PresentationRecord>& records) {
-  std::ofstream out(file);
-  if (!out) throw InputError("cannot write " + file.string());
+  std::ostringstream out;
   out << "id,motion,body_part,taxel_id,object,shape,speed [m/s],start [s],end [s],triggered,"
          "trigger_time [s],trigger_taxel_id,trigger_distance [m],min_distance "
          "[m],min_distance_any_part [m],"
@@ -162,7 +162,11 @@ void write_presentations_csv(const std::filesystem::path& file,
         << number(r.max_activation) << ',' << r.triggered_other_part << ',' << r.skin_contact << ','
         << r.skin_contact_any << ',' << number(r.contact_time_s) << ',' << r.object_contact << ','
         << number(r.max_speed) << ',' << r.seen << ',' << presentation_sight_name(r.sight) << '\n';
-  if (!out) throw InputError("cannot write " + file.string());
+  try {
+    write_file_atomically(file, out.str());
+  } catch (const std::runtime_error& e) {
+    throw InputError(e.what());
+  }
 }
 
 }  // namespace somasim::plugins

@@ -200,6 +200,13 @@ void ObjectTracker::Config::visit(V& v) {
           "motion its fixes show is the windows', which the filter's velocity remembers for a "
           "while (metrics velocity_withheld_frames, radius_unsettled_frames); 0 = no check");
   v.block(kalman);
+  v.field("trace", trace)
+      .doc(
+          "a CSV written into the run folder, one row per stereo frame: each eye's track, the "
+          "fix or the check that refused the frame (outcome: fixed, no_track, left_only, "
+          "right_only, border, unlike_areas, not_triangulated, colour_mismatch, too_far, jump), "
+          "the filter's position and velocity, whether the velocity was reported, and the truth "
+          "where it is wired; '' = none");
 }
 
 void ObjectTracker::Config::validate(ConfigChecks& checks) const {
@@ -266,6 +273,7 @@ void ObjectTracker::configure(NodeContext& ctx) {
   tracker_ = vision::StereoObjectTracker(options);
   if (config_.max_radius_rate > 0.0)
     settling_.emplace(config_.max_radius_rate, config_.velocity_window_fixes);
+  if (config_.trace.enabled()) trace_.emplace();
 
   left_ = &ports_.eyes.left_eye_rgb.get();
   right_ = &ports_.eyes.right_eye_rgb.get();
@@ -322,10 +330,12 @@ void ObjectTracker::step(NodeContext& ctx) {
   stimulus_->present = fix.fixed;
   stimulus_->position = fix.position;
   stimulus_->velocity = fix.velocity;
-  if (fix.fixed && !velocity_is_known(fix)) {
+  const bool velocity_reported = fix.fixed && velocity_is_known(fix);
+  if (fix.fixed && !velocity_reported) {
     stimulus_->velocity.setZero();
     ++velocity_withheld_frames_;
   }
+  if (trace_) trace_->add(left_->time_s, fix, velocity_reported, truth_);
   if (fix.fixed)
     stimulus_->radius = std::clamp(fix.radius_m, config_.radius_min, config_.radius_max);
   if (truth_) score_against_truth(cams);
@@ -393,6 +403,7 @@ void ObjectTracker::finish(NodeContext& ctx) {
   ctx.report_metric("radius_unsettled_frames", radius_unsettled_frames_);
   ctx.report_metric("reprojection_mean_px",
                     n.fixes ? n.reprojection_sum_px / static_cast<double>(n.fixes) : 0.0);
+  if (trace_) trace_->write(config_.trace.path);
   if (!truth_) return;
   ctx.report_metric("frames_with_object", truth_frames_);
   ctx.report_metric("object_tracked_share", share(truth_tracked_, truth_frames_));

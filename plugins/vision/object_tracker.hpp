@@ -32,6 +32,7 @@
 #include "somasim/vision/ports.hpp"
 #include "somasim/vision/settling_gate.hpp"
 #include "somasim/vision/stereo_object_tracker.hpp"
+#include "tracker_trace.hpp"
 
 namespace somasim::plugins {
 
@@ -70,6 +71,7 @@ class ObjectTracker : public Plugin {
     double max_radius_rate = 0.0;            // [1/s]; 0: no check of the track's radius
     // the Kalman filter (motion_model, process_noise, measurement_sigma)
     vision::KalmanOptions kalman = defaults().kalman;
+    OutputFile trace{"", {}};  // per-frame CSV in the run folder; "" = none
     static const vision::StereoTrackerOptions& defaults();
     template <class V>
     void visit(V& v);
@@ -103,6 +105,7 @@ class ObjectTracker : public Plugin {
   BelievedEyes eyes_believed_;  // cameras and the believed head/eye kinematics
   vision::StereoObjectTracker tracker_;
   std::optional<vision::SettlingGate> settling_;  // with max_radius_rate
+  std::optional<TrackerTrace> trace_;             // with a trace file named
 
   const Image* left_ = nullptr;
   const Image* right_ = nullptr;

@@ -1,11 +1,8 @@
 #include "somasim/runner.hpp"
 
-#include <fcntl.h>
 #include <unistd.h>
 
-#include <cerrno>
 #include <chrono>
-#include <fstream>
 #include <set>
 #include <stdexcept>
 
@@ -14,6 +11,7 @@
 #include <spdlog/sinks/stdout_color_sinks.h>
 
 #include "progress_report.hpp"
+#include "somasim/atomic_file.hpp"
 #include "somasim/error.hpp"
 #include "somasim/interrupt.hpp"
 #include "somasim/simulation.hpp"
@@ -51,42 +49,13 @@ std::shared_ptr<spdlog::logger> make_logger(const fs::path& dir, bool quiet) {
   return logger;
 }
 
-// Written to a temporary file in the same folder and renamed over `file`: a reader (or a run
-// killed meanwhile) sees the old metrics.json or the new one, never half of one.
 }  // namespace
 
 void write_metrics_file(const fs::path& file, const nlohmann::ordered_json& metrics) {
-  const fs::path tmp = file.string() + ".tmp";
+  // Whole or not at all: a run killed meanwhile leaves the old metrics.json or the new one.
   // Invalid UTF-8 in a message or metric is replaced, not a reason to lose the file.
-  const std::string text =
-      metrics.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n";
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC | O_NOFOLLOW, 0644);
-  bool ok = fd >= 0;
-  for (std::size_t done = 0; ok && done < text.size();) {
-    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    ok = n > 0;
-    if (ok) done += static_cast<std::size_t>(n);
-  }
-  // On disk before it replaces the old file: a crash leaves the old metrics.json or the new one.
-  // (File systems without fsync — EINVAL, ENOTSUP — are taken as they are.)
-  ok = ok && (::fsync(fd) == 0 || errno == EINVAL || errno == ENOTSUP);
-  if (fd >= 0) ok = ::close(fd) == 0 && ok;
-  if (!ok) {
-    std::error_code ec;
-    fs::remove(tmp, ec);
-    throw std::runtime_error("cannot write " + tmp.string());
-  }
-  std::error_code ec;
-  fs::rename(tmp, file, ec);
-  if (ec) throw std::runtime_error("cannot write " + file.string() + ": " + ec.message());
-  // The rename itself, on disk (best effort: a folder that cannot be synced keeps the file).
-  if (const int dir = ::open(file.parent_path().empty() ? "." : file.parent_path().c_str(),
-                             O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-      dir >= 0) {
-    ::fsync(dir);
-    ::close(dir);
-  }
+  write_file_atomically(
+      file, metrics.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n");
 }
 
 namespace {
@@ -151,10 +120,7 @@ RunReport run_in_folder(const Experiment& exp, const RunOptions& options) {
                                                    {"seed", exp.seed},
                                                    {"pid", static_cast<long>(::getpid())},
                                                    {"host", host_name()}});
-  {
-    std::ofstream resolved(options.out_dir / "experiment.resolved.yaml");
-    resolved << exp.resolved_yaml();
-  }
+  write_file_atomically(options.out_dir / "experiment.resolved.yaml", exp.resolved_yaml());
   auto logger = make_logger(options.out_dir, options.quiet);
   logger->info("experiment '{}' from {}, seed {}, {} s at {} Hz, output in {}", exp.name,
                exp.file.string(), exp.seed, exp.duration_s, exp.base_rate_hz,

@@ -1,10 +1,11 @@
 #include "somasim/pps/ini_export.hpp"
 
 #include <filesystem>
-#include <fstream>
+#include <sstream>
 
 #include <fmt/format.h>
 
+#include "somasim/atomic_file.hpp"
 #include "somasim/error.hpp"
 
 namespace somasim::pps {
@@ -41,11 +42,13 @@ void write_taxels2d_ini(const std::vector<LearnedState>& parts, std::ostream& ou
 }
 
 void save_taxels2d_ini(const std::vector<LearnedState>& parts, const std::string& path) {
-  std::ofstream out(path);
-  if (!out) throw InputError(path + ": cannot open for writing");
+  std::ostringstream out;
   write_taxels2d_ini(parts, out);
-  out.close();
-  if (!out) throw InputError(path + ": cannot write");
+  try {
+    write_file_atomically(path, out.str());
+  } catch (const std::runtime_error& e) {
+    throw InputError(e.what());
+  }
 }
 
 bool is_ini_learned_file(const std::string& path) {

@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "somasim/atomic_file.hpp"
 #include "somasim/error.hpp"
 
 namespace somasim::pps {
@@ -281,10 +282,11 @@ json read_json_file(const std::string& path) {
 }
 
 void write_json_file(const json& j, const std::string& path) {
-  std::ofstream out(path);
-  if (!out) throw InputError(path + ": cannot open for writing");
-  out << j.dump(2) << '\n';
-  if (!out) throw InputError(path + ": write failed");
+  try {
+    write_file_atomically(path, j.dump(2) + '\n');
+  } catch (const std::runtime_error& e) {
+    throw InputError(e.what());
+  }
 }
 
 }  // namespace

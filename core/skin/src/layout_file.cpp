@@ -4,9 +4,11 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <sstream>
 
 #include <fmt/format.h>
 
+#include "somasim/atomic_file.hpp"
 #include "somasim/error.hpp"
 #include "somasim/skin/icub_positions_file.hpp"
 
@@ -107,8 +109,7 @@ SkinLayout load_layout_file(const std::filesystem::path& file, const std::string
 }
 
 void save_layout_file(const SkinLayout& layout, const std::filesystem::path& file) {
-  std::ofstream out(file);
-  if (!out) throw InputError(file.string() + ": cannot write the skin layout file");
+  std::ostringstream out;
   out << "# skin layout of '" << layout.body_part
       << "' (link frame): id x y z [m] nx ny nz module\n";
   for (std::size_t i = 0; i < layout.size(); ++i) {
@@ -118,7 +119,11 @@ void save_layout_file(const SkinLayout& layout, const std::filesystem::path& fil
                        p.y(), p.z(), n.x(), n.y(), n.z(),
                        layout.virtual_taxels[static_cast<std::size_t>(layout.module[i])].id);
   }
-  if (!out) throw InputError(file.string() + ": cannot write the skin layout file");
+  try {
+    write_file_atomically(file, out.str());
+  } catch (const std::runtime_error& e) {
+    throw InputError(std::string(e.what()) + " (the skin layout file)");
+  }
 }
 
 }  // namespace somasim::skin

@@ -19,6 +19,32 @@ bool at_border(const ColourTrack& t, const cv::Mat& image) {
 
 }  // namespace
 
+const char* fix_outcome_name(FixOutcome outcome) {
+  switch (outcome) {
+    case FixOutcome::kFixed:
+      return "fixed";
+    case FixOutcome::kNoTrack:
+      return "no_track";
+    case FixOutcome::kLeftOnly:
+      return "left_only";
+    case FixOutcome::kRightOnly:
+      return "right_only";
+    case FixOutcome::kBorder:
+      return "border";
+    case FixOutcome::kUnlikeAreas:
+      return "unlike_areas";
+    case FixOutcome::kNotTriangulated:
+      return "not_triangulated";
+    case FixOutcome::kColourMismatch:
+      return "colour_mismatch";
+    case FixOutcome::kTooFar:
+      return "too_far";
+    case FixOutcome::kJump:
+      return "jump";
+  }
+  return "unknown";
+}
+
 StereoObjectTracker::StereoObjectTracker(const StereoTrackerOptions& options)
     : options_(options), kalman_(options.kalman), window_(options.velocity_window_fixes) {
   for (Eye& eye : eyes_) eye.tracker = ColourTracker(options_.colour);
@@ -110,6 +136,8 @@ StereoFix StereoObjectTracker::update(const cv::Mat& left, const cv::Mat& right,
   const ColourTrack& l = eyes_[0].track;
   const ColourTrack& r = eyes_[1].track;
   StereoObject object;
+  out.outcome = l.tracked ? (r.tracked ? FixOutcome::kFixed : FixOutcome::kLeftOnly)
+                          : (r.tracked ? FixOutcome::kRightOnly : FixOutcome::kNoTrack);
   const bool comparable =
       l.tracked && r.tracked &&
       std::max(l.object_px, r.object_px) <= kMaxAreaRatio * std::min(l.object_px, r.object_px);
@@ -117,6 +145,7 @@ StereoFix StereoObjectTracker::update(const cv::Mat& left, const cv::Mat& right,
   if (l.tracked && r.tracked && (border || !comparable)) {
     ++counts_.partial;
     counts_.partial_border += border ? 1 : 0;
+    out.outcome = border ? FixOutcome::kBorder : FixOutcome::kUnlikeAreas;
     // Unlike areas, neither cut by the border: one eye holds something else (e.g. clutter its
     // tracker slid onto when the last object went). The smaller track is dropped and its eye
     // re-acquires by motion; the object, if that was it, is moving and is found again.
@@ -134,6 +163,10 @@ StereoFix StereoObjectTracker::update(const cv::Mat& left, const cv::Mat& right,
         0.5 * (cameras[0].pose_root.translation() + cameras[1].pose_root.translation());
     if (!object.centre.valid ||
         object.centre.reprojection_error_px > options_.max_reprojection_px || !same_colours) {
+      out.outcome =
+          !object.centre.valid || object.centre.reprojection_error_px > options_.max_reprojection_px
+              ? FixOutcome::kNotTriangulated
+              : FixOutcome::kColourMismatch;
       object.centre.valid = false;
       if (++inconsistent_ >= options_.inconsistent_frames_lost) {  // re-acquire both by motion
         drop_both();
@@ -142,6 +175,7 @@ StereoFix StereoObjectTracker::update(const cv::Mat& left, const cv::Mat& right,
       }
     } else if ((object.centre.point - middle).norm() > options_.max_distance_m) {
       object.centre.valid = false;  // the backdrop, not an object near the body
+      out.outcome = FixOutcome::kTooFar;
       drop_both();
       ++counts_.far_drops;
       inconsistent_ = 0;
@@ -150,6 +184,7 @@ StereoFix StereoObjectTracker::update(const cv::Mat& left, const cv::Mat& right,
                (object.centre.point - (kalman_.position() + dt_s * kalman_.velocity())).norm() >
                    options_.max_jump_m) {
       object.centre.valid = false;  // not the object of the previous frame
+      out.outcome = FixOutcome::kJump;
       drop_both();
       ++counts_.jump_drops;
       inconsistent_ = 0;

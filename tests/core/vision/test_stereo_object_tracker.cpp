@@ -8,6 +8,7 @@
 #include <array>
 #include <cstdio>
 #include <functional>
+#include <map>
 #include <optional>
 #include <vector>
 
@@ -233,6 +234,80 @@ TEST(StereoObjectTracker, OneEyedTrackIsDroppedAfterUnfixedFrames) {
   EXPECT_GE(tracker.counts().acquisitions, 3);
   EXPECT_TRUE(frames.back().tracks[0].tracked || frames[28].tracks[0].tracked);
   EXPECT_FALSE(frames.back().tracks[1].tracked);
+}
+
+// Every frame names its outcome, and the outcomes agree with what the frame shows and with the
+// tracker's counts: over scenes that reach each check (crossing, beyond max_distance_m, a jump,
+// one eye only, hidden from one eye, gone), a frame is fixed exactly when its outcome is
+// kFixed; one-eyed outcomes match the eyes' tracks; too_far, jump, border and unlike-area
+// frames number the counts' far_drops, jump_drops, partial_border and partial - partial_border.
+TEST(StereoObjectTracker, EveryFrameNamesTheCheckThatRefusedIt) {
+  using vision::FixOutcome;
+  struct Case {
+    const char* name;
+    Scene scene;
+    vision::StereoTrackerOptions options;
+  };
+  vision::StereoTrackerOptions near, jumpy;
+  near.max_distance_m = 0.3;
+  jumpy.max_jump_m = 0.008;
+  const std::vector<Case> cases = {
+      {"crossing", {.sphere = crossing}, {}},
+      {"too far", {.sphere = crossing}, near},
+      {"jump",
+       {.sphere =
+            [](int k) {
+              Eigen::Vector3d p = crossing(k);
+              if (k >= 12) p.z() -= 0.015;
+              return p;
+            }},
+       jumpy},
+      {"left eye only", {.sphere = crossing, .right_sees = false}, {}},
+      {"hidden from the right eye",
+       {.sphere = crossing, .right_hidden = [](int k) { return k % 7 == 3; }},
+       {}},
+      {"gone",
+       {.sphere = [](int k) -> std::optional<Eigen::Vector3d> {
+         if (k < 10) return crossing(k);
+         return std::nullopt;
+       }},
+       {}},
+      {"leaving the view",
+       {.sphere = [](int k) -> std::optional<Eigen::Vector3d> {
+         return Eigen::Vector3d(0.45, 0.06 - 0.5 * kDt * k, 0.23);
+       }},
+       {}},
+  };
+  std::vector<std::map<FixOutcome, int>> seen_in;
+  for (const Case& c : cases) {
+    vision::StereoObjectTracker tracker(c.options);
+    const auto frames = run(tracker, c.scene, 30);
+    std::map<FixOutcome, int>& seen = seen_in.emplace_back();
+    for (std::size_t k = 0; k < frames.size(); ++k) {
+      const vision::StereoFix& f = frames[k];
+      ++seen[f.outcome];
+      EXPECT_EQ(f.fixed, f.outcome == FixOutcome::kFixed) << c.name << ", frame " << k;
+      const bool l = f.tracks[0].tracked, r = f.tracks[1].tracked;
+      const FixOutcome eyes = l ? (r ? f.outcome : FixOutcome::kLeftOnly)
+                                : (r ? FixOutcome::kRightOnly : FixOutcome::kNoTrack);
+      EXPECT_EQ(f.outcome, eyes) << c.name << ", frame " << k;  // one or no eye: says so
+      EXPECT_STRNE(vision::fix_outcome_name(f.outcome), "unknown");
+    }
+    const vision::StereoTrackerCounts& n = tracker.counts();
+    EXPECT_EQ(seen[FixOutcome::kFixed], n.fixes) << c.name;
+    EXPECT_EQ(seen[FixOutcome::kTooFar], n.far_drops) << c.name;
+    EXPECT_EQ(seen[FixOutcome::kJump], n.jump_drops) << c.name;
+    EXPECT_EQ(seen[FixOutcome::kBorder], n.partial_border) << c.name;
+    EXPECT_EQ(seen[FixOutcome::kUnlikeAreas], n.partial - n.partial_border) << c.name;
+    EXPECT_LE(seen[FixOutcome::kColourMismatch], n.colour_mismatches) << c.name;
+  }
+  // Each scene reaches the check it was made for.
+  EXPECT_GT(seen_in[1][FixOutcome::kTooFar], 0);
+  EXPECT_EQ(seen_in[2][FixOutcome::kJump], 1);
+  EXPECT_GT(seen_in[3][FixOutcome::kLeftOnly], 0);
+  EXPECT_GT(seen_in[4][FixOutcome::kLeftOnly], 0);
+  EXPECT_GT(seen_in[5][FixOutcome::kNoTrack], 0);
+  EXPECT_GT(seen_in[6][FixOutcome::kBorder], 0);
 }
 
 // Same images, same outcome: two trackers agree frame by frame.

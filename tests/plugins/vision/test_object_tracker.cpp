@@ -1,7 +1,16 @@
 // The `object_tracker` plugin through the public harness: its bad-input errors (a camera not in
-// the robot model, images of another size than the camera's calibration), and a track only one
-// eye has dropped after unfixed_frames_lost.
+// the robot model, images of another size than the camera's calibration), a track only one
+// eye has dropped after unfixed_frames_lost, the velocity checks, and the per-frame trace.
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iterator>
+#include <sstream>
+#include <string>
+#include <vector>
 
 #include "somasim/error.hpp"
 #include "somasim/render/ports.hpp"
@@ -65,9 +74,11 @@ namespace {
 // Feeds `frames` frames of 320 x 240 to both eyes: a green chequered square (texture for the
 // optical flow) of `left_px` / `right_px` side (0: none, grey) moving right 3 px a frame and
 // growing by `growth_px` a frame; the robot at rest; the right eye's square `disparity_px` left
-// of the left eye's. Returns the tracker's metric `name`.
+// of the left eye's. Returns the tracker's metric `name`; `inspect` (if any) sees the harness
+// after the run.
 std::int64_t squares_metric(const std::string& params, const std::string& name, int frames,
-                            int left_px, int right_px, int disparity_px = 0, int growth_px = 0) {
+                            int left_px, int right_px, int disparity_px = 0, int growth_px = 0,
+                            const std::function<void(const Harness&)>& inspect = nullptr) {
   // (The squares' green is one of the robot's own colours: not refused here.)
   Harness h(graph("refuse_own_colours: false" + (params.empty() ? "" : ", " + params)));
   const auto model = somasim::robot::load_robot_model_shared(kRobot);
@@ -91,10 +102,72 @@ std::int64_t squares_metric(const std::string& params, const std::string& name, 
     h.step(1);
   }
   h.finish();
+  if (inspect) inspect(h);
   return h.metric("track", name).get<std::int64_t>();
 }
 
+// The fields of each line of a CSV file (no quoting), the header first.
+std::vector<std::vector<std::string>> csv_rows(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  std::vector<std::vector<std::string>> rows;
+  for (std::string line; std::getline(in, line);) {
+    std::vector<std::string>& row = rows.emplace_back();
+    std::stringstream fields(line);
+    for (std::string f; std::getline(fields, f, ',');) row.push_back(f);
+    if (!line.empty() && line.back() == ',') row.emplace_back();
+  }
+  return rows;
+}
+
 }  // namespace
+
+// With a trace file: one row per frame, every row as wide as the header; the frames whose
+// outcome is "fixed" are the tracked frames, those fixed without their velocity the withheld
+// ones; a track seen by one eye only reads left_only. Without the parameter no file is written.
+TEST(ObjectTracker, TheTraceHasARowPerFrameThatAgreesWithTheMetrics) {
+  const std::string params =
+      "unfixed_frames_lost: 1000, max_velocity_sigma: 0.1, trace: track_trace.csv";
+  constexpr int kFrames = 30, kDisparity = 40;
+  std::int64_t tracked = 0, withheld = 0;
+  std::vector<std::vector<std::string>> rows;
+  squares_metric(params, "frames", kFrames, 30, 30, kDisparity, 0, [&](const Harness& h) {
+    rows = csv_rows(h.out_dir() / "track_trace.csv");
+    tracked = h.metric("track", "frames_tracked").get<std::int64_t>();
+    withheld = h.metric("track", "velocity_withheld_frames").get<std::int64_t>();
+  });
+  ASSERT_EQ(rows.size(), static_cast<std::size_t>(kFrames) + 1);
+  const std::vector<std::string>& header = rows.front();
+  ASSERT_EQ(header[1], "outcome");
+  const auto column = [&](const std::string& name) {
+    return static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin());
+  };
+  const std::size_t reported = column("velocity_reported");
+  ASSERT_LT(reported, header.size());
+  std::int64_t fixed = 0, fixed_without_velocity = 0;
+  for (std::size_t k = 1; k < rows.size(); ++k) {
+    ASSERT_EQ(rows[k].size(), header.size()) << "row " << k;
+    const bool is_fixed = rows[k][1] == "fixed";
+    fixed += is_fixed ? 1 : 0;
+    fixed_without_velocity += is_fixed && rows[k][reported] == "0" ? 1 : 0;
+  }
+  EXPECT_GT(tracked, 10);
+  EXPECT_EQ(fixed, tracked);
+  EXPECT_EQ(fixed_without_velocity, withheld);
+  EXPECT_GT(withheld, 0);
+
+  bool written = true;
+  squares_metric("", "frames", kFrames, 30, 0, 0, 0, [&](const Harness& h) {
+    written = std::filesystem::exists(h.out_dir() / "track_trace.csv");
+  });
+  EXPECT_FALSE(written);
+  std::int64_t left_only = 0;
+  squares_metric("trace: t.csv", "frames", kFrames, 30, 0, 0, 0, [&](const Harness& h) {
+    const auto one_eye = csv_rows(h.out_dir() / "t.csv");
+    left_only = std::count_if(std::next(one_eye.begin()), one_eye.end(),
+                              [](const auto& r) { return r[1] == "left_only"; });
+  });
+  EXPECT_GT(left_only, kFrames / 2);
+}
 
 // An object only one eye sees gives no stereo fix; its track is dropped every
 // unfixed_frames_lost frames (and re-acquired by motion), so that a track left on clutter cannot

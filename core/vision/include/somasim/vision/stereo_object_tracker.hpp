@@ -85,9 +85,28 @@ struct StereoTrackerCounts {
   double reprojection_sum_px = 0.0;     ///< over the fixes [px]
 };
 
+/// Whether a stereo frame gave a fix, and which check refused it when it did not (the first
+/// that applies, in this order).
+enum class FixOutcome : std::uint8_t {
+  kFixed,            ///< a triangulated fix passed every check
+  kNoTrack,          ///< neither eye tracks anything
+  kLeftOnly,         ///< only the left eye tracks something
+  kRightOnly,        ///< only the right eye tracks something
+  kBorder,           ///< a track is cut by its image's border (its centre is unknown)
+  kUnlikeAreas,      ///< the eyes' areas differ more than 3:1 (one holds something else)
+  kNotTriangulated,  ///< the rays do not meet within max_reprojection_px
+  kColourMismatch,   ///< the eyes' colour models differ more than max_colour_distance
+  kTooFar,           ///< beyond max_distance_m (the backdrop)
+  kJump,             ///< farther than max_jump_m from the track's prediction
+};
+/// "fixed", "no_track", "left_only", "right_only", "border", "unlike_areas",
+/// "not_triangulated", "colour_mismatch", "too_far", "jump".
+const char* fix_outcome_name(FixOutcome outcome);
+
 /// One stereo frame's outcome.
 struct StereoFix {
-  bool fixed = false;  ///< a triangulated fix passed every check
+  bool fixed = false;                         ///< a triangulated fix passed every check
+  FixOutcome outcome = FixOutcome::kNoTrack;  ///< kFixed, or the check that refused the frame
   /// The filter's state after the frame (updated by the fix, else predicted, or zero after a
   /// reset) [m], [m/s].
   Eigen::Vector3d position = Eigen::Vector3d::Zero();
