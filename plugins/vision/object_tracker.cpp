@@ -199,6 +199,16 @@ void ObjectTracker::Config::visit(V& v) {
           "settling onto its object, or two eyes whose windows hold different things, and the "
           "motion its fixes show is the windows', which the filter's velocity remembers for a "
           "while (metrics velocity_withheld_frames, radius_unsettled_frames); 0 = no check");
+  v.field("velocity_over_settling", velocity_over_settling)
+      .at_least(0.0)
+      .doc(
+          "a fix's velocity is reported only where its speed exceeds this multiple of the speed "
+          "at which the track's radius changes (the least-squares slope of its last "
+          "velocity_window_fixes radii, m/s): a window that grows or shrinks by dR moves its "
+          "centre up to dR across the image and the triangulated depth up to depth / baseline "
+          "times that (about 6 at 0.4 m with the iCub's 6.8 cm), so a smaller velocity is the "
+          "window's own, not the object's (metrics velocity_withheld_frames, "
+          "velocity_settling_frames); 0 = no check");
   v.block(kalman);
   v.field("trace", trace)
       .doc(
@@ -350,6 +360,12 @@ bool ObjectTracker::velocity_is_known(const vision::StereoFix& fix) {
     ++radius_unsettled_frames_;
     return false;
   }
+  if (config_.velocity_over_settling > 0.0 && fix.velocity.norm() < config_.velocity_over_settling *
+                                                                        fix.window_radius_rate *
+                                                                        fix.radius_m) {
+    ++velocity_settling_frames_;
+    return false;
+  }
   if (config_.max_velocity_disagreement <= 0.0) return true;
   if (fix.window_fixes >= config_.velocity_window_fixes &&
       (fix.velocity - fix.window_velocity).norm() <= config_.max_velocity_disagreement)
@@ -401,6 +417,7 @@ void ObjectTracker::finish(NodeContext& ctx) {
   ctx.report_metric("velocity_withheld_frames", velocity_withheld_frames_);
   ctx.report_metric("velocity_disputed_frames", velocity_disputed_frames_);
   ctx.report_metric("radius_unsettled_frames", radius_unsettled_frames_);
+  ctx.report_metric("velocity_settling_frames", velocity_settling_frames_);
   ctx.report_metric("reprojection_mean_px",
                     n.fixes ? n.reprojection_sum_px / static_cast<double>(n.fixes) : 0.0);
   if (trace_) trace_->write(config_.trace.path);

@@ -69,6 +69,7 @@ class ObjectTracker : public Plugin {
     int velocity_window_fixes = defaults().velocity_window_fixes;
     double max_velocity_disagreement = 0.0;  // [m/s]; 0: no check against the track's fixes
     double max_radius_rate = 0.0;            // [1/s]; 0: no check of the track's radius
+    double velocity_over_settling = 0.0;     // 0: no check of the speed against the radius'
     // the Kalman filter (motion_model, process_noise, measurement_sigma)
     vision::KalmanOptions kalman = defaults().kalman;
     OutputFile trace{"", {}};  // per-frame CSV in the run folder; "" = none
@@ -95,8 +96,8 @@ class ObjectTracker : public Plugin {
   Ports ports_;
   void score_against_truth(const std::array<render::Camera, 2>& cameras);
   /// Whether `fix`'s velocity is known well enough to report (max_velocity_sigma,
-  /// max_radius_rate, max_velocity_disagreement); counts the unsettled and disputed ones. Called
-  /// on every fix.
+  /// max_radius_rate, velocity_over_settling, max_velocity_disagreement); counts the unsettled,
+  /// settling-explained and disputed ones. Called on every fix.
   bool velocity_is_known(const vision::StereoFix& fix);
   /// The encoder values at the sim time closest to `time_s` among the recent steps [rad, m].
   const Eigen::VectorXd& joints_at(double time_s);
@@ -126,6 +127,7 @@ class ObjectTracker : public Plugin {
   std::int64_t velocity_withheld_frames_ = 0;  // fixes reported without their velocity
   std::int64_t velocity_disputed_frames_ = 0;  // of those: the track's fixes disagreed
   std::int64_t radius_unsettled_frames_ = 0;   // of those: the track's radius was changing
+  std::int64_t velocity_settling_frames_ = 0;  // of those: slower than the radius' change explains
   double position_sq_sum_ = 0.0, velocity_sq_sum_ = 0.0;
   LagEstimate lag_{0.01};  // latency; truth slower than 1 cm/s left out
 };

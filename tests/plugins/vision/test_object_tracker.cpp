@@ -247,6 +247,29 @@ TEST(ObjectTracker, AVelocityOfATrackWhoseRadiusIsStillChangingIsReportedWithout
   }
 }
 
+// With velocity_over_settling a fix is reported without velocity where its speed is no more than
+// that multiple of the speed at which its track's radius changes: a square moving 3 px a frame
+// (about 0.09 m/s) and growing 1 px a frame (its radius about 0.01 m/s) keeps its velocity at a
+// factor of 2 and loses it at 20 on nearly every fix; one that keeps its size keeps it at 20;
+// without the option nothing is withheld.
+TEST(ObjectTracker, AVelocityTheWindowsOwnGrowthExplainsIsReportedWithoutIt) {
+  const std::string keep = "unfixed_frames_lost: 1000";
+  constexpr int kDisparity = 40;  // [px]
+  const auto settling = [&](const std::string& factor, int growth) {
+    return squares_metric(keep + (factor.empty() ? "" : ", velocity_over_settling: " + factor),
+                          "velocity_settling_frames", 30, 30, 30, kDisparity, growth);
+  };
+  const std::int64_t tracked = squares_metric(keep, "frames_tracked", 30, 30, 30, kDisparity, 1);
+  ASSERT_GT(tracked, 10);
+  EXPECT_EQ(settling("", 1), 0);
+  EXPECT_EQ(settling("2", 1), 0);
+  EXPECT_GE(settling("20", 1), tracked - 3);
+  EXPECT_EQ(settling("20", 0), 0);
+  EXPECT_EQ(squares_metric(keep + ", velocity_over_settling: 20", "velocity_withheld_frames", 30,
+                           30, 30, kDisparity, 1),
+            settling("20", 1));
+}
+
 // Two tracks of unlike areas (over 3 : 1) are not one object: the smaller is dropped at once and
 // its eye re-acquires by motion. Like areas are kept.
 TEST(ObjectTracker, OfTwoTracksOfUnlikeAreasTheSmallerIsDropped) {
