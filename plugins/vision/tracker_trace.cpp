@@ -34,8 +34,7 @@ TrackerTrace::TrackerTrace() {
 
 void TrackerTrace::add(double time_s, const vision::StereoFix& fix, bool velocity_reported,
                        const pps::Stimulus* truth) {
-  fmt::format_to(std::back_inserter(text_), "{:.4f},{}", time_s,
-                 vision::fix_outcome_name(fix.outcome));
+  fmt::format_to(std::back_inserter(text_), "{:.4f},{}", time_s, enum_name(fix.outcome));
   append_eye(text_, fix.tracks[0]);
   append_eye(text_, fix.tracks[1]);
   append_vector(text_, fix.position);

@@ -19,32 +19,6 @@ bool at_border(const ColourTrack& t, const cv::Mat& image) {
 
 }  // namespace
 
-const char* fix_outcome_name(FixOutcome outcome) {
-  switch (outcome) {
-    case FixOutcome::kFixed:
-      return "fixed";
-    case FixOutcome::kNoTrack:
-      return "no_track";
-    case FixOutcome::kLeftOnly:
-      return "left_only";
-    case FixOutcome::kRightOnly:
-      return "right_only";
-    case FixOutcome::kBorder:
-      return "border";
-    case FixOutcome::kUnlikeAreas:
-      return "unlike_areas";
-    case FixOutcome::kNotTriangulated:
-      return "not_triangulated";
-    case FixOutcome::kColourMismatch:
-      return "colour_mismatch";
-    case FixOutcome::kTooFar:
-      return "too_far";
-    case FixOutcome::kJump:
-      return "jump";
-  }
-  return "unknown";
-}
-
 StereoObjectTracker::StereoObjectTracker(const StereoTrackerOptions& options)
     : options_(options), kalman_(options.kalman), window_(options.velocity_window_fixes) {
   for (Eye& eye : eyes_) eye.tracker = ColourTracker(options_.colour);

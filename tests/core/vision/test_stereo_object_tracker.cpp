@@ -291,7 +291,7 @@ TEST(StereoObjectTracker, EveryFrameNamesTheCheckThatRefusedIt) {
       const FixOutcome eyes = l ? (r ? f.outcome : FixOutcome::kLeftOnly)
                                 : (r ? FixOutcome::kRightOnly : FixOutcome::kNoTrack);
       EXPECT_EQ(f.outcome, eyes) << c.name << ", frame " << k;  // one or no eye: says so
-      EXPECT_STRNE(vision::fix_outcome_name(f.outcome), "unknown");
+      EXPECT_FALSE(somasim::enum_name(f.outcome).empty());
     }
     const vision::StereoTrackerCounts& n = tracker.counts();
     EXPECT_EQ(seen[FixOutcome::kFixed], n.fixes) << c.name;

@@ -26,10 +26,12 @@
 /// in the root frame [m], velocities [m/s], times [s].
 #include <array>
 #include <cstdint>
+#include <span>
 
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 
+#include "somasim/name_table.hpp"
 #include "somasim/render/camera.hpp"
 #include "somasim/vision/colour_tracker.hpp"
 #include "somasim/vision/fix_window.hpp"
@@ -100,8 +102,21 @@ enum class FixOutcome : std::uint8_t {
   kJump,             ///< farther than max_jump_m from the track's prediction
 };
 /// "fixed", "no_track", "left_only", "right_only", "border", "unlike_areas",
-/// "not_triangulated", "colour_mismatch", "too_far", "jump".
-const char* fix_outcome_name(FixOutcome outcome);
+/// "not_triangulated", "colour_mismatch", "too_far", "jump" (enum_name()).
+inline constexpr NamedValue<FixOutcome> kFixOutcomeNames[] = {
+    {FixOutcome::kFixed, "fixed"},
+    {FixOutcome::kNoTrack, "no_track"},
+    {FixOutcome::kLeftOnly, "left_only"},
+    {FixOutcome::kRightOnly, "right_only"},
+    {FixOutcome::kBorder, "border"},
+    {FixOutcome::kUnlikeAreas, "unlike_areas"},
+    {FixOutcome::kNotTriangulated, "not_triangulated"},
+    {FixOutcome::kColourMismatch, "colour_mismatch"},
+    {FixOutcome::kTooFar, "too_far"},
+    {FixOutcome::kJump, "jump"}};
+constexpr std::span<const NamedValue<FixOutcome>> name_table(FixOutcome) {
+  return kFixOutcomeNames;
+}
 
 /// One stereo frame's outcome.
 struct StereoFix {
