@@ -360,9 +360,10 @@ bool ObjectTracker::velocity_is_known(const vision::StereoFix& fix) {
     ++radius_unsettled_frames_;
     return false;
   }
-  if (config_.velocity_over_settling > 0.0 && fix.velocity.norm() < config_.velocity_over_settling *
-                                                                        fix.window_radius_rate *
-                                                                        fix.radius_m) {
+  // How fast the track's radius changes [m/s]: its window's own motion is at most a few times that.
+  const double settling_speed = fix.window_radius_rate * fix.radius_m;
+  if (config_.velocity_over_settling > 0.0 &&
+      fix.velocity.norm() < config_.velocity_over_settling * settling_speed) {
     ++velocity_settling_frames_;
     return false;
   }
