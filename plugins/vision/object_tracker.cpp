@@ -134,6 +134,14 @@ void ObjectTracker::Config::visit(V& v) {
           "the two eyes' colour models (Bhattacharyya distance of their hue-saturation "
           "histograms, 0 = the same, 1 = disjoint) must be closer than this for a fix; farther "
           "apart, the eyes follow different things and the frame counts as inconsistent");
+  v.field("max_size_ratio", max_size_ratio)
+      .range(0.0, 100.0)
+      .doc(
+          "the two eyes' object radii, each scaled to the triangulated depth (radius px x depth / "
+          "focal length), may differ by at most this ratio (larger over smaller) for a fix; "
+          "beyond it the eyes hold two different things whose rays happen to meet (e.g. one eye a "
+          "patch of backdrop of the object's colour) and the frame counts as inconsistent "
+          "(metric size_mismatches; outcome unlike_sizes); 0 = no check");
   v.field("inconsistent_frames_lost", inconsistent_frames_lost)
       .at_least(1)
       .doc(
@@ -214,7 +222,9 @@ void ObjectTracker::Config::visit(V& v) {
       .doc(
           "a CSV written into the run folder, one row per stereo frame: each eye's track, the "
           "fix or the check that refused the frame (outcome: fixed, no_track, left_only, "
-          "right_only, border, unlike_areas, not_triangulated, colour_mismatch, too_far, jump), "
+          "right_only, border, unlike_areas, not_triangulated, colour_mismatch, unlike_sizes, "
+          "too_far, "
+          "jump), "
           "the filter's position and velocity, whether the velocity was reported, and the truth "
           "where it is wired; '' = none");
 }
@@ -274,6 +284,7 @@ void ObjectTracker::configure(NodeContext& ctx) {
   options.jump_check_after_missed = config_.jump_check_after_missed;
   options.max_distance_m = config_.max_distance_m;
   options.max_colour_distance = config_.max_colour_distance;
+  options.max_size_ratio = config_.max_size_ratio;
   options.inconsistent_frames_lost = config_.inconsistent_frames_lost;
   options.unfixed_frames_lost = config_.unfixed_frames_lost;
   options.reset_after_lost = config_.reset_after_lost;
@@ -412,6 +423,7 @@ void ObjectTracker::finish(NodeContext& ctx) {
   ctx.report_metric("far_drops", n.far_drops);
   ctx.report_metric("jump_drops", n.jump_drops);
   ctx.report_metric("colour_mismatches", n.colour_mismatches);
+  ctx.report_metric("size_mismatches", n.size_mismatches);
   ctx.report_metric("refused_acquisitions", n.refused);
   ctx.report_metric("own_colour_refusals", n.own_colour_refused);
   ctx.report_metric("pose_time_offset_max_s", pose_time_offset_max_s_);

@@ -59,6 +59,7 @@ class ObjectTracker : public Plugin {
     bool jump_check_after_missed = defaults().jump_check_after_missed;
     double max_distance_m = defaults().max_distance_m;  // [m]
     double max_colour_distance = defaults().max_colour_distance;
+    double max_size_ratio = defaults().max_size_ratio;
     int inconsistent_frames_lost = defaults().inconsistent_frames_lost;
     int unfixed_frames_lost = defaults().unfixed_frames_lost;
     int reset_after_lost = defaults().reset_after_lost;

@@ -27,7 +27,7 @@ TrackerTrace::TrackerTrace() {
       "left_tracked,left_u [px],left_v [px],left_radius [px],left_object [px],"
       "right_tracked,right_u [px],right_v [px],right_radius [px],right_object [px],"
       "x [m],y [m],z [m],vx [m/s],vy [m/s],vz [m/s],velocity_reported,velocity_sigma [m/s],"
-      "window_fixes,radius [m],radius_rate [1/s],reprojection [px],"
+      "window_fixes,radius [m],radius_rate [1/s],reprojection [px],size_ratio,"
       "truth_present,truth_x [m],truth_y [m],truth_z [m],truth_vx [m/s],truth_vy [m/s],"
       "truth_vz [m/s]\n";
 }
@@ -39,9 +39,9 @@ void TrackerTrace::add(double time_s, const vision::StereoFix& fix, bool velocit
   append_eye(text_, fix.tracks[1]);
   append_vector(text_, fix.position);
   append_vector(text_, fix.velocity);
-  fmt::format_to(std::back_inserter(text_), ",{:d},{:.4f},{},{:.5f},{:.4f},{:.3f}",
+  fmt::format_to(std::back_inserter(text_), ",{:d},{:.4f},{},{:.5f},{:.4f},{:.3f},{:.3f}",
                  velocity_reported ? 1 : 0, fix.velocity_sigma, fix.window_fixes, fix.radius_m,
-                 fix.window_radius_rate, fix.reprojection_px);
+                 fix.window_radius_rate, fix.reprojection_px, fix.size_ratio);
   if (truth && truth->present) {
     text_ += ",1";
     append_vector(text_, truth->position);

@@ -1,5 +1,7 @@
 #include "somasim/vision/stereo_object.hpp"
 
+#include <algorithm>
+
 namespace somasim::vision {
 namespace {
 
@@ -18,8 +20,11 @@ StereoObject triangulate_object(const render::Camera& a, const Eigen::Vector2d& 
   StereoObject out;
   out.centre = triangulate(a, uv_a, b, uv_b);
   if (!out.centre.valid) return out;
-  out.radius_m = 0.5 * (metric_radius(a, out.centre.point, radius_a_px) +
-                        metric_radius(b, out.centre.point, radius_b_px));
+  const double in_a = metric_radius(a, out.centre.point, radius_a_px);
+  const double in_b = metric_radius(b, out.centre.point, radius_b_px);
+  out.radius_m = 0.5 * (in_a + in_b);
+  const double smaller = std::min(in_a, in_b);
+  out.size_ratio = smaller > 0.0 ? std::max(in_a, in_b) / smaller : 0.0;
   return out;
 }
 

@@ -133,14 +133,18 @@ StereoFix StereoObjectTracker::update(const cv::Mat& left, const cv::Mat& right,
     const bool same_colours =
         colour_distance(eyes_[0].tracker, eyes_[1].tracker) <= options_.max_colour_distance;
     if (!same_colours) ++counts_.colour_mismatches;
+    out.size_ratio = object.size_ratio;
+    const bool triangulated =
+        object.centre.valid && object.centre.reprojection_error_px <= options_.max_reprojection_px;
+    const bool like_sizes =
+        options_.max_size_ratio <= 0.0 || object.size_ratio <= options_.max_size_ratio;
+    if (triangulated && same_colours && !like_sizes) ++counts_.size_mismatches;
     const Eigen::Vector3d middle =
         0.5 * (cameras[0].pose_root.translation() + cameras[1].pose_root.translation());
-    if (!object.centre.valid ||
-        object.centre.reprojection_error_px > options_.max_reprojection_px || !same_colours) {
-      out.outcome =
-          !object.centre.valid || object.centre.reprojection_error_px > options_.max_reprojection_px
-              ? FixOutcome::kNotTriangulated
-              : FixOutcome::kColourMismatch;
+    if (!triangulated || !same_colours || !like_sizes) {
+      out.outcome = !triangulated   ? FixOutcome::kNotTriangulated
+                    : !same_colours ? FixOutcome::kColourMismatch
+                                    : FixOutcome::kUnlikeSizes;
       object.centre.valid = false;
       if (++inconsistent_ >= options_.inconsistent_frames_lost) {  // re-acquire both by motion
         drop_both();

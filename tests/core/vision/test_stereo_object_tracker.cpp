@@ -33,6 +33,7 @@ struct Scene {
   bool left_sees = true, right_sees = true;
   std::function<double(int)> radius = [](int) { return kRadius; };
   std::function<bool(int)> right_hidden = [](int) { return false; };  // in frame k
+  double right_radius_scale = 1.0;  // the right eye sees a sphere this much larger
 };
 
 // A sphere crossing the view at 0.1 m/s along -y, 0.45 m ahead.
@@ -49,8 +50,9 @@ std::vector<vision::StereoFix> run(vision::StereoObjectTracker& tracker, const S
     const auto p = scene.sphere(k);
     const double r = scene.radius(k);
     const cv::Mat left = p && scene.left_sees ? view(bg, kLeftEye, *p, r) : bg.clone();
-    const cv::Mat right =
-        p && scene.right_sees && !scene.right_hidden(k) ? view(bg, kRightEye, *p, r) : bg.clone();
+    const cv::Mat right = p && scene.right_sees && !scene.right_hidden(k)
+                              ? view(bg, kRightEye, *p, r * scene.right_radius_scale)
+                              : bg.clone();
     out.push_back(tracker.update(left, right, kCameras, k == 0 ? 0.0 : kDt, kDt));
   }
   return out;
@@ -248,9 +250,10 @@ TEST(StereoObjectTracker, EveryFrameNamesTheCheckThatRefusedIt) {
     Scene scene;
     vision::StereoTrackerOptions options;
   };
-  vision::StereoTrackerOptions near, jumpy;
+  vision::StereoTrackerOptions near, jumpy, sized;
   near.max_distance_m = 0.3;
   jumpy.max_jump_m = 0.008;
+  sized.max_size_ratio = 1.25;
   const std::vector<Case> cases = {
       {"crossing", {.sphere = crossing}, {}},
       {"too far", {.sphere = crossing}, near},
@@ -277,6 +280,7 @@ TEST(StereoObjectTracker, EveryFrameNamesTheCheckThatRefusedIt) {
          return Eigen::Vector3d(0.45, 0.06 - 0.5 * kDt * k, 0.23);
        }},
        {}},
+      {"unlike sizes", {.sphere = crossing, .right_radius_scale = 1.5}, sized},
   };
   std::vector<std::map<FixOutcome, int>> seen_in;
   for (const Case& c : cases) {
@@ -300,6 +304,7 @@ TEST(StereoObjectTracker, EveryFrameNamesTheCheckThatRefusedIt) {
     EXPECT_EQ(seen[FixOutcome::kBorder], n.partial_border) << c.name;
     EXPECT_EQ(seen[FixOutcome::kUnlikeAreas], n.partial - n.partial_border) << c.name;
     EXPECT_LE(seen[FixOutcome::kColourMismatch], n.colour_mismatches) << c.name;
+    EXPECT_EQ(seen[FixOutcome::kUnlikeSizes], n.size_mismatches) << c.name;
   }
   // Each scene reaches the check it was made for.
   EXPECT_GT(seen_in[1][FixOutcome::kTooFar], 0);
@@ -308,6 +313,52 @@ TEST(StereoObjectTracker, EveryFrameNamesTheCheckThatRefusedIt) {
   EXPECT_GT(seen_in[4][FixOutcome::kLeftOnly], 0);
   EXPECT_GT(seen_in[5][FixOutcome::kNoTrack], 0);
   EXPECT_GT(seen_in[6][FixOutcome::kBorder], 0);
+  EXPECT_GT(seen_in[7][FixOutcome::kUnlikeSizes], 0);
+  EXPECT_EQ(seen_in[7][FixOutcome::kFixed], 0);
+}
+
+// The size check compares the eyes at the fix's depth, so one object passes it wherever it is
+// (near and far, to either side, where one eye is nearer than the other) and two things of sizes
+// unlike by more than max_size_ratio never give a fix: over generated paths and right-eye size
+// factors, the reported size_ratio is the factor within 12 %, no frame of a factor within the
+// limit is refused for its sizes, and no frame of a factor beyond it is fixed.
+TEST(StereoObjectTracker, TwoThingsOfUnlikeSizesNeverGiveAFixAndOneObjectAlwaysPasses) {
+  using vision::FixOutcome;
+  vision::StereoTrackerOptions options;
+  options.max_size_ratio = 1.25;
+  int cases = 0;
+  for (const double ahead : {0.30, 0.45, 0.60})
+    for (const double side : {-0.05, 0.06})
+      for (const double factor : {1.0, 1.15, 1.4}) {
+        vision::StereoObjectTracker tracker(options);
+        const Scene scene{.sphere = [&](int k) -> std::optional<Eigen::Vector3d> {
+                            return Eigen::Vector3d(ahead, side + 0.03 - 0.1 * kDt * k, 0.23);
+                          },
+                          .right_radius_scale = factor};
+        const auto frames = run(tracker, scene, 16);
+        std::map<FixOutcome, int> seen;
+        for (const vision::StereoFix& f : frames) {
+          ++seen[f.outcome];
+          if (f.size_ratio > 0.0) {
+            EXPECT_NEAR(f.size_ratio, factor, 0.12 * factor)
+                << "ahead " << ahead << " side " << side << " factor " << factor;
+          }
+        }
+        ++cases;
+        if (factor <= options.max_size_ratio) {
+          EXPECT_EQ(seen[FixOutcome::kUnlikeSizes], 0)
+              << "ahead " << ahead << " side " << side << " factor " << factor;
+          EXPECT_GT(seen[FixOutcome::kFixed], 8)
+              << "ahead " << ahead << " side " << side << " factor " << factor;
+        } else {
+          EXPECT_EQ(seen[FixOutcome::kFixed], 0)
+              << "ahead " << ahead << " side " << side << " factor " << factor;
+          EXPECT_GT(seen[FixOutcome::kUnlikeSizes], 8)
+              << "ahead " << ahead << " side " << side << " factor " << factor;
+        }
+        EXPECT_EQ(seen[FixOutcome::kUnlikeSizes], tracker.counts().size_mismatches);
+      }
+  EXPECT_EQ(cases, 18);
 }
 
 // Same images, same outcome: two trackers agree frame by frame.

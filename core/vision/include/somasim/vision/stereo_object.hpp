@@ -17,6 +17,9 @@ struct StereoObject {
   /// Mean over both cameras of radius_px · z / f (z the centre's depth along each optical axis,
   /// f the mean focal length) [m]; 0 when the triangulation is not valid.
   double radius_m = 0.0;
+  /// The larger over the smaller of the two cameras' radius_px · z / f (≥ 1): near 1 when both
+  /// cameras see the same object, whatever its distance; 0 when the triangulation is not valid.
+  double size_ratio = 0.0;
 };
 
 /// The object whose image centre is `uv_a` [px] with radius `radius_a_px` in camera `a`, and

@@ -12,8 +12,9 @@
 ///   rotation) for still_frames_lost frames: static clutter of the object's colour;
 /// - two tracks of unlike areas (more than 3 ×): the smaller one is dropped; a track cut by
 ///   the image border gives no fix but is kept;
-/// - two tracks whose rays do not meet (reprojection error) or whose colour models differ:
-///   after inconsistent_frames_lost such frames both are dropped;
+/// - two tracks whose rays do not meet (reprojection error), whose colour models differ, or
+///   (with max_size_ratio) whose sizes at the triangulated depth differ: after
+///   inconsistent_frames_lost such frames both are dropped;
 /// - a fix beyond max_distance_m of the middle of the eyes (the backdrop) or beyond max_jump_m
 ///   of the filter's prediction (the trackers slid onto something else): both dropped; with
 ///   jump_check_after_missed also the first fix after frames without one, against the prediction
@@ -57,6 +58,11 @@ struct StereoTrackerOptions {
   bool jump_check_after_missed = false;
   double max_distance_m = 0.8;       ///< from the middle of the two eyes [m]
   double max_colour_distance = 0.6;  ///< Bhattacharyya distance of the eyes' colour models
+  /// The most the two eyes' object radii may differ once scaled to the triangulated depth
+  /// (StereoObject::size_ratio, larger over smaller): two tracks whose rays meet but whose sizes
+  /// there disagree hold two different things (e.g. one eye a patch of backdrop of the object's
+  /// colour). 0 = no check.
+  double max_size_ratio = 0.0;
   int inconsistent_frames_lost = 2;  ///< frames of two tracks that do not triangulate
   int unfixed_frames_lost = 10;      ///< frames an eye's track may give no fix
   int reset_after_lost = 3;          ///< frames without a fix before the filter starts afresh
@@ -80,6 +86,7 @@ struct StereoTrackerCounts {
   std::int64_t far_drops = 0;           ///< both dropped for a fix beyond max_distance_m
   std::int64_t jump_drops = 0;          ///< both dropped for a fix beyond max_jump_m
   std::int64_t colour_mismatches = 0;   ///< frames whose two colour models differed
+  std::int64_t size_mismatches = 0;     ///< frames refused for sizes beyond max_size_ratio
   std::int64_t unfixed_drops = 0;       ///< eye tracks dropped after unfixed_frames_lost
   std::int64_t area_drops = 0;          ///< smaller tracks dropped for unlike areas
   std::int64_t partial = 0;             ///< both tracked, but cut by the border or unlike areas
@@ -98,11 +105,12 @@ enum class FixOutcome : std::uint8_t {
   kUnlikeAreas,      ///< the eyes' areas differ more than 3:1 (one holds something else)
   kNotTriangulated,  ///< the rays do not meet within max_reprojection_px
   kColourMismatch,   ///< the eyes' colour models differ more than max_colour_distance
+  kUnlikeSizes,      ///< the eyes' sizes at the fix's depth differ more than max_size_ratio
   kTooFar,           ///< beyond max_distance_m (the backdrop)
   kJump,             ///< farther than max_jump_m from the track's prediction
 };
 /// "fixed", "no_track", "left_only", "right_only", "border", "unlike_areas",
-/// "not_triangulated", "colour_mismatch", "too_far", "jump" (enum_name()).
+/// "not_triangulated", "colour_mismatch", "unlike_sizes", "too_far", "jump" (enum_name()).
 inline constexpr NamedValue<FixOutcome> kFixOutcomeNames[] = {
     {FixOutcome::kFixed, "fixed"},
     {FixOutcome::kNoTrack, "no_track"},
@@ -112,6 +120,7 @@ inline constexpr NamedValue<FixOutcome> kFixOutcomeNames[] = {
     {FixOutcome::kUnlikeAreas, "unlike_areas"},
     {FixOutcome::kNotTriangulated, "not_triangulated"},
     {FixOutcome::kColourMismatch, "colour_mismatch"},
+    {FixOutcome::kUnlikeSizes, "unlike_sizes"},
     {FixOutcome::kTooFar, "too_far"},
     {FixOutcome::kJump, "jump"}};
 constexpr std::span<const NamedValue<FixOutcome>> name_table(FixOutcome) {
@@ -135,7 +144,10 @@ struct StereoFix {
   /// How fast the radius of those fixes changes, over its mean [1/s] (FixWindow::radius_rate): a
   /// rigid object's is 0; a track still settling onto its object grows or shrinks.
   double window_radius_rate = 0.0;
-  double radius_m = 0.0;              ///< from the tracked areas and the depth; 0 unfixed
+  double radius_m = 0.0;  ///< from the tracked areas and the depth; 0 unfixed
+  /// StereoObject::size_ratio of the two tracks (whether or not the frame was fixed); 0 when
+  /// they did not triangulate.
+  double size_ratio = 0.0;
   double reprojection_px = 0.0;       ///< RMS reprojection error of the fix [px]
   std::array<ColourTrack, 2> tracks;  ///< each eye's track this frame (left, right)
 };
