@@ -276,3 +276,19 @@ TEST(ObjectTracker, OfTwoTracksOfUnlikeAreasTheSmallerIsDropped) {
   EXPECT_GT(squares_metric("unfixed_frames_lost: 1000", "area_drops", 30, 12, 40), 0);
   EXPECT_EQ(squares_metric("unfixed_frames_lost: 1000", "area_drops", 30, 30, 30), 0);
 }
+
+// With max_size_ratio two tracks whose sizes at the triangulated depth differ by more than that
+// ratio give no fix (metric size_mismatches): squares of 30 and 40 px side (within the 3 : 1
+// area check) are never fixed at 1.25 and fixed throughout without the check; two of like size
+// are fixed with it.
+TEST(ObjectTracker, TwoTracksOfUnlikeSizesAtTheirDepthGiveNoFix) {
+  const std::string keep = "unfixed_frames_lost: 1000";
+  const std::string checked = keep + ", max_size_ratio: 1.25";
+  constexpr int kDisparity = 40;  // [px]
+  EXPECT_EQ(squares_metric(checked, "frames_tracked", 30, 30, 40, kDisparity), 0);
+  EXPECT_GT(squares_metric(checked, "size_mismatches", 30, 30, 40, kDisparity), 10);
+  EXPECT_GT(squares_metric(keep, "frames_tracked", 30, 30, 40, kDisparity), 10);
+  EXPECT_EQ(squares_metric(keep, "size_mismatches", 30, 30, 40, kDisparity), 0);
+  EXPECT_GT(squares_metric(checked, "frames_tracked", 30, 30, 30, kDisparity), 10);
+  EXPECT_EQ(squares_metric(checked, "size_mismatches", 30, 30, 30, kDisparity), 0);
+}
