@@ -223,10 +223,8 @@ void ObjectTracker::Config::visit(V& v) {
           "a CSV written into the run folder, one row per stereo frame: each eye's track, the "
           "fix or the check that refused the frame (outcome: fixed, no_track, left_only, "
           "right_only, border, unlike_areas, not_triangulated, colour_mismatch, unlike_sizes, "
-          "too_far, "
-          "jump), "
-          "the filter's position and velocity, whether the velocity was reported, and the truth "
-          "where it is wired; '' = none");
+          "too_far, jump), the filter's position and velocity, whether the velocity was "
+          "reported, and the truth where it is wired; '' = none");
 }
 
 void ObjectTracker::Config::validate(ConfigChecks& checks) const {
