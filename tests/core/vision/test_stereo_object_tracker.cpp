@@ -330,6 +330,8 @@ TEST(StereoObjectTracker, TwoThingsOfUnlikeSizesNeverGiveAFixAndOneObjectAlwaysP
   for (const double ahead : {0.30, 0.45, 0.60})
     for (const double side : {-0.05, 0.06})
       for (const double factor : {1.0, 1.15, 1.4}) {
+        SCOPED_TRACE(testing::Message()
+                     << "ahead " << ahead << " side " << side << " factor " << factor);
         vision::StereoObjectTracker tracker(options);
         const Scene scene{.sphere = [&](int k) -> std::optional<Eigen::Vector3d> {
                             return Eigen::Vector3d(ahead, side + 0.03 - 0.1 * kDt * k, 0.23);
@@ -340,21 +342,16 @@ TEST(StereoObjectTracker, TwoThingsOfUnlikeSizesNeverGiveAFixAndOneObjectAlwaysP
         for (const vision::StereoFix& f : frames) {
           ++seen[f.outcome];
           if (f.size_ratio > 0.0) {
-            EXPECT_NEAR(f.size_ratio, factor, 0.12 * factor)
-                << "ahead " << ahead << " side " << side << " factor " << factor;
+            EXPECT_NEAR(f.size_ratio, factor, 0.12 * factor);
           }
         }
         ++cases;
         if (factor <= options.max_size_ratio) {
-          EXPECT_EQ(seen[FixOutcome::kUnlikeSizes], 0)
-              << "ahead " << ahead << " side " << side << " factor " << factor;
-          EXPECT_GT(seen[FixOutcome::kFixed], 8)
-              << "ahead " << ahead << " side " << side << " factor " << factor;
+          EXPECT_EQ(seen[FixOutcome::kUnlikeSizes], 0);
+          EXPECT_GT(seen[FixOutcome::kFixed], 8);
         } else {
-          EXPECT_EQ(seen[FixOutcome::kFixed], 0)
-              << "ahead " << ahead << " side " << side << " factor " << factor;
-          EXPECT_GT(seen[FixOutcome::kUnlikeSizes], 8)
-              << "ahead " << ahead << " side " << side << " factor " << factor;
+          EXPECT_EQ(seen[FixOutcome::kFixed], 0);
+          EXPECT_GT(seen[FixOutcome::kUnlikeSizes], 8);
         }
         EXPECT_EQ(seen[FixOutcome::kUnlikeSizes], tracker.counts().size_mismatches);
       }

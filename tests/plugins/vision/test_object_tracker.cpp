@@ -279,8 +279,8 @@ TEST(ObjectTracker, OfTwoTracksOfUnlikeAreasTheSmallerIsDropped) {
 
 // With max_size_ratio two tracks whose sizes at the triangulated depth differ by more than that
 // ratio give no fix (metric size_mismatches): squares of 30 and 40 px side (within the 3 : 1
-// area check) are never fixed at 1.25 and fixed throughout without the check; two of like size
-// are fixed with it.
+// area check) are never fixed at 1.25 and fixed in most frames without the check; two of like
+// size are fixed with it.
 TEST(ObjectTracker, TwoTracksOfUnlikeSizesAtTheirDepthGiveNoFix) {
   const std::string keep = "unfixed_frames_lost: 1000";
   const std::string checked = keep + ", max_size_ratio: 1.25";
